@@ -1,0 +1,1 @@
+"""Algorithms: nonlinear solvers (Picard (3.8), Newton), explicit time stepping (3.7)."""

@@ -1,0 +1,176 @@
+"""Command-line interface: ``hotroll run | example | validate | meshes``."""
+
+import time
+from pathlib import Path
+from typing import Annotated, Any, Optional
+
+import typer
+from rich.console import Console
+from rich.markup import escape
+from rich.table import Table
+from rich.text import Text
+
+from hotroll.app.config import MESH_TABLE, Case, CaseError, load_case
+from hotroll.app.examples import EXAMPLES, example_path
+
+app = typer.Typer(help="Finite-element simulation of hot flat rolling.", no_args_is_help=True,
+                  add_completion=False)
+console = Console()
+err_console = Console(stderr=True)
+
+SUMMARY_KEYS = ["neutral_point", "neutral_angle", "roll_force", "roll_torque", "roll_power",
+                "forward_slip", "a_f", "converged", "steps", "wall_time_s"]
+
+OutOpt = Annotated[Path, typer.Option("--out", "-o", help="Output directory.")]
+MeshOpt = Annotated[Optional[str], typer.Option(help="Contact mesh: Table 2 name (C1..F2) or h in m.")]
+EndOpt = Annotated[Optional[float], typer.Option(help="Simulated end time in s.")]
+NonlinOpt = Annotated[Optional[str], typer.Option(help="Nonlinear solver: newton or picard.")]
+ResumeOpt = Annotated[bool, typer.Option("--resume/--no-resume", help="Resume from a checkpoint.")]
+
+
+def _fail(msg: str, code: int = 2) -> typer.Exit:
+    err_console.print(Text(msg, style="red"), soft_wrap=True)
+    return typer.Exit(code)
+
+
+def _overrides(mesh: str | None, end_time: float | None, nonlinear: str | None,
+               **extra: Any) -> dict[str, Any]:
+    """Dotted overrides from command-line options (unset options left out)."""
+    over: dict[str, Any] = dict(extra)
+    if mesh is not None:
+        try:
+            over["mesh.h_contact"] = float(mesh)
+        except ValueError:
+            over["mesh.h_contact"] = mesh
+    if end_time is not None:
+        over["solver.end_time"] = end_time
+    if nonlinear is not None:
+        over["solver.nonlinear"] = nonlinear
+    return over
+
+
+def _load(path: Path, over: dict[str, Any]) -> Case:
+    """Load and override a case; bad input ends the command with exit code 2."""
+    try:
+        case = load_case(path)
+        try:
+            return case.with_overrides(**over)
+        except CaseError as e:
+            raise CaseError(e.problems, f"{path} (with command-line options)") from None
+    except CaseError as e:
+        raise _fail(str(e)) from None
+
+
+class _Progress:
+    """Throttled one-line progress report from the runner's progress dicts."""
+
+    def __init__(self, every: float = 2.0):
+        self.every, self.last = every, 0.0
+
+    def __call__(self, info: dict) -> None:
+        now = time.monotonic()
+        if now - self.last < self.every and "message" not in info:
+            return
+        self.last = now
+        parts = [f"{k}={_fmt(v)}" for k, v in info.items() if isinstance(v, (int, float, str, bool))]
+        console.print(Text("  " + "  ".join(parts), style="dim"), soft_wrap=True)
+
+
+def _fmt(v: Any) -> str:
+    if isinstance(v, bool) or not isinstance(v, (int, float, list, tuple)):
+        return str(v)
+    if isinstance(v, (list, tuple)):
+        return ", ".join(_fmt(x) for x in v)
+    return f"{v:.6g}" if isinstance(v, float) else str(v)
+
+
+def _run(case: Case, out: Path, resume: bool) -> dict:
+    try:
+        from hotroll.app.runner import run_case
+    except ImportError as e:
+        raise _fail(f"runner not available: {e}", code=1) from None
+    console.print(Text(f"running {case.name} -> {out}", style="bold"))
+    summary = run_case(case, out, resume=resume, progress=_Progress()) or {}
+    table = Table(title=escape(f"{case.name}: summary"))
+    table.add_column("quantity")
+    table.add_column("value", justify="right")
+    for key in SUMMARY_KEYS:
+        if key in summary:
+            table.add_row(key, escape(_fmt(summary[key])))
+    console.print(table)
+    return summary
+
+
+@app.command()
+def run(
+    case_file: Annotated[Path, typer.Argument(help="Case description (TOML).")],
+    out: OutOpt,
+    mesh: MeshOpt = None,
+    end_time: EndOpt = None,
+    nonlinear: NonlinOpt = None,
+    no_figures: Annotated[bool, typer.Option("--no-figures", help="Do not write figures.")] = False,
+    resume: ResumeOpt = True,
+) -> None:
+    """Run one case file into OUT."""
+    extra = {"output.figures": False} if no_figures else {}
+    case = _load(case_file, _overrides(mesh, end_time, nonlinear, **extra))
+    _run(case, out, resume)
+
+
+@app.command()
+def example(
+    number: Annotated[str, typer.Argument(help="Example number of the report: 1, 2 or 3.")],
+    out: OutOpt,
+    mesh: MeshOpt = None,
+    end_time: EndOpt = None,
+    nonlinear: NonlinOpt = None,
+    method: Annotated[Optional[str], typer.Option(help="Solution method: transient.")] = None,
+    resume: ResumeOpt = True,
+) -> None:
+    """Run a report example (3 runs m = 0.15, 0.2, 0.25 and compares them)."""
+    if number not in EXAMPLES:
+        raise _fail(f"example: unknown number {number!r} (allowed: {', '.join(EXAMPLES)})")
+    extra = {"solver.method": method} if method is not None else {}
+    over = _overrides(mesh, end_time, nonlinear, **extra)
+    cases = [_load(example_path(name), over) for name in EXAMPLES[number]]  # validate all first
+    if len(cases) == 1:
+        _run(cases[0], out, resume)
+        return
+    runs = {}
+    for case in cases:
+        _run(case, out / case.name, resume)
+        runs[f"m = {case.material.m:g}"] = out / case.name
+    try:
+        from hotroll.post.plots import plot_compare
+    except ImportError as e:
+        console.print(Text(f"comparison plot skipped ({e})", style="yellow"))
+        return
+    png = plot_compare(runs, out / "compare.png")
+    console.print(Text(f"comparison plot: {png or out / 'compare.png'}"))
+
+
+@app.command()
+def validate(case_file: Annotated[Path, typer.Argument(help="Case description (TOML).")]) -> None:
+    """Check a case file; print the resolved case as TOML (exit 0) or the errors (exit 2)."""
+    case = _load(case_file, {})
+    p = case.pass_
+    typer.echo(case.to_toml())
+    typer.echo(f"# derived: contact_length = {p.contact_length:.6g} m, bite_angle = "
+               f"{p.bite_angle:.6g} rad, roll_surface_speed = {p.roll_surface_speed:.6g} m/s, "
+               f"h_contact = {case.mesh.h:g} m, dt = {case.dt:.6g} s")
+
+
+@app.command()
+def meshes() -> None:
+    """List the contact mesh sizes of the report's Table 2."""
+    table = Table(title="Table 2: contact mesh sizes")
+    table.add_column("name")
+    table.add_column(escape("h_contact [m]"), justify="right")
+    table.add_column(escape("dt = h/6 [s]"), justify="right")
+    for name, h in MESH_TABLE.items():
+        table.add_row(name + (" (default)" if name == "C2" else ""), f"{h:g}", f"{h / 6:.4g}")
+    console.print(table)
+
+
+if __name__ == "__main__":
+    app()

@@ -1,0 +1,348 @@
+"""Validated case description (TOML -> pydantic models), SI units throughout.
+
+A case file has the sections ``[pass]``, ``[plate]``, ``[material]`` (required)
+and ``[friction]``, ``[mesh]``, ``[solver]``, ``[output]`` (optional).  Every
+problem is reported as ``<section.key>: <what is wrong; allowed range>`` in a
+single :class:`CaseError`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import tomllib
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic.fields import FieldInfo
+
+#: Contact mesh sizes of the report's Table 2 (m).
+MESH_TABLE: dict[str, float] = {
+    "C1": 5.02e-3, "C2": 4.2e-3, "M1": 3.7e-3, "M2": 3.01e-3, "F1": 2.7e-3, "F2": 2.02e-3,
+}
+MeshName = Literal["C1", "C2", "M1", "M2", "F1", "F2"]
+PosFloat = Annotated[float, Field(gt=0)]
+
+
+class CaseError(ValueError):
+    """Invalid case description; ``problems`` holds one ``section.key: ...`` line each."""
+
+    def __init__(self, problems: list[str] | str, source: str | None = None):
+        self.problems = [problems] if isinstance(problems, str) else list(problems)
+        self.source = source
+        n = len(self.problems)
+        head = f"{source or 'case'}: invalid case description ({n} problem{'s' * (n != 1)})"
+        super().__init__("\n".join([head] + [f"  {p}" for p in self.problems]))
+
+
+class _Problems(ValueError):
+    """Raised inside model validators; carries ready-made ``section.key: ...`` lines."""
+
+    def __init__(self, problems: list[str]):
+        self.problems = problems
+        super().__init__("; ".join(problems))
+
+
+def _field(default: Any, text: str, unit: str, allowed: str, **constraints: Any) -> Any:
+    """Field whose description and error messages carry unit and allowed range."""
+    allowed_u = f"{allowed} [{unit}]" if unit else allowed
+    desc = f"{text} [{unit or '-'}]; allowed: {allowed}"
+    return Field(default, description=desc, json_schema_extra={"allowed": allowed_u}, **constraints)
+
+
+class _Section(BaseModel):
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
+
+
+class PassConfig(_Section):
+    """Roll and pass geometry (roll centre at x = roll_axis_x, y = exit/2 + R)."""
+
+    roll_radius: float = _field(..., "roll radius R", "m", "> 0", gt=0)
+    entry_thickness: float = _field(..., "full plate thickness at entry", "m", "> 0", gt=0)
+    exit_thickness: float = _field(..., "full plate thickness at exit (roll gap)", "m",
+                                   "> 0 and < entry_thickness", gt=0)
+    roll_angular_velocity: float = _field(..., "roll angular velocity omega", "rad/s", "> 0", gt=0)
+    roll_axis_x: float = _field(1.0, "x of the roll centre (initial plate head position)", "m",
+                                "a finite number")
+
+    @model_validator(mode="after")
+    def _check_geometry(self) -> PassConfig:
+        problems = []
+        if self.exit_thickness >= self.entry_thickness:
+            problems.append(
+                f"pass.exit_thickness: must be smaller than pass.entry_thickness "
+                f"({self.entry_thickness:g} m), got {self.exit_thickness:g} m")
+        elif self.draft >= self.roll_radius:
+            problems.append(
+                f"pass.roll_radius: must exceed the draft per side (entry - exit)/2 = "
+                f"{self.draft:g} m, otherwise the roll cannot bite the plate; allowed: "
+                f"roll_radius > {self.draft:g} m, got {self.roll_radius:g} m")
+        if problems:
+            raise _Problems(problems)
+        return self
+
+    @property
+    def half_entry(self) -> float:
+        return 0.5 * self.entry_thickness
+
+    @property
+    def half_exit(self) -> float:
+        return 0.5 * self.exit_thickness
+
+    @property
+    def draft(self) -> float:
+        """Thickness reduction per side (m)."""
+        return 0.5 * (self.entry_thickness - self.exit_thickness)
+
+    @property
+    def roll_centre(self) -> tuple[float, float]:
+        return (self.roll_axis_x, self.half_exit + self.roll_radius)
+
+    @property
+    def roll_surface_speed(self) -> float:
+        return self.roll_angular_velocity * self.roll_radius
+
+    @property
+    def contact_length(self) -> float:
+        """Projected contact length sqrt(R^2 - (R - draft)^2) (m)."""
+        r, d = self.roll_radius, self.draft
+        return math.sqrt(max(r * r - (r - d) ** 2, 0.0))
+
+    @property
+    def bite_angle(self) -> float:
+        """Bite angle acos(1 - draft/R) (rad)."""
+        return math.acos(1.0 - self.draft / self.roll_radius)
+
+
+class PlateConfig(_Section):
+    length: float = _field(
+        ..., "initial plate length, at least 3 x the projected contact length", "m", "> 0", gt=0)
+
+
+class MaterialConfig(_Section):
+    K: float = _field(..., "Norton-Hoff consistency K", "Pa s^m", "> 0", gt=0)
+    m: float = _field(..., "strain-rate sensitivity m", "", "in (0, 1]", gt=0, le=1)
+    eps0: float = _field(1e-4, "strain-rate regularisation eps0", "1/s", "> 0", gt=0)
+
+
+class FrictionConfig(_Section):
+    law: Literal["viscoplastic"] = _field("viscoplastic", "friction law", "", '"viscoplastic"')
+    a_f: Literal["estimate"] | PosFloat = _field(
+        "estimate", "viscoplastic friction coefficient (tau = a_f K |dv|^(m-1) dv)", "m^-m",
+        '"estimate" or a number > 0')
+    v_reg: PosFloat | None = _field(
+        None, "friction regularisation velocity (omit: 1e-4 x roll surface speed)", "m/s", "> 0")
+    a_f_max: float = _field(1e6, "upper cap for the estimated a_f", "m^-m", "> 0", gt=0)
+
+    def regularisation_velocity(self, u_roll: float) -> float:
+        """v_reg, or 1e-4 x the roll surface speed ``u_roll`` when not given (m/s)."""
+        return self.v_reg if self.v_reg is not None else 1e-4 * u_roll
+
+
+class MeshConfig(_Section):
+    h_contact: MeshName | PosFloat = _field(
+        "C2", "mesh size along the contact", "m", 'one of C1, C2, M1, M2, F1, F2 or a number > 0')
+    h_far: PosFloat | None = _field(None, "coarse mesh size far from the roll (omit: automatic)",
+                                    "m", "> 0 and >= h_contact")
+    grading: float = _field(0.3, "mesh grading (size growth rate)", "", "in (0, 1]", gt=0, le=1)
+
+    @field_validator("h_contact", mode="before")
+    @classmethod
+    def _upper_name(cls, v: Any) -> Any:
+        return v.strip().upper() if isinstance(v, str) else v
+
+    @property
+    def h(self) -> float:
+        """Contact mesh size in m (Table 2 names resolved)."""
+        return MESH_TABLE[self.h_contact] if isinstance(self.h_contact, str) else self.h_contact
+
+
+class SolverConfig(_Section):
+    method: Literal["transient"] = _field("transient", "time integration", "", '"transient"')
+    nonlinear: Literal["newton", "picard"] = _field("newton", "nonlinear solver", "",
+                                                    '"newton" or "picard"')
+    tolerance: float = _field(1e-5, "nonlinear tolerance", "", "> 0", gt=0)
+    max_iterations: int = _field(20, "nonlinear iterations per step", "", "an integer >= 1", ge=1)
+    end_time: PosFloat | None = _field(None, "simulated time (omit: automatic)", "s", "> 0")
+    time_step: Literal["h/6"] | PosFloat = _field(
+        "h/6", 'time step ("h/6": dt = h_contact/6)', "s", '"h/6" or a number > 0')
+    steady_tolerance: float = _field(2e-3, "steady-state detection tolerance", "", "> 0", gt=0)
+    max_steps: int = _field(100000, "maximum number of time steps", "", "an integer >= 1", ge=1)
+    wall_time_limit: PosFloat | None = _field(None, "wall-clock limit (omit: none)", "s", "> 0")
+    checkpoint_every: int = _field(25, "steps between checkpoints", "", "an integer >= 1", ge=1)
+    threads: int = _field(2, "worker threads", "", "an integer >= 1", ge=1)
+    exit_pressure_correction: bool = _field(True, "correct the exit pressure", "", "true or false")
+
+
+class OutputConfig(_Section):
+    figures: bool = _field(True, "write figures", "", "true or false")
+    vtk: bool = _field(True, "write VTK files", "", "true or false")
+
+
+class Case(_Section):
+    """A complete rolling case."""
+
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, populate_by_name=True)
+
+    name: str = Field("case", description="case name (used for output folders)")
+    pass_: PassConfig = Field(..., alias="pass", description="roll and pass geometry")
+    plate: PlateConfig = Field(..., description="plate")
+    material: MaterialConfig = Field(..., description="Norton-Hoff material")
+    friction: FrictionConfig = Field(default_factory=FrictionConfig, description="friction law")
+    mesh: MeshConfig = Field(default_factory=MeshConfig, description="mesh sizes")
+    solver: SolverConfig = Field(default_factory=SolverConfig, description="solver settings")
+    output: OutputConfig = Field(default_factory=OutputConfig, description="output switches")
+
+    @model_validator(mode="after")
+    def _check_sizes(self) -> Case:
+        lc, problems = self.pass_.contact_length, []
+        if self.plate.length < 3 * lc:
+            problems.append(f"plate.length: must be >= 3 x projected contact length = "
+                            f"{3 * lc:.6g} m, got {self.plate.length:g} m")
+        h = self.mesh.h
+        if h >= lc / 4:
+            shown = f"{self.mesh.h_contact} = {h:g}" if isinstance(self.mesh.h_contact, str) else f"{h:g}"
+            problems.append(f"mesh.h_contact: must be < contact_length/4 = {lc / 4:.6g} m, "
+                            f"got {shown} m")
+        if self.mesh.h_far is not None and self.mesh.h_far < h:
+            problems.append(f"mesh.h_far: must be >= mesh.h_contact ({h:g} m), "
+                            f"got {self.mesh.h_far:g} m")
+        if problems:
+            raise _Problems(problems)
+        return self
+
+    @property
+    def dt(self) -> float:
+        """Time step in s (rule "h/6" resolved with the contact mesh size)."""
+        ts = self.solver.time_step
+        return self.mesh.h / 6.0 if ts == "h/6" else float(ts)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain dict with TOML names (``pass``); unset optional keys left out."""
+        return self.model_dump(by_alias=True, exclude_none=True)
+
+    def with_overrides(self, **dotted: Any) -> Case:
+        """New validated Case with ``{"section.key": value}`` replaced (None = automatic)."""
+        data = self.to_dict()
+        for key, value in dotted.items():
+            parts = key.split(".")
+            parts[0] = "pass" if parts[0] == "pass_" else parts[0]
+            node = data
+            for p in parts[:-1]:
+                node = node.setdefault(p, {})
+                if not isinstance(node, dict):
+                    raise CaseError(f"{key}: '{p}' is not a section")
+            node[parts[-1]] = value
+        return case_from_dict(data)
+
+    def to_toml(self) -> str:
+        """TOML text that round-trips through :func:`case_from_toml`."""
+        data = self.to_dict()
+        lines = [f"name = {_toml_value(data.pop('name'))}"]
+        for section, values in data.items():
+            model = _model_of(Case, section)
+            lines += ["", f"[{section}]"]
+            for key, value in values.items():
+                info = _fields(model)[key]
+                lines.append(f"{key} = {_toml_value(value)}".ljust(36) + f"  # {info.description}")
+        return "\n".join(lines) + "\n"
+
+
+# --------------------------------------------------------------------------- I/O
+
+
+def case_from_dict(d: Any, source: str | None = None) -> Case:
+    """Validate a plain dict (TOML names) into a Case; raises CaseError."""
+    if not isinstance(d, dict):
+        raise CaseError(f"case: must be a table of sections, got {type(d).__name__}", source)
+    try:
+        return Case.model_validate(d)
+    except ValidationError as e:
+        raise CaseError(_problems(e), source) from None
+
+
+def case_from_toml(text: str, source: str | None = None) -> Case:
+    """Parse and validate TOML text; raises CaseError."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise CaseError(f"TOML syntax error: {e}", source) from None
+    return case_from_dict(data, source)
+
+
+def load_case(path: str | Path) -> Case:
+    """Read a TOML case file; ``name`` defaults to the file stem."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as e:
+        raise CaseError(f"cannot read case file: {e.strerror or e}", str(path)) from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise CaseError(f"TOML syntax error: {e}", str(path)) from None
+    data.setdefault("name", path.stem)
+    return case_from_dict(data, str(path))
+
+
+# ------------------------------------------------------------------ error text
+
+
+def _fields(model: type[BaseModel]) -> dict[str, FieldInfo]:
+    return {(f.alias or n): f for n, f in model.model_fields.items()}
+
+
+def _model_of(model: type[BaseModel], key: str) -> type[BaseModel] | None:
+    ann = _fields(model)[key].annotation
+    return ann if isinstance(ann, type) and issubclass(ann, BaseModel) else None
+
+
+def _problems(err: ValidationError) -> list[str]:
+    """Turn pydantic errors into ``section.key: message`` lines (one per field)."""
+    out: dict[str, str] = {}
+    for e in err.errors():
+        exc = (e.get("ctx") or {}).get("error")
+        if isinstance(exc, _Problems):
+            out.update({p: p for p in exc.problems})
+            continue
+        path, parent, info = [], Case, None
+        for item in e["loc"]:
+            fields = _fields(parent) if parent else {}
+            path.append(str(item))
+            if item not in fields:
+                break
+            info, parent = fields[item], _model_of(parent, item)
+            if parent is None:
+                break
+        dotted = ".".join(path)
+        out.setdefault(dotted, f"{dotted}: {_message(e, path, parent, info)}")
+    return list(out.values())
+
+
+def _message(e: dict, path: list[str], parent: type[BaseModel] | None, info: FieldInfo | None) -> str:
+    kind, got = e["type"], e.get("input")
+    if kind == "extra_forbidden":
+        what = "unknown section or key" if len(path) == 1 else "unknown key"
+        return f"{what} (allowed: {', '.join(_fields(parent))})"
+    is_section = info is not None and parent is not None and len(path) == 1
+    if kind == "missing":
+        if is_section or info is None:
+            return "missing required section" if is_section else "missing"
+        return f"missing required key ({info.description})"
+    if is_section:
+        return f"must be a table [{path[0]}], got {got!r}"
+    allowed = (info.json_schema_extra or {}).get("allowed") if info else None
+    if allowed:
+        return f"must be {allowed}, got {got!r}"
+    return e["msg"][0].lower() + e["msg"][1:]
+
+
+def _toml_value(v: Any) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return repr(v)
+    if isinstance(v, str):
+        return json.dumps(v, ensure_ascii=False)
+    raise TypeError(f"cannot write {type(v).__name__} to TOML")

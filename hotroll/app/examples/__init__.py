@@ -1,0 +1,21 @@
+"""Case files of the report's examples (Touloupoulos 2020)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+#: Example number -> case files; Example 3 compares m = 0.15, 0.2, 0.25 (m = 0.2 is example1).
+EXAMPLES: dict[str, list[str]] = {
+    "1": ["example1"],
+    "2": ["example2"],
+    "3": ["example3_m015", "example1", "example3_m025"],
+}
+
+
+def example_path(name: str) -> Path:
+    """Path of the bundled case file ``name`` (with or without ``.toml``)."""
+    path = Path(__file__).with_name(name if name.endswith(".toml") else f"{name}.toml")
+    if not path.is_file():
+        known = sorted(p.stem for p in path.parent.glob("*.toml"))
+        raise FileNotFoundError(f"no example case {name!r} (known: {', '.join(known)})")
+    return path

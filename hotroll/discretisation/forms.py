@@ -1,0 +1,80 @@
+"""Generic weak-form machinery shared by the rolling problem and the analytic checks.
+
+A problem is written once as ``integrand(u, p, w, v, q)``: ``u, p`` the trial velocity and
+pressure, ``w`` the velocity at which nonlinear coefficients are evaluated, ``v, q`` the tests.
+Newton uses w = u (exact linearisation by NGSolve); Picard (3.8) uses w = the previous iterate, so
+the Picard matrix J(U^i) is the linearisation of the frozen form and the Picard step is
+U^{i+1} = U^i - J(U^i)^{-1} r(U^i). One code path, two algorithms.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+from ..physics.material import NortonHoff, edot_squared
+
+
+def strain_rate(u):
+    """eps_dot(u) = sym grad u, (2.4)."""
+    from ngsolve import Grad, Sym
+
+    return Sym(Grad(u))
+
+
+def one_sided(f_u, f_w):
+    """[f]_+ with the active set taken at w (Picard) or at u itself (Newton: f_w is f_u)."""
+    from ngsolve import IfPos
+
+    return IfPos(f_w, f_u, 0.0)
+
+
+def norton_hoff_volume(material: NortonHoff, m, u, p, w, v, q, K=1.0):
+    """Volume part of (2.24)/(3.6): int s(u):eps(v) - p div v - q div u."""
+    from ngsolve import InnerProduct, div
+
+    mu = material.viscosity(edot_squared(strain_rate(w)), m=m, K=K)
+    return mu * InnerProduct(strain_rate(u), strain_rate(v)) - p * div(v) - q * div(u)
+
+
+@dataclass
+class NonlinearProblem:
+    """A mixed velocity-pressure problem with its Newton and Picard forms.
+
+    ``integrand(u, p, w, v, q)`` returns an NGSolve SumOfIntegrals. ``velocity_scale`` makes the
+    stopping test ``max|du| <= tol * velocity_scale`` independent of units.
+    """
+
+    fes: object
+    integrand: Callable
+    velocity_scale: float = 1.0
+    gf: object = field(init=False)
+    gf_w: object = field(init=False)
+    a_newton: object = field(init=False)
+    a_picard: object = field(init=False)
+
+    def __post_init__(self):
+        from ngsolve import BilinearForm, GridFunction
+
+        self.gf = GridFunction(self.fes)
+        self.gf_w = GridFunction(self.fes)
+        (u, p), (v, q) = self.fes.TnT()
+        w_frozen = self.gf_w.components[0]
+        self.a_newton = BilinearForm(self.fes)
+        self.a_newton += self.integrand(u, p, u, v, q)
+        self.a_picard = BilinearForm(self.fes)
+        self.a_picard += self.integrand(u, p, w_frozen, v, q)
+
+    @property
+    def freedofs(self):
+        return self.fes.FreeDofs()
+
+    @property
+    def velocity(self):
+        return self.gf.components[0]
+
+    @property
+    def pressure(self):
+        return self.gf.components[1]
+
+    def n_velocity_dofs(self) -> int:
+        return self.fes.components[0].ndof

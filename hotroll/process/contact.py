@@ -1,0 +1,96 @@
+"""Top-boundary nodes of the moving plate and contact detection by projection, report (3.9).
+
+The geometry lives in one P2 displacement field ``disp`` (VectorH1, order 2) on the
+straight-sided reference mesh: vertex DOFs are nodal displacements, the edge DOF of a P2 edge
+is the coefficient of its quadratic bubble, whose value at the edge midpoint is ``BUBBLE_MID``.
+So every P2 geometry node (vertices and edge midpoints) can be read and moved exactly.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .geometry import RollPass
+
+BUBBLE_MID = -0.125   # NGSolve's order-2 H1 edge shape function at the edge midpoint
+TOP_REGIONS = ("top", "arc")
+
+
+class TopBoundary:
+    """Vertices and edges of the plate's top boundary (free surface and contact)."""
+
+    def __init__(self, mesh, ndof_scalar: int):
+        import ngsolve
+
+        self.nv, self.n_scalar = mesh.nv, ndof_scalar
+        edges, verts = [], set()
+        for el in mesh.Elements(ngsolve.BND):
+            if el.mat in TOP_REGIONS:
+                e = el.edges[0].nr
+                a, b = (v.nr for v in el.vertices)
+                edges.append((e, a, b))
+                verts.update((a, b))
+        arr = np.array(sorted(edges), dtype=int)
+        self.edge, self.ea, self.eb = arr[:, 0], arr[:, 1], arr[:, 2]
+        self.verts = np.array(sorted(verts), dtype=int)
+        self.vpos = {v: i for i, v in enumerate(self.verts)}   # vertex nr -> row in verts
+        pts = np.array([mesh.vertices[i].point for i in range(mesh.nv)])[:, :2]
+        self.X0 = pts                                           # all reference vertices
+        self.M0 = 0.5 * (pts[self.ea] + pts[self.eb])           # reference edge midpoints
+        self.vertex_contact = np.zeros(len(self.verts), dtype=bool)
+        self.edge_contact = np.zeros(len(self.edge), dtype=bool)
+
+    # --- reading and writing geometry through the displacement vector ----------------------
+    def _xy(self, d: np.ndarray, dofs: np.ndarray) -> np.ndarray:
+        return np.stack([d[dofs], d[self.n_scalar + dofs]], axis=-1)
+
+    def vertex_positions(self, d: np.ndarray, verts=None) -> np.ndarray:
+        verts = self.verts if verts is None else verts
+        return self.X0[verts] + self._xy(d, verts)
+
+    def midpoint_positions(self, d: np.ndarray) -> np.ndarray:
+        da, db = self._xy(d, self.ea), self._xy(d, self.eb)
+        bub = self._xy(d, self.nv + self.edge)
+        return self.M0 + 0.5 * (da + db) + BUBBLE_MID * bub
+
+    def set_vertices(self, d: np.ndarray, verts: np.ndarray, xy: np.ndarray) -> None:
+        disp = xy - self.X0[verts]
+        d[verts], d[self.n_scalar + verts] = disp[:, 0], disp[:, 1]
+
+    def set_midpoints(self, d: np.ndarray, rows: np.ndarray, xy: np.ndarray) -> None:
+        """Move the midpoints of edges ``rows`` to ``xy`` by changing the bubble coefficient."""
+        ea, eb = self.ea[rows], self.eb[rows]
+        lin = self.M0[rows] + 0.5 * (self._xy(d, ea) + self._xy(d, eb))
+        c = (xy - lin) / BUBBLE_MID
+        dofs = self.nv + self.edge[rows]
+        d[dofs], d[self.n_scalar + dofs] = c[:, 0], c[:, 1]
+
+    # --- contact (3.9) -----------------------------------------------------------------------
+    def detect(self, rp: RollPass, d: np.ndarray, tol: float, project_contact: bool) -> int:
+        """Project penetrating nodes back onto the roll and flag contact nodes and edges.
+
+        A node is in contact when its distance to the roll is below ``tol`` (3.9a); nodes
+        inside the roll are always projected; with ``project_contact`` (every 10 steps) all
+        contact nodes are put on the roll surface. An edge is in contact when both its vertices
+        are; the midpoints of contact edges then follow the same projection rule.
+        Returns the number of contact edges.
+        """
+        xv = self.vertex_positions(d)
+        dist = rp.signed_distance(xv)
+        move = dist < (tol if project_contact else 0.0)
+        if move.any():
+            self.set_vertices(d, self.verts[move], rp.project(xv[move]))
+        self.vertex_contact = dist < tol
+        vc = self.vertex_contact
+        self.edge_contact = vc[[self.vpos[a] for a in self.ea]] & vc[[self.vpos[b] for b in self.eb]]
+        xm = self.midpoint_positions(d)
+        dm = rp.signed_distance(xm)
+        mmove = (dm < 0.0) | (self.edge_contact & (project_contact | (dm > tol)))
+        if mmove.any():
+            rows = np.nonzero(mmove)[0]
+            self.set_midpoints(d, rows, rp.project(xm[rows]))
+        return int(self.edge_contact.sum())
+
+    def write_indicator(self, chi_vec: np.ndarray) -> None:
+        """Set the facet indicator (FacetFESpace order 0: one DOF per edge) to the contact flags."""
+        chi_vec[:] = 0.0
+        chi_vec[self.edge[self.edge_contact]] = 1.0

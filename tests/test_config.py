@@ -1,0 +1,210 @@
+"""Case description: loading, validation messages, round trips and the CLI front end."""
+
+import math
+import sys
+import types
+
+import pytest
+from typer.testing import CliRunner
+
+from hotroll.app.cli import app
+from hotroll.app.config import MESH_TABLE, Case, CaseError, case_from_dict, case_from_toml, load_case
+from hotroll.app.examples import EXAMPLES, example_path
+
+NAMES = ["example1", "example2", "example3_m015", "example3_m025"]
+
+
+@pytest.fixture
+def base() -> dict:
+    return load_case(example_path("example1")).to_dict()
+
+
+def problems(data: dict) -> str:
+    with pytest.raises(CaseError) as info:
+        case_from_dict(data)
+    return str(info.value)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_examples_load(name):
+    case = load_case(example_path(name))
+    p = case.pass_
+    assert case.name == name
+    assert (p.roll_radius, p.half_entry, p.half_exit, p.roll_axis_x) == (0.6, 0.25, 0.2, 1.0)
+    assert p.roll_centre == (1.0, 0.8)
+    assert p.contact_length == pytest.approx(math.sqrt(0.6**2 - 0.55**2))
+    assert p.bite_angle == pytest.approx(math.acos(1 - 0.05 / 0.6))
+    assert case.material.K == 1.0 and case.material.eps0 == 1e-4
+    assert case.friction.a_f == "estimate" and case.mesh.h == MESH_TABLE["C2"]
+    assert case.dt == pytest.approx(4.2e-3 / 6)
+
+
+def test_example_parameters():
+    omega = {n: load_case(example_path(n)).pass_.roll_angular_velocity for n in NAMES}
+    m = {n: load_case(example_path(n)).material.m for n in NAMES}
+    assert omega["example1"] == pytest.approx(math.pi / 3)
+    assert omega["example2"] == pytest.approx(math.pi / 6)
+    assert [m[n] for n in EXAMPLES["3"]] == [0.15, 0.2, 0.25]
+    with pytest.raises(FileNotFoundError):
+        example_path("nope")
+
+
+@pytest.mark.parametrize("name,h", list(MESH_TABLE.items()))
+def test_mesh_table(base, name, h):
+    base["mesh"]["h_contact"] = name.lower()
+    assert case_from_dict(base).mesh.h == h
+
+
+def test_table_values():
+    assert MESH_TABLE == {"C1": 5.02e-3, "C2": 4.2e-3, "M1": 3.7e-3, "M2": 3.01e-3,
+                          "F1": 2.7e-3, "F2": 2.02e-3}
+
+
+@pytest.mark.parametrize("section,key,value,expected", [
+    ("pass", "roll_radius", 0.0, "pass.roll_radius: must be > 0"),
+    ("pass", "entry_thickness", -0.5, "pass.entry_thickness: must be > 0"),
+    ("pass", "roll_angular_velocity", 0, "pass.roll_angular_velocity: must be > 0"),
+    ("plate", "length", -4.0, "plate.length: must be > 0"),
+    ("mesh", "h_contact", 0.0, "mesh.h_contact: must be"),
+    ("mesh", "h_contact", "Z9", "mesh.h_contact: must be one of C1"),
+    ("pass", "exit_thickness", 0.5, "pass.exit_thickness: must be smaller than pass.entry_thickness"),
+    ("pass", "exit_thickness", 0.6, "pass.exit_thickness: must be smaller"),
+    ("material", "m", 0.0, "material.m: must be in (0, 1], got 0.0"),
+    ("material", "m", -0.2, "material.m: must be in (0, 1], got -0.2"),
+    ("material", "m", 1.5, "material.m: must be in (0, 1], got 1.5"),
+    ("pass", "roll_radius", 0.04, "pass.roll_radius: must exceed the draft"),
+    ("pass", "foo", 1, "pass.foo: unknown key (allowed: roll_radius"),
+    ("friction", "a_f", "foo", 'friction.a_f: must be "estimate" or a number > 0'),
+    ("friction", "a_f", -1, "friction.a_f: must be"),
+    ("plate", "length", 0.5, "plate.length: must be >= 3 x projected contact length"),
+    ("mesh", "h_contact", 0.1, "mesh.h_contact: must be < contact_length/4"),
+    ("solver", "max_iterations", 0, "solver.max_iterations: must be an integer >= 1"),
+    ("solver", "nonlinear", "bfgs", "solver.nonlinear:"),
+])
+def test_bad_values(base, section, key, value, expected):
+    base[section][key] = value
+    assert expected in problems(base)
+
+
+def test_unknown_and_missing_sections(base):
+    base["foo"] = {"x": 1}
+    del base["plate"]
+    msg = problems(base)
+    assert "foo: unknown section" in msg and "plate: missing required section" in msg
+
+
+def test_all_problems_reported(base):
+    base["pass"]["roll_radius"] = -1
+    base["material"]["m"] = 2
+    base["mesh"]["bogus"] = 1
+    msg = problems(base)
+    assert all(s in msg for s in ["pass.roll_radius", "material.m", "mesh.bogus"])
+    assert "pass_" not in msg
+
+
+def test_bad_files(tmp_path):
+    with pytest.raises(CaseError, match="cannot read"):
+        load_case(tmp_path / "missing.toml")
+    with pytest.raises(CaseError, match="TOML syntax error"):
+        case_from_toml("[pass\nroll_radius = 1")
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_toml_round_trip(name):
+    case = load_case(example_path(name)).with_overrides(
+        **{"friction.a_f": 12.5, "friction.v_reg": 1e-5, "solver.end_time": 0.3,
+           "mesh.h_contact": 3e-3, "output.vtk": False, "name": 'odd "name" é'})
+    again = case_from_toml(case.to_toml())
+    assert again == case and again.to_toml() == case.to_toml()
+
+
+def test_with_overrides():
+    case = load_case(example_path("example1"))
+    new = case.with_overrides(**{"mesh.h_contact": "C1", "solver.end_time": 0.3,
+                                 "pass_.roll_axis_x": 2.0})
+    assert new.mesh.h == 5.02e-3 and new.solver.end_time == 0.3 and new.pass_.roll_axis_x == 2.0
+    assert case.mesh.h_contact == "C2" and case.solver.end_time is None  # original unchanged
+    with pytest.raises(CaseError, match="material.m"):
+        case.with_overrides(**{"material.m": 0})
+    with pytest.raises(CaseError, match="solver.foo: unknown key"):
+        case.with_overrides(**{"solver.foo": 1})
+
+
+def test_derived_helpers():
+    case = load_case(example_path("example1"))
+    u = case.pass_.roll_surface_speed
+    assert u == pytest.approx(0.6 * math.pi / 3)
+    assert case.friction.regularisation_velocity(u) == pytest.approx(1e-4 * u)
+    assert case.with_overrides(**{"friction.v_reg": 0.01}).friction.regularisation_velocity(u) == 0.01
+    assert case.with_overrides(**{"solver.time_step": 1e-3}).dt == 1e-3
+    assert isinstance(Case.model_fields["pass_"].description, str)
+    for model in (type(case.pass_), type(case.material), type(case.solver)):
+        for f in model.model_fields.values():
+            assert "allowed" in f.description
+
+
+# ------------------------------------------------------------------------ CLI
+
+runner = CliRunner()
+
+
+def test_cli_validate_ok():
+    result = runner.invoke(app, ["validate", str(example_path("example2"))])
+    assert result.exit_code == 0, result.output
+    assert case_from_toml(result.output).pass_.roll_angular_velocity == pytest.approx(math.pi / 6)
+
+
+def test_cli_validate_bad(tmp_path):
+    text = example_path("example1").read_text().replace("m = 0.2 ", "m = -0.2 ")
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text)
+    result = runner.invoke(app, ["validate", str(bad)])
+    assert result.exit_code == 2
+    assert "material.m" in result.output and "(0, 1]" in result.output
+
+
+def test_cli_meshes():
+    result = runner.invoke(app, ["meshes"])
+    assert result.exit_code == 0 and "C2" in result.output and "0.0042" in result.output
+
+
+@pytest.fixture
+def fake_runner(monkeypatch):
+    calls = []
+
+    def run_case(case, out, *, resume=True, progress=None):
+        calls.append((case, out, resume))
+        progress and progress({"step": 1, "time": 0.1, "message": "started"})
+        return {"roll_force": 1.25, "converged": True, "steps": 3}
+
+    monkeypatch.setitem(sys.modules, "hotroll.app.runner", types.SimpleNamespace(run_case=run_case))
+    return calls
+
+
+def test_cli_run_overrides(tmp_path, fake_runner):
+    result = runner.invoke(app, ["run", str(example_path("example1")), "--out", str(tmp_path),
+                                 "--mesh", "F1", "--end-time", "0.2", "--nonlinear", "picard",
+                                 "--no-figures", "--no-resume"])
+    assert result.exit_code == 0, result.output
+    (case, out, resume), = fake_runner
+    assert (case.mesh.h, case.solver.end_time, case.solver.nonlinear) == (2.7e-3, 0.2, "picard")
+    assert case.output.figures is False and resume is False and out == tmp_path
+    assert "roll_force" in result.output and "1.25" in result.output
+
+
+def test_cli_bad_option_before_run(tmp_path, fake_runner):
+    result = runner.invoke(app, ["example", "3", "--out", str(tmp_path), "--mesh", "0.5"])
+    assert result.exit_code == 2 and "mesh.h_contact" in result.output and not fake_runner
+    assert runner.invoke(app, ["example", "7", "--out", str(tmp_path)]).exit_code == 2
+
+
+def test_cli_example3(tmp_path, fake_runner, monkeypatch):
+    compared = {}
+    fake_plots = types.SimpleNamespace(plot_compare=lambda runs, png: compared.update(runs=runs, png=png))
+    monkeypatch.setitem(sys.modules, "hotroll.post.plots", fake_plots)
+    result = runner.invoke(app, ["example", "3", "--out", str(tmp_path), "--end-time", "0.1"])
+    assert result.exit_code == 0, result.output
+    assert [c.material.m for c, _, _ in fake_runner] == [0.15, 0.2, 0.25]
+    assert list(compared["runs"]) == ["m = 0.15", "m = 0.2", "m = 0.25"]
+    assert compared["runs"]["m = 0.2"] == tmp_path / "example1"
+    assert compared["png"] == tmp_path / "compare.png"

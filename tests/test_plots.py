@@ -1,0 +1,189 @@
+"""Tests for hotroll.post.plots on a synthetic run output directory."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from hotroll.post.plots import plot_all, plot_compare, plot_series
+
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+
+ALL_FIGS = ("fig_mesh.png", "fig_sigma_ef.png", "fig_velocity.png",
+            "fig_contact.png", "fig_top.png", "fig_history.png")
+
+
+def _write_csv(path: Path, header: list[str], rows: np.ndarray) -> None:
+    with open(path, "w") as f:
+        f.write(", ".join(header) + "\n")
+        for r in np.atleast_2d(rows):
+            f.write(",".join(f"{v:.10g}" for v in r) + "\n")
+
+
+def make_run(out: Path, *, roll_speed: float = 1.12, m: float = 0.2,
+             case_name: str = "synthetic", nx: int = 60, ny: int = 6) -> Path:
+    """Synthetic rolling output: roll R=1 at (0, 1.2), entry half thickness 0.25.
+
+    The top boundary follows the roll arc between the first touching point and
+    x = 0 (gap 0.2); the velocity field conserves mass (v1 * h = const).
+    """
+    out.mkdir(parents=True, exist_ok=True)
+    R, xc, yc = 1.0, 0.0, 1.2
+    h0, h1, v_in = 0.25, yc - R, 1.0
+    x_start = -R * math.sqrt(1.0 - ((yc - h0) / R) ** 2)
+
+    def top(x):
+        x = np.asarray(x, dtype=float)
+        arc = yc - np.sqrt(np.maximum(R**2 - (x - xc) ** 2, 0.0))
+        return np.where(x < x_start, h0, np.where(x > xc, h1, arc))
+
+    def dtop(x):
+        x = np.asarray(x, dtype=float)
+        inside = (x >= x_start) & (x <= xc)
+        d = np.zeros_like(x)
+        d[inside] = (x[inside] - xc) / np.sqrt(R**2 - (x[inside] - xc) ** 2)
+        return d
+
+    # structured mesh, denser inside the bite
+    xs = np.unique(np.r_[np.linspace(-1.5, 1.2, nx), np.linspace(x_start, xc, 25)])
+    etas = np.linspace(0.0, 1.0, ny + 1)
+    X, E = np.meshgrid(xs, etas, indexing="ij")
+    Y = E * top(X)
+    points = np.column_stack([X.ravel(), Y.ravel()])
+    nxp, nyp = X.shape
+    idx = np.arange(nxp * nyp).reshape(nxp, nyp)
+    a, b = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel()
+    c, d = idx[1:, 1:].ravel(), idx[:-1, 1:].ravel()
+    triangles = np.vstack([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+
+    h = top(points[:, 0])
+    v1 = v_in * h0 / h
+    v2 = v1 * E.ravel() * dtop(points[:, 0])
+    v = np.column_stack([v1, v2])
+    edot = np.abs(np.gradient(v1, axis=0)) + 0.1
+    sigma_ef = 1e7 * (1.0 + 2.0 * np.exp(-((points[:, 0] - x_start) ** 2) / 0.02)
+                      * (0.5 + E.ravel()))
+    pressure = -5e6 * np.exp(-((points[:, 0] + 0.15) ** 2) / 0.05)
+
+    top_ids = idx[:, -1]
+    top_x = points[top_ids, 0]
+    in_contact = (top_x >= x_start - 1e-12) & (top_x <= xc + 1e-12)
+    cids = top_ids[in_contact]
+    contact_edges = np.column_stack([cids[:-1], cids[1:]])
+
+    np.savez(out / "fields.npz", points=points, triangles=triangles, v=v,
+             sigma_ef=sigma_ef, pressure=pressure, edot=edot,
+             contact_edges=contact_edges, roll_centre=np.array([xc, yc]),
+             roll_radius=np.float64(R))
+
+    # contact profile (entry -> exit)
+    cx, cy = points[cids, 0], points[cids, 1]
+    angle = np.arcsin((xc - cx) / R)
+    speed = np.hypot(v1[cids], v2[cids])
+    v_slip = speed - roll_speed
+    k = 1e7
+    xn_idx = np.argmin(np.abs(v_slip))
+    sn = -k * (1.0 + 1.5 * np.exp(-((cx - cx[xn_idx]) ** 2) / 0.01))
+    snc = sn.copy()
+    snc[-3:] *= np.linspace(0.7, 0.1, 3)
+    st = -m * k * np.tanh(v_slip / 0.02)
+    _write_csv(out / "contact.csv",
+               ["x", "y", "angle", "v_slip", "normal_stress", "shear_stress",
+                "normal_stress_corrected"],
+               np.column_stack([cx, cy, angle, v_slip, sn, st, snc]))
+
+    # neutral point by linear interpolation of v_slip
+    j = int(np.nonzero(np.diff(np.sign(v_slip)) > 0)[0][0])
+    t = -v_slip[j] / (v_slip[j + 1] - v_slip[j])
+    xn = cx[j] + t * (cx[j + 1] - cx[j])
+    yn = cy[j] + t * (cy[j + 1] - cy[j])
+
+    _write_csv(out / "top.csv", ["x", "y", "v1", "v2"],
+               np.column_stack([top_x, points[top_ids, 1], v1[top_ids], v2[top_ids]]))
+
+    n = 30
+    step = np.arange(1, n + 1)
+    time = 0.01 * step
+    hist = np.column_stack([
+        step, time, 0.05 * np.ones(n), 10.0 ** (-1 - 3 * step / n),
+        10.0 ** (-0.5 - 2 * step / n), 2e6 * (1 - np.exp(-step / 5)),
+        4e5 * (1 - np.exp(-step / 5)), 0.1 + 0.05 * np.exp(-step / 8),
+        0.05 * (1 - np.exp(-step / 6)), 3 + (step % 4), 1e-9 * np.ones(n)])
+    _write_csv(out / "history.csv",
+               ["step", "time", "a_f", "strain_rate_measure", "slip_measure",
+                "roll_force", "roll_torque", "neutral_angle", "forward_slip",
+                "iterations", "residual"], hist)
+
+    summary = {
+        "case_name": case_name, "neutral_point": [float(xn), float(yn)],
+        "neutral_angle": float(np.arcsin((xc - xn) / R)), "roll_force": 2e6,
+        "roll_torque": 4e5, "roll_power": 4e5 * roll_speed / R,
+        "forward_slip": float(v_in * h0 / h1 / roll_speed - 1.0), "a_f": 0.05,
+        "converged": True, "steps": n, "roll_centre": [xc, yc], "roll_radius": R,
+        "contact_start": [float(cx[0]), float(cy[0])],
+        "contact_end": [float(cx[-1]), float(cy[-1])], "m": m,
+        "roll_surface_speed": roll_speed,
+    }
+    (out / "summary.json").write_text(json.dumps(summary, indent=2))
+    return out
+
+
+def _assert_png(path: Path, min_size: int = 5000) -> None:
+    assert path.is_file(), path
+    assert path.read_bytes()[:8] == PNG_MAGIC, path
+    assert path.stat().st_size > min_size, (path, path.stat().st_size)
+
+
+def test_plot_all_writes_every_figure(tmp_path):
+    run = make_run(tmp_path / "run")
+    paths = plot_all(run)
+    assert sorted(p.name for p in paths) == sorted(ALL_FIGS)
+    for name in ALL_FIGS:
+        _assert_png(run / name)
+
+
+def test_plot_all_summary_only(tmp_path):
+    d = tmp_path / "only_summary"
+    d.mkdir()
+    (d / "summary.json").write_text(json.dumps({"case_name": "empty", "converged": False}))
+    assert plot_all(d) == []
+
+
+def test_plot_all_partial_run(tmp_path):
+    run = make_run(tmp_path / "partial")
+    (run / "history.csv").unlink()
+    (run / "fields.npz").unlink()
+    paths = plot_all(run)
+    assert sorted(p.name for p in paths) == ["fig_contact.png", "fig_top.png"]
+    for p in paths:
+        _assert_png(p)
+
+
+def test_plot_compare(tmp_path):
+    runs = {f"v_R = {vr}": make_run(tmp_path / f"r{i}", roll_speed=vr, case_name=f"r{i}")
+            for i, vr in enumerate((1.08, 1.12, 1.16))}
+    out = plot_compare(runs, tmp_path / "cmp" / "compare.png", title="roll speed study")
+    assert out == tmp_path / "cmp" / "compare.png"
+    _assert_png(out, min_size=20000)
+
+
+def test_plot_compare_tolerates_missing_files(tmp_path):
+    a = make_run(tmp_path / "a")
+    b = tmp_path / "b"
+    b.mkdir()
+    out = plot_compare({"full": a, "empty": b}, tmp_path / "cmp.png")
+    _assert_png(out)
+
+
+@pytest.mark.parametrize("logx", [False, True])
+def test_plot_series(tmp_path, logx):
+    table = [{"a_f": af, "neutral_angle": 0.1 + 0.01 * i, "roll_force": 1e6 * (1 + i)}
+             for i, af in enumerate((0.01, 0.03, 0.1, 0.3))]
+    table.append({"a_f": 1.0, "neutral_angle": None})  # incomplete row is skipped
+    out = plot_series(table, "a_f", ["neutral_angle", "roll_force"],
+                      tmp_path / "series.png", title="a_f study", logx=logx)
+    _assert_png(out)
