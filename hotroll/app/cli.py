@@ -21,6 +21,9 @@ err_console = Console(stderr=True)
 SUMMARY_KEYS = ["neutral_point", "neutral_angle", "roll_force", "roll_torque", "roll_power",
                 "forward_slip", "a_f", "converged", "steps", "wall_time_s"]
 
+PROGRESS_KEYS = ["step", "time", "a_f", "iterations", "roll_force", "neutral_angle",
+                 "forward_slip", "message"]
+
 OutOpt = Annotated[Path, typer.Option("--out", "-o", help="Output directory.")]
 MeshOpt = Annotated[Optional[str], typer.Option(help="Contact mesh: Table 2 name (C1..F2) or h in m.")]
 EndOpt = Annotated[Optional[float], typer.Option(help="Simulated end time in s.")]
@@ -72,7 +75,8 @@ class _Progress:
         if now - self.last < self.every and "message" not in info:
             return
         self.last = now
-        parts = [f"{k}={_fmt(v)}" for k, v in info.items() if isinstance(v, (int, float, str, bool))]
+        keys = [k for k in PROGRESS_KEYS if k in info] or list(info)
+        parts = [f"{k}={_fmt(info[k])}" for k in keys if isinstance(info[k], (int, float, str, bool))]
         console.print(Text("  " + "  ".join(parts), style="dim"), soft_wrap=True)
 
 

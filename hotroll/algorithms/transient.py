@@ -1,0 +1,286 @@
+"""Explicit Lagrangian time stepping to the steady state, report Sections 3.3-3.4.
+
+Each step n: a_f from (3.15) with the previous velocity; solve (3.6) on Omega_n (Picard (3.8) or
+Newton); move every P2 geometry node, x_{n+1} = x_n + dt v_n (3.7); project nodes that entered
+the roll back onto it and flag contact nodes (3.9); every 10 steps put all contact nodes on the
+roll surface. The first iterate of the first step uses m = 1 (Section 3.4).
+
+Steady state (the report judges it by eye from Fig. 3): the means of roll force, roll torque,
+the strain-rate measure and the forward slip over the last window of steps differ from those of
+the window before by less than ``steady_tol`` (relative), the neutral angle by less than
+``steady_tol`` times 10 x the bite angle, and the plate head has passed the exit section.
+A window is the time the roll surface needs to travel 3 h.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from ..discretisation.mesh import MeshSpec, build_plate_mesh
+from ..discretisation.rolling_form import PenaltyTable, RollingForm
+from ..physics.friction import ViscoplasticFriction
+from ..physics.friction_estimate import estimate_a_f
+from ..physics.material import NortonHoff
+from ..post import quantities as Q
+from ..process.contact import TopBoundary
+from ..process.geometry import RollPass
+from .nonlinear import SolveStats, picard, solve
+
+
+@dataclass
+class TransientSettings:
+    dt: float
+    end_time: float
+    nonlinear: str = "newton"
+    tol: float = 1e-5
+    max_it: int = 20
+    steady_tol: float = 2e-3
+    max_steps: int = 100000
+    wall_time_limit: float | None = None
+    checkpoint_every: int = 25
+    contact_tol: float = 1e-5
+    project_every: int = 10
+    a_f: float | None = None      # None: estimate (3.15) at every step
+    a_f_max: float = 1e6
+    a_f_start: float = 1.0        # a_f of the very first solve when estimating
+
+
+@dataclass
+class RollingModel:
+    """Everything the discrete problem needs, in SI units."""
+
+    rp: RollPass
+    length: float
+    material: NortonHoff
+    v_reg: float
+    mesh: MeshSpec
+
+    @property
+    def h(self) -> float:
+        return self.mesh.h
+
+
+@dataclass
+class TransientState:
+    step: int = 0
+    time: float = 0.0
+    history: list = field(default_factory=list)
+    status: str = "running"   # running | steady | end_time | max_steps | wall_time | failed
+
+
+class TransientRun:
+    """The report's scheme on one case; ``run`` advances it and returns its state."""
+
+    def __init__(self, model: RollingModel, settings: TransientSettings,
+                 checkpoint_dir: Path | None = None, fingerprint: str = ""):
+        import ngsolve
+
+        self.model, self.s = model, settings
+        self.ckpt = Path(checkpoint_dir) if checkpoint_dir else None
+        self.fingerprint = fingerprint
+        self.state = TransientState()
+        rp, mat = model.rp, model.material
+        resumed_mesh = self._load_mesh()
+        self.mesh = resumed_mesh or build_plate_mesh(rp, model.length, model.mesh)
+        if self.ckpt and not resumed_mesh:
+            self.ckpt.mkdir(parents=True, exist_ok=True)
+            self.mesh.ngmesh.Save(str(self.ckpt / "mesh.vol"))
+        reduced = NortonHoff(1.0, mat.m, mat.eps0)
+        friction = ViscoplasticFriction(1.0, mat.m, model.v_reg)
+        self.form = RollingForm(self.mesh, rp, reduced, friction, PenaltyTable(model.h))
+        V = self.form.fes.components[0]
+        self.disp = ngsolve.GridFunction(V)
+        self.top = TopBoundary(self.mesh, V.ndof // 2)
+        self.d = self.disp.vec.FV().NumPy()
+        self.window = max(10, math.ceil(3.0 * model.h / (rp.u_roll * settings.dt)))
+        self.last_stats = SolveStats()
+        if not self._load_state():
+            self._detect(project=True)
+        self.mesh.SetDeformation(self.disp)
+
+    # --- geometry ----------------------------------------------------------------------------
+    def _detect(self, project: bool) -> None:
+        self.top.detect(self.model.rp, self.d, self.s.contact_tol, project)
+        self.top.write_indicator(self.form.chi.vec.FV().NumPy())
+
+    def head_x(self) -> float:
+        return float(np.max(self.top.X0[:, 0] + self.d[: self.top.nv]))
+
+    # --- one solve -----------------------------------------------------------------------------
+    def _solve(self) -> SolveStats:
+        return solve(self.form.problem, self.s.nonlinear, self.s.tol, self.s.max_it)
+
+    def _estimate_a_f(self) -> float:
+        if self.s.a_f is not None:
+            return self.s.a_f
+        prof = Q.contact_profile(self.form, self.top, self.d, 1.0)
+        it = Q.integrals(self.form, 1.0)
+        lam = abs(prof["v_slip"][0]) / self.model.rp.u_roll if len(prof["v_slip"]) else 0.0
+        return estimate_a_f(it["volume_v_p"], self.model.h, lam, it["backward_length"],
+                            self.model.rp.u_roll, self.model.material.m,
+                            a_f_max=self.s.a_f_max)
+
+    def initial_solve(self) -> SolveStats:
+        """First step: one m = 1 iterate (Section 3.4), then the m solve; a_f estimate iterated."""
+        f = self.form
+        f.a_f.Set(self.s.a_f if self.s.a_f is not None else self.s.a_f_start)
+        f.m.Set(1.0)
+        first = picard(f.problem, self.s.tol, 1)
+        f.m.Set(self.model.material.m)
+        stats = self._solve()
+        stats.iterations += first.iterations
+        if self.s.a_f is None:  # iterate a_f <- (3.15)(v) to a fixed point, as the notes do
+            for _ in range(10):
+                a_old, a_new = f.a_f.Get(), self._estimate_a_f()
+                f.a_f.Set(a_new)
+                more = self._solve()
+                stats.iterations += more.iterations
+                if abs(a_new - a_old) <= 1e-2 * a_new:
+                    break
+        return stats
+
+    # --- recording -----------------------------------------------------------------------------
+    def measure(self) -> dict:
+        """All per-step figures in SI units (stresses times K)."""
+        m, rp = self.model, self.model.rp
+        K = m.material.K
+        prof = Q.contact_profile(self.form, self.top, self.d, K)
+        (xn, yn), ang = Q.neutral_point(prof, rp)
+        it = Q.integrals(self.form, K)
+        width = 4.0 * m.h
+        x_in = rp.x_touch - 0.5 * rp.contact_length
+        x_out = rp.axis_x + 0.5 * rp.contact_length
+        sec_in = Q.section_flow(self.form, x_in, width)
+        head = self.head_x()
+        sec_out = (Q.section_flow(self.form, x_out, width) if head > x_out + width
+                   else {"velocity": math.nan, "flux": math.nan, "thickness": math.nan})
+        row = {
+            "step": self.state.step, "time": self.state.time, "a_f": self.form.a_f.Get(),
+            "neutral_x": xn, "neutral_y": yn, "neutral_angle": ang,
+            "entry_velocity": sec_in["velocity"], "exit_velocity": sec_out["velocity"],
+            "mass_flux_in": sec_in["flux"], "mass_flux_out": sec_out["flux"],
+            "exit_thickness_measured": 2.0 * sec_out["thickness"],
+            "forward_slip": sec_out["velocity"] / rp.u_roll - 1.0,
+            "head_x": head, "iterations": self.last_stats.iterations,
+            "residual": self.last_stats.residual, "solver_converged": self.last_stats.converged,
+        }
+        row.update(it)
+        return row
+
+    # --- steady state ----------------------------------------------------------------------------
+    def is_steady(self) -> bool:
+        h, w = self.state.history, self.window
+        if len(h) < 2 * w or not math.isfinite(h[-1]["forward_slip"]):
+            return False
+        last, prev = h[-w:], h[-2 * w:-w]
+        for key in ("roll_force", "roll_torque", "strain_rate_measure", "forward_slip"):
+            a = np.mean([r[key] for r in last])
+            b = np.mean([r[key] for r in prev])
+            scale = 1.0 + abs(a) if key == "forward_slip" else abs(a)
+            if not (math.isfinite(a) and abs(a - b) <= self.s.steady_tol * scale):
+                return False
+        a = np.mean([r["neutral_angle"] for r in last])
+        b = np.mean([r["neutral_angle"] for r in prev])
+        return abs(a - b) <= 10 * self.s.steady_tol * self.model.rp.bite_angle
+
+    # --- main loop -------------------------------------------------------------------------------
+    def run(self, progress: Callable[[dict], None] | None = None) -> TransientState:
+        from ngsolve import TaskManager
+
+        st, s = self.state, self.s
+        t_wall = time.perf_counter()
+        with TaskManager():
+            if st.history and st.history[-1]["step"] == st.step:   # resumed after a finished run
+                st.status = self._terminal(t_wall) or "running"
+                if st.status != "running":
+                    return st
+                self.advance()
+            while True:
+                if st.step == 0:
+                    self.last_stats = self.initial_solve()
+                else:
+                    if s.a_f is None:
+                        self.form.a_f.Set(self._estimate_a_f())
+                    self.last_stats = self._solve()
+                row = self.measure()
+                st.history.append(row)
+                if progress:
+                    progress(row)
+                status = self._terminal(t_wall)
+                if status:
+                    st.status = status
+                    break
+                self.advance()
+                if self.ckpt and st.step % s.checkpoint_every == 0:
+                    self.save_checkpoint()
+        if self.ckpt:
+            self.save_checkpoint()
+        return st
+
+    def _terminal(self, t_wall: float) -> str | None:
+        """Why the run stops after the current step, or None."""
+        st, s, row = self.state, self.s, self.state.history[-1]
+        if not all(math.isfinite(row[k]) for k in ("roll_force", "plastic_power")):
+            return "failed"
+        if self.is_steady():
+            return "steady"
+        if st.time + 0.5 * s.dt >= s.end_time:
+            return "end_time"
+        if st.step + 1 >= s.max_steps:
+            return "max_steps"
+        if s.wall_time_limit and time.perf_counter() - t_wall > s.wall_time_limit:
+            return "wall_time"
+        return None
+
+    def advance(self) -> None:
+        """(3.7) for every P2 node, then contact detection (3.9)."""
+        nv_dofs = self.form.fes.components[0].ndof
+        self.d += self.s.dt * self.form.problem.gf.vec.FV().NumPy()[:nv_dofs]
+        self.state.step += 1
+        self.state.time += self.s.dt
+        self._detect(project=self.state.step % self.s.project_every == 0)
+        self.mesh.SetDeformation(self.disp)
+
+    # --- checkpoints -----------------------------------------------------------------------------
+    def save_checkpoint(self) -> None:
+        """Atomic write of everything needed to resume (mesh saved once at start)."""
+        st = self.state
+        tmp = self.ckpt / "state.tmp.npz"
+        np.savez(tmp, disp=self.d, sol=self.form.problem.gf.vec.FV().NumPy(),
+                 a_f=self.form.a_f.Get(), step=st.step, time=st.time,
+                 meta=json.dumps({"fingerprint": self.fingerprint, "status": st.status,
+                                  "history": st.history, "settings": asdict(self.s)}))
+        os.replace(tmp, self.ckpt / "state.npz")
+
+    def _load_mesh(self):
+        import ngsolve
+
+        if not (self.ckpt and (self.ckpt / "state.npz").exists() and self._meta_ok()):
+            return None
+        return ngsolve.Mesh(str(self.ckpt / "mesh.vol"))
+
+    def _meta_ok(self) -> bool:
+        with np.load(self.ckpt / "state.npz") as z:
+            return json.loads(str(z["meta"]))["fingerprint"] == self.fingerprint
+
+    def _load_state(self) -> bool:
+        if not (self.ckpt and (self.ckpt / "state.npz").exists() and self._meta_ok()):
+            return False
+        with np.load(self.ckpt / "state.npz") as z:
+            if z["disp"].shape != self.d.shape:
+                return False
+            self.d[:] = z["disp"]
+            self.form.problem.gf.vec.FV().NumPy()[:] = z["sol"]
+            self.form.a_f.Set(float(z["a_f"]))
+            meta = json.loads(str(z["meta"]))
+            self.state = TransientState(int(z["step"]), float(z["time"]), meta["history"],
+                                        "running")
+        self._detect(project=False)
+        return True

@@ -1,0 +1,105 @@
+"""Writing results: atomic JSON/CSV/NPZ files and ParaView (VTK) output of the fields."""
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+
+
+def _atomic_write_text(path: Path, text: str) -> None:
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(text)
+    os.replace(tmp, path)
+
+
+def _clean(v):
+    if isinstance(v, (np.floating, float)):
+        return float(v) if math.isfinite(v) else None
+    if isinstance(v, (np.integer,)):
+        return int(v)
+    if isinstance(v, (np.bool_,)):
+        return bool(v)
+    if isinstance(v, (list, tuple, np.ndarray)):
+        return [_clean(x) for x in v]
+    if isinstance(v, dict):
+        return {k: _clean(x) for k, x in v.items()}
+    return v
+
+
+def write_json(path: Path, data: dict) -> None:
+    """JSON with NaN/inf written as null."""
+    _atomic_write_text(Path(path), json.dumps(_clean(data), indent=2) + "\n")
+
+
+def write_csv(path: Path, columns: dict[str, np.ndarray] | list[dict]) -> None:
+    """A CSV with a header line, from column arrays or from a list of row dicts."""
+    if isinstance(columns, list):
+        keys = list(columns[0].keys()) if columns else []
+        rows = [[r.get(k) for k in keys] for r in columns]
+    else:
+        keys = list(columns.keys())
+        rows = list(zip(*[np.asarray(columns[k]).tolist() for k in keys]))
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(keys)
+    for r in rows:
+        w.writerow(["" if x is None else (repr(float(x)) if isinstance(x, float) else x)
+                    for x in r])
+    _atomic_write_text(Path(path), buf.getvalue())
+
+
+def write_npz(path: Path, **arrays) -> None:
+    path = Path(path)
+    tmp = path.with_name(path.stem + ".tmp.npz")
+    np.savez_compressed(tmp, **arrays)
+    os.replace(tmp, path)
+
+
+def vertex_fields(run) -> dict:
+    """Deformed vertices, triangles and vertex values of v, p, edot, sigma_ef (SI units)."""
+    import ngsolve
+
+    from ..discretisation.forms import strain_rate
+    from ..physics.material import edot_squared
+
+    mesh, form, K = run.mesh, run.form, run.model.material.K
+    nv = mesh.nv
+    ns = form.fes.components[0].ndof // 2
+    sol = form.problem.gf.vec.FV().NumPy()
+    pts = run.top.X0 + np.stack([run.d[:nv], run.d[ns:ns + nv]], -1)
+    tris = np.array([[v.nr for v in el.vertices] for el in mesh.Elements(ngsolve.VOL)], dtype=int)
+    vel = np.stack([sol[:nv], sol[ns:ns + nv]], -1)
+    pressure = K * form.problem.pressure.vec.FV().NumPy()[:nv]
+    g = ngsolve.GridFunction(ngsolve.H1(mesh, order=1))
+    g.Set(ngsolve.sqrt(edot_squared(strain_rate(form.problem.velocity)) + 1e-300))
+    edot = np.maximum(g.vec.FV().NumPy()[:nv].copy(), 0.0)
+    rows = np.nonzero(run.top.edge_contact)[0]
+    return {
+        "points": pts, "triangles": tris, "v": vel, "pressure": pressure, "edot": edot,
+        "sigma_ef": np.asarray(run.model.material.sigma_ef(edot)),
+        "contact_edges": np.stack([run.top.ea[rows], run.top.eb[rows]], -1),
+        "roll_centre": np.array(run.model.rp.centre), "roll_radius": run.model.rp.radius,
+    }
+
+
+def write_vtk(run, path: Path) -> Path:
+    """ParaView file (.vtu) of velocity, pressure, strain rate and sigma_ef on the deformed plate."""
+    import ngsolve
+
+    from ..discretisation.forms import strain_rate
+    from ..physics.material import edot_squared
+
+    form, K = run.form, run.model.material.K
+    edot = ngsolve.sqrt(edot_squared(strain_rate(form.problem.velocity)) + 1e-300)
+    m = run.model.material.m
+    vtk = ngsolve.VTKOutput(run.mesh, coefs=[form.problem.velocity, K * form.problem.pressure,
+                                             edot, K * 3.0 ** ((m + 1) / 2) * edot**m],
+                            names=["velocity", "pressure", "edot", "sigma_ef"],
+                            filename=str(Path(path).with_suffix("")), subdivision=1)
+    vtk.Do()
+    return Path(path).with_suffix(".vtu")

@@ -1,0 +1,159 @@
+"""From a validated case to results on disk: case -> model -> solver -> fields -> files.
+
+Scalar results in ``summary.json`` are means over the last steady-state window (the report's
+histories oscillate periodically with the discrete entry/exit of contact nodes); profiles and
+fields are those of the last step.
+"""
+from __future__ import annotations
+
+import hashlib
+import math
+import time
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from .config import Case
+from .output import vertex_fields, write_csv, write_json, write_npz, write_vtk
+
+AVERAGED = ("roll_force", "roll_torque", "roll_power", "forward_slip", "entry_velocity",
+            "exit_velocity", "mass_flux_in", "mass_flux_out", "plastic_power", "friction_power",
+            "penalty_power", "outlet_penalty_power", "horizontal_force", "neutral_angle",
+            "contact_length", "a_f", "strain_rate_measure", "slip_measure")
+
+
+def build_model(case: Case):
+    """Translate the case description into the solver's model and settings."""
+    from ..algorithms.transient import RollingModel, TransientSettings
+    from ..discretisation.mesh import MeshSpec
+    from ..physics.material import NortonHoff
+    from ..process.geometry import RollPass
+
+    ps, sv = case.pass_, case.solver
+    rp = RollPass(ps.roll_radius, ps.half_entry, ps.half_exit, ps.roll_angular_velocity,
+                  ps.roll_axis_x)
+    h = case.mesh.h
+    end_time = sv.end_time or default_end_time(rp)
+    spec = MeshSpec(h=h, fine_length=rp.contact_length + rp.u_roll * end_time + 6 * h,
+                    h_far=case.mesh.h_far, grading=case.mesh.grading)
+    mat = case.material
+    model = RollingModel(rp, case.plate.length, NortonHoff(mat.K, mat.m, mat.eps0),
+                         case.friction.regularisation_velocity(rp.u_roll), spec)
+    settings = TransientSettings(
+        dt=case.dt, end_time=end_time, nonlinear=sv.nonlinear, tol=sv.tolerance,
+        max_it=sv.max_iterations, steady_tol=sv.steady_tolerance, max_steps=sv.max_steps,
+        wall_time_limit=sv.wall_time_limit, checkpoint_every=sv.checkpoint_every,
+        contact_tol=1e-5 * rp.radius / 0.6,
+        a_f=None if case.friction.a_f == "estimate" else float(case.friction.a_f),
+        a_f_max=case.friction.a_f_max)
+    return model, settings
+
+
+def default_end_time(rp) -> float:
+    """Time for the roll surface to travel three contact lengths (the run stops when steady)."""
+    return 3.0 * rp.contact_length / rp.u_roll
+
+
+def fingerprint(case: Case) -> str:
+    d = case.to_dict()
+    d.pop("output", None)
+    d.get("solver", {}).pop("wall_time_limit", None)
+    return hashlib.sha256(repr(sorted(_flat(d).items())).encode()).hexdigest()[:16]
+
+
+def _flat(d: dict, pre: str = "") -> dict:
+    out = {}
+    for k, v in d.items():
+        out.update(_flat(v, f"{pre}{k}.") if isinstance(v, dict) else {f"{pre}{k}": v})
+    return out
+
+
+def run_case(case: Case, out: Path, *, resume: bool = True,
+             progress: Callable[[dict], None] | None = None) -> dict:
+    """Run one case and write summary.json, contact.csv, top.csv, history.csv, fields, figures."""
+    import ngsolve
+
+    from ..algorithms.transient import TransientRun
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    ngsolve.SetNumThreads(case.solver.threads)
+    (out / "case.toml").write_text(case.to_toml())
+    ckpt = out / "checkpoint"
+    if not resume and (ckpt / "state.npz").exists():
+        (ckpt / "state.npz").unlink()
+    t0 = time.perf_counter()
+    model, settings = build_model(case)
+    run = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint=fingerprint(case))
+    state = run.run(progress)
+    wall = time.perf_counter() - t0
+    summary = write_results(case, run, out, wall)
+    if case.output.figures:
+        from ..post.plots import plot_all
+
+        plot_all(out)
+    return summary
+
+
+def write_results(case: Case, run, out: Path, wall: float) -> dict:
+    from ..post import quantities as Q
+
+    K, rp, state = case.material.K, run.model.rp, run.state
+    hist = state.history
+    prof = Q.contact_profile(run.form, run.top, run.d, K)
+    prof["normal_stress_corrected"] = (Q.exit_corrected(prof, run.model.h)
+                                      if case.solver.exit_pressure_correction
+                                      else prof["normal_stress"])
+    write_csv(out / "contact.csv", prof)
+    write_csv(out / "top.csv", Q.top_profile(run.form, run.top, run.d))
+    write_csv(out / "history.csv", hist)
+    write_npz(out / "fields.npz", **vertex_fields(run))
+    if case.output.vtk:
+        write_vtk(run, out / "fields.vtu")
+    summary = summarise(case, run, prof, wall)
+    write_json(out / "summary.json", summary)
+    return summary
+
+
+def summarise(case: Case, run, prof: dict, wall: float) -> dict:
+    """The summary.json dictionary: last-window means and run figures."""
+    rp, state, last = run.model.rp, run.state, run.state.history[-1]
+    window = state.history[-run.window:]
+    mean = {k: float(np.nanmean([r[k] for r in window])) if any(
+        math.isfinite(r[k]) for r in window) else math.nan for k in AVERAGED}
+    ang = mean["neutral_angle"]
+    cx, cy = rp.centre
+    outlet_driven = mean["outlet_penalty_power"] < -0.05 * mean["plastic_power"]
+    steady = state.status == "steady"
+    sn_raw, sn_cor = prof["normal_stress"], prof["normal_stress_corrected"]
+    seg = np.hypot(np.diff(prof["x"]), np.diff(prof["y"])) if len(prof["x"]) > 1 else []
+    trap = (lambda f: float(np.sum(0.5 * (f[1:] + f[:-1]) * seg))) if len(seg) else (lambda f: 0.0)
+    iters = [r["iterations"] for r in state.history]
+    return {
+        "case_name": case.name, "status": state.status,
+        "converged": bool(steady and last["solver_converged"] and not outlet_driven),
+        "steady_state": steady, "outlet_driven": bool(outlet_driven),
+        "neutral_point": [cx - rp.radius * math.sin(ang), cy - rp.radius * math.cos(ang)],
+        "neutral_angle": ang,
+        **{k: mean[k] for k in ("roll_force", "roll_torque", "roll_power", "forward_slip",
+                                "entry_velocity", "exit_velocity", "mass_flux_in",
+                                "mass_flux_out", "plastic_power", "friction_power",
+                                "penalty_power", "outlet_penalty_power", "horizontal_force",
+                                "a_f", "contact_length")},
+        "power_balance_error": last["power_balance_error"],
+        "penalty_share": last["penalty_share"],
+        "mass_flux_error": abs(mean["mass_flux_out"] - mean["mass_flux_in"])
+        / abs(mean["mass_flux_in"]) if math.isfinite(mean["mass_flux_out"]) else math.nan,
+        "exit_correction_normal_force_change": (trap(sn_cor) - trap(sn_raw)) / trap(sn_raw)
+        if trap(sn_raw) else 0.0,
+        "steps": last["step"] + 1, "time": last["time"], "dt": run.s.dt,
+        "nonlinear_iterations": int(np.sum(iters)),
+        "iterations_per_step": float(np.mean(iters[1:])) if len(iters) > 1 else float(iters[0]),
+        "dofs": run.form.fes.ndof, "h_contact": run.model.h, "wall_time_s": wall,
+        "roll_centre": [cx, cy], "roll_radius": rp.radius, "roll_surface_speed": rp.u_roll,
+        "contact_start": [float(prof["x"][0]), float(prof["y"][0])] if len(prof["x"]) else None,
+        "contact_end": [float(prof["x"][-1]), float(prof["y"][-1])] if len(prof["x"]) else None,
+        "K": case.material.K, "m": case.material.m, "nonlinear": run.s.nonlinear,
+        "averaged_over_steps": len(window),
+    }

@@ -1,0 +1,194 @@
+"""Engineering quantities from a solved configuration: tractions, forces, powers, fluxes.
+
+Contact tractions are the consistent ones of the penalised form (seed-reading notes): the normal
+stress is the penalty reaction sigma_n = -K gamma_vC (v.n), the shear the friction law (2.29a).
+Everything is computed in reduced units (K = 1) and multiplied by K here.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..discretisation.rolling_form import TOP, RollingForm
+from ..process.contact import BUBBLE_MID, TopBoundary
+
+
+# --- nodal values on the top boundary ------------------------------------------------------
+def _nodal(vec: np.ndarray, top: TopBoundary, n_scalar: int, contact_only: bool):
+    """Positions and velocities at the top P2 nodes (vertices and edge midpoints)."""
+    d_all = vec  # velocity coefficient vector (component 0 block first)
+    verts = top.verts[top.vertex_contact] if contact_only else top.verts
+    rows = np.nonzero(top.edge_contact)[0] if contact_only else np.arange(len(top.edge))
+    vv = np.stack([d_all[verts], d_all[n_scalar + verts]], -1)
+    ea, eb = top.ea[rows], top.eb[rows]
+    dofs = top.nv + top.edge[rows]
+    vm = 0.5 * (np.stack([d_all[ea], d_all[n_scalar + ea]], -1)
+                + np.stack([d_all[eb], d_all[n_scalar + eb]], -1)) \
+        + BUBBLE_MID * np.stack([d_all[dofs], d_all[n_scalar + dofs]], -1)
+    return verts, rows, vv, vm
+
+
+def top_nodes(form: RollingForm, top: TopBoundary, disp: np.ndarray, contact_only: bool):
+    """(xy, velocity) at the top-boundary P2 nodes, contact nodes only if asked."""
+    ns = form.fes.components[0].ndof // 2
+    vel = form.problem.gf.vec.FV().NumPy()
+    verts, rows, vv, vm = _nodal(vel, top, ns, contact_only)
+    xv = top.vertex_positions(disp, verts)
+    xm = top.midpoint_positions(disp)[rows]
+    return np.vstack([xv, xm]), np.vstack([vv, vm])
+
+
+def contact_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: float) -> dict:
+    """Slip, normal and shear stress at the contact nodes, sorted from entry to exit."""
+    rp, pen = form.rp, form.penalties
+    xy, vel = top_nodes(form, top, disp, contact_only=True)
+    if len(xy) == 0:
+        return {k: np.zeros(0) for k in ("x", "y", "angle", "v_slip", "normal_stress",
+                                          "shear_stress")}
+    ang = rp.angle(xy)
+    order = np.argsort(-ang)
+    xy, vel, ang = xy[order], vel[order], ang[order]
+    n, t = rp.normal(xy), rp.tangent(xy)
+    slip = np.sum(vel * t, -1) - rp.u_roll
+    lo, hi = rp.soft_zone
+    gam = np.where((xy[:, 0] - lo) * (hi - xy[:, 0]) > 0, pen.soft, pen.hard) / pen.h
+    a_f = form.a_f.Get()
+    shear = np.asarray(form.friction.shear(a_f, slip, K=K))
+    return {"x": xy[:, 0], "y": xy[:, 1], "angle": ang, "v_slip": slip,
+            "normal_stress": -K * gam * np.sum(vel * n, -1), "shear_stress": shear}
+
+
+def top_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray) -> dict:
+    xy, vel = top_nodes(form, top, disp, contact_only=False)
+    o = np.argsort(xy[:, 0])
+    return {"x": xy[o, 0], "y": xy[o, 1], "v1": vel[o, 0], "v2": vel[o, 1]}
+
+
+def neutral_index(v_slip: np.ndarray, weights: np.ndarray | None = None) -> int:
+    """Split index k that best separates backward (v_s < 0) from forward (v_s > 0) slip.
+
+    Minimises the weighted count of misclassified nodes, sum_{i<k} w [v_s > 0] +
+    sum_{i>=k} w [v_s < 0]. It is the sign change for a clean profile and stays robust where
+    v_s is tiny (a sticking zone) or spikes at the first touching element; only signs count.
+    """
+    w = np.ones_like(v_slip) if weights is None else weights
+    pos = np.concatenate([[0.0], np.cumsum((v_slip > 0) * w)])
+    neg = np.concatenate([[0.0], np.cumsum((v_slip < 0) * w)])
+    cost = pos + (neg[-1] - neg)
+    return int(np.argmin(cost))
+
+
+def neutral_point(profile: dict, rp) -> tuple[list[float], float]:
+    """Neutral point [x, y] and neutral angle, interpolated at the split of ``neutral_index``."""
+    vs = profile["v_slip"]
+    if len(vs) == 0:
+        return [math.nan, math.nan], math.nan
+    ang = profile["angle"]
+    w = np.gradient(ang) if len(ang) > 1 else np.ones(1)   # node spacing along the arc
+    k = neutral_index(vs, np.abs(w))
+    if k == 0:
+        i, j = 0, 0
+    elif k == len(vs):
+        i, j = len(vs) - 1, len(vs) - 1
+    else:
+        i, j = k - 1, k
+    a, b = vs[i], vs[j]
+    s = 0.5 if (i == j or a == b or a * b > 0) else a / (a - b)
+    a_n = ang[i] + s * (ang[j] - ang[i])
+    cx, cy = rp.centre
+    return [cx - rp.radius * math.sin(a_n), cy - rp.radius * math.cos(a_n)], float(a_n)
+
+
+# --- integrals -------------------------------------------------------------------------------
+def integrals(form: RollingForm, K: float) -> dict:
+    """Forces, torque and the power balance of (3.6) tested with v itself (all per unit width)."""
+    from ngsolve import BND, VOL, Integrate, IfPos, InnerProduct, Norm, specialcf, sqrt, x, y
+
+    from ..discretisation.forms import strain_rate
+    from ..physics.material import edot_squared
+
+    mesh, rp, pen, m = form.mesh, form.rp, form.penalties, form.m
+    u = form.problem.velocity
+    top = mesh.Boundaries(TOP)
+    chi = form.chi
+    n, t = form.roll_frame()
+    s = form.slip(u)
+    kf = form.friction.coefficient(form.a_f, s * s, m=m, K=1.0)
+    gam = pen.surface(x, rp.soft_zone)
+    gio = pen.inlet_outlet(m)
+    U = rp.u_roll
+    eps = strain_rate(u)
+    e2 = edot_squared(eps)
+    mu = form.material.viscosity(e2, m=m, K=1.0)
+    nh = specialcf.normal(2)
+    cx, cy = rp.centre
+    r = sqrt((x - cx) ** 2 + (y - cy) ** 2)
+    trac = -(kf * s) * t - gam * (u * n) * n          # traction on the plate (reduced)
+
+    def bnd(cf, region=top):
+        return float(Integrate(cf, mesh, BND, definedon=region))
+
+    inlet = gio * IfPos(u[0] - U, u[0] - U, 0.0) * u[0]
+    outlet = -gio * IfPos(U - u[0], U - u[0], 0.0) * u[0]
+    free_pen = bnd((1 - chi) * (gam * (u * nh) ** 2 + IfPos(x - rp.axis_x, outlet, inlet)))
+    face_pen = bnd(inlet, mesh.Boundaries("in")) + bnd(outlet + gam * u[1] ** 2,
+                                                      mesh.Boundaries("out"))
+    contact_pen = bnd(chi * gam * (u * n) ** 2)
+    outlet_pen = bnd((1 - chi) * IfPos(x - rp.axis_x, outlet, 0.0)) + bnd(
+        outlet, mesh.Boundaries("out"))
+    p = m.Get() + 1.0
+    out = {
+        "plastic_power": K * float(Integrate(mu * InnerProduct(eps, eps), mesh, VOL)),
+        "friction_power": K * bnd(chi * kf * s * s),
+        "penalty_power": K * (free_pen + face_pen + contact_pen),
+        "contact_penalty_power": K * contact_pen,
+        "outlet_penalty_power": K * outlet_pen,
+        "roll_power": K * bnd(chi * (-kf * s) * U),
+        "roll_force": -K * bnd(chi * trac[1]),
+        "horizontal_force": K * bnd(chi * trac[0]),
+        "roll_torque": K * bnd(chi * (-kf * s) * r),
+        "contact_length": bnd(chi),
+        "backward_length": bnd(chi * IfPos(-s, 1.0, 0.0)),
+        "slip_measure": bnd(chi * IfPos(s * s, (s * s) ** (p / 2), 0.0)),
+        "strain_rate_measure": float(Integrate((3.0 * e2 + 1e-300) ** (p / 2), mesh, VOL)),
+        "volume_v_p": float(Integrate((Norm(u) ** 2 + 1e-300) ** (p / 2), mesh, VOL)),
+    }
+    bal = out["plastic_power"] + out["friction_power"] + out["penalty_power"]
+    out["power_balance_error"] = abs(out["roll_power"] - bal) / max(abs(out["roll_power"]), 1e-300)
+    out["penalty_share"] = out["penalty_power"] / max(abs(out["roll_power"]), 1e-300)
+    return out
+
+
+def section_flow(form: RollingForm, x_section: float, width: float) -> dict:
+    """Mean velocity, thickness and flux (m^2/s, half model) in a band around x = x_section."""
+    from ngsolve import Integrate, IfPos, x
+
+    u = form.problem.velocity
+    band = IfPos((x - (x_section - width / 2)) * ((x_section + width / 2) - x), 1.0, 0.0)
+    area = float(Integrate(band, form.mesh))
+    if area <= 0.0:
+        return {"velocity": math.nan, "thickness": math.nan, "flux": math.nan}
+    q = float(Integrate(band * u[0], form.mesh))
+    return {"velocity": q / area, "thickness": area / width, "flux": q / width}
+
+
+def exit_corrected(profile: dict, h: float, zone: float = 2.0, fit: float = 6.0) -> np.ndarray:
+    """Exit-pressure correction (Section 3.4; the report does not say which): the normal stress at
+    the contact nodes within ``zone * h`` of the last contact point is replaced by the
+    least-squares line through the nodes between ``zone * h`` and ``fit * h`` from it,
+    extrapolated; the oscillation at the change of boundary condition is removed, the rest kept.
+    """
+    sn = np.array(profile["normal_stress"], dtype=float)
+    if len(sn) < 4:
+        return sn
+    xy = np.stack([profile["x"], profile["y"]], -1)
+    seg = np.linalg.norm(np.diff(xy, axis=0), axis=1)
+    dist_to_end = np.concatenate([np.cumsum(seg[::-1])[::-1], [0.0]])
+    near = dist_to_end < zone * h
+    ref = (dist_to_end >= zone * h) & (dist_to_end < fit * h)
+    if ref.sum() < 2 or not near.any():
+        return sn
+    coef = np.polyfit(dist_to_end[ref], sn[ref], 1)
+    sn[near] = np.polyval(coef, dist_to_end[near])
+    return sn
