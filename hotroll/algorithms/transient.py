@@ -154,9 +154,11 @@ class TransientRun:
         prof = Q.contact_profile(self.form, self.top, self.d, K)
         (xn, yn), ang = Q.neutral_point(prof, rp)
         it = Q.integrals(self.form, K)
-        width = 4.0 * m.h
+        # any section carries the same flux (incompressible, v.n = 0 on the free top), so the
+        # sections are placed just clear of the bite: l_c/2 upstream, l_c/4 downstream
+        width = 2.0 * m.h
         x_in = rp.x_touch - 0.5 * rp.contact_length
-        x_out = rp.axis_x + 0.5 * rp.contact_length
+        x_out = rp.axis_x + 0.25 * rp.contact_length
         sec_in = Q.section_flow(self.form, x_in, width)
         head = self.head_x()
         sec_out = (Q.section_flow(self.form, x_out, width) if head > x_out + width

@@ -60,9 +60,9 @@ class NonlinearProblem:
         (u, p), (v, q) = self.fes.TnT()
         w_frozen = self.gf_w.components[0]
         self.a_newton = BilinearForm(self.fes)
-        self.a_newton += self.integrand(u, p, u, v, q)
+        self.a_newton += self.integrand(u, p, u, v, q).Compile()
         self.a_picard = BilinearForm(self.fes)
-        self.a_picard += self.integrand(u, p, w_frozen, v, q)
+        self.a_picard += self.integrand(u, p, w_frozen, v, q).Compile()
 
     @property
     def freedofs(self):

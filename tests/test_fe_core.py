@@ -1,0 +1,102 @@
+"""Known-answer checks of the FE core: Taylor-Hood P2/P1 + Norton-Hoff + Picard/Newton.
+
+The problems (hotroll.discretisation.analytic) use the same spaces, volume form, continuation in
+m and solvers as the rolling problem. Measured values (ngsolve 6.2.2608, structured meshes,
+eps0 = 1e-6, tol = 1e-10) are quoted next to each assertion.
+"""
+
+import math
+from functools import lru_cache
+
+import numpy as np
+import pytest
+
+from hotroll.discretisation.analytic import compression, poiseuille
+
+
+@lru_cache(maxsize=None)
+def flow(h, m, method="newton", K=1.0, G=1.0):
+    return poiseuille(h, m, K=K, G=G, method=method, max_it=100)
+
+
+# --- power-law Poiseuille flow -----------------------------------------------------------------
+@pytest.mark.parametrize("m, u_tol, p_tol", [
+    (0.5, 3e-4, 6e-4),   # measured u 9.0e-5, p 2.1e-4, flux 1.7e-5, 9 Newton iterations
+    (0.2, 2e-3, 1e-3),   # measured u 6.0e-4, p 3.2e-4, flux 1.9e-4, 12 Newton iterations
+])
+def test_poiseuille_newton(m, u_tol, p_tol):
+    res = flow(1 / 8, m)
+    assert res["converged"] and res["iterations"] <= 20
+    assert res["u_error"] < u_tol
+    assert res["p_error"] < p_tol
+    assert res["flux_error"] < 1e-3
+
+
+def test_poiseuille_convergence():
+    """P2 velocity: L2 rate 3, P1 pressure: rate 2.
+
+    For m = 0.5 the exact profile is H^3 - y^3, a polynomial on the half channel (y >= 0), so
+    there is no regularity limit; the eps0 = 1e-6 regularisation only acts where |u'| = y^2 <
+    ~1e-6, i.e. y < ~1e-3, and changes the velocity there by < ~1e-9, far below the errors.
+    Measured (h = 1/4, 1/8, 1/16): u 7.6e-4, 9.0e-5, 1.1e-5 (rates 3.08, 3.05);
+    p 8.4e-4, 2.1e-4, 5.3e-5 (rates 2.02, 1.98); h = 1/32 continues with 3.02 (u).
+    """
+    res = [flow(1 / n, 0.5) for n in (4, 8, 16)]
+    u_rates = [math.log2(a["u_error"] / b["u_error"]) for a, b in zip(res, res[1:])]
+    p_rates = [math.log2(a["p_error"] / b["p_error"]) for a, b in zip(res, res[1:])]
+    assert min(u_rates) >= 2.8, u_rates
+    assert min(p_rates) >= 1.8, p_rates
+    assert res[-1]["flux_error"] < 5e-6   # measured 1.2e-6
+
+
+def test_picard_matches_newton_and_contracts():
+    """Picard converges linearly with factor ~ 1 - m (measured 0.50 for m = 0.5, 32 iterations
+    to tol 1e-10); it reaches the Newton solution (measured relative difference 6e-11)."""
+    from ngsolve import InnerProduct, Integrate
+
+    newton_res = flow(1 / 8, 0.5)
+    picard_res = flow(1 / 8, 0.5, method="picard")
+    assert picard_res["converged"] and picard_res["iterations"] <= 45
+    assert newton_res["iterations"] < picard_res["iterations"]
+    upd = np.array(picard_res["updates"])
+    ratios = upd[2:] / upd[1:-1]
+    assert np.all(ratios < 0.6), ratios           # measured 0.43 ... 0.50
+    mesh = newton_res["mesh"]
+    d = picard_res["velocity"] - newton_res["velocity"]
+    u = newton_res["velocity"]
+    rel = math.sqrt(Integrate(InnerProduct(d, d), mesh) / Integrate(InnerProduct(u, u), mesh))
+    assert rel < 1e-6
+    assert abs(picard_res["u_error"] - newton_res["u_error"]) < 1e-6
+
+
+# --- frictionless plane-strain compression -----------------------------------------------------
+@pytest.mark.parametrize("m", [0.2, 1.0])
+@pytest.mark.parametrize("method", ["newton", "picard"])
+def test_compression_exact(m, method):
+    """The P2 space holds v = r (x, -y): exact to round-off (measured 1e-15 velocity, 3e-13
+    force and pressure; the eps0 = 1e-6 regularisation changes the stress by ~1e-13)."""
+    res = compression(1 / 4, m, r=0.7, a=1.5, b=1.0, method=method)
+    assert res["converged"]
+    assert res["u_error"] < 1e-6
+    assert res["force_exact"] == pytest.approx(-2.0 * (2 * 0.7) ** m * 1.5)
+    assert abs(res["force"] / res["force_exact"] - 1.0) < 1e-6
+    assert abs(res["pressure"] / res["pressure_exact"] - 1.0) < 1e-6
+
+
+# --- unit independence -------------------------------------------------------------------------
+@pytest.mark.parametrize("m", [0.2, 0.5])
+def test_poiseuille_unit_independent(m):
+    """The forms keep the physical K: K = G = 1e8 must give the same velocity (measured 1e-15)."""
+    ref, big = flow(1 / 8, m), flow(1 / 8, m, K=1e8, G=1e8)
+    a, b = ref["velocity"].vec.FV().NumPy(), big["velocity"].vec.FV().NumPy()
+    assert np.max(np.abs(a - b)) / np.max(np.abs(a)) < 1e-8
+    assert big["iterations"] == ref["iterations"]
+    assert big["p_error"] == pytest.approx(ref["p_error"], rel=1e-6)
+
+
+@pytest.mark.parametrize("m", [0.2, 1.0])
+def test_compression_unit_independent(m):
+    ref, big = compression(1 / 4, m), compression(1 / 4, m, K=1e8)
+    assert big["u_error"] < 1e-6
+    assert big["force"] / (1e8 * ref["force"]) == pytest.approx(1.0, abs=1e-10)
+    assert big["pressure"] / (1e8 * ref["pressure"]) == pytest.approx(1.0, abs=1e-10)
