@@ -71,7 +71,8 @@ class TopBoundary:
         A node is in contact when its distance to the roll is below ``tol`` (3.9a); nodes
         inside the roll are always projected; with ``project_contact`` (every 10 steps) all
         contact nodes are put on the roll surface. An edge is in contact when both its vertices
-        are; the midpoints of contact edges then follow the same projection rule.
+        are; the midpoints of contact edges then follow the same projection rule. Nodes past
+        the roll's lowest point x = X_roll (the report's last contact point M) are free.
         Returns the number of contact edges.
         """
         xv = self.vertex_positions(d)
@@ -79,7 +80,8 @@ class TopBoundary:
         move = dist < (tol if project_contact else 0.0)
         if move.any():
             self.set_vertices(d, self.verts[move], rp.project(xv[move]))
-        self.vertex_contact = dist < tol
+        # the last contact point is M = (X_roll, gap) (Section 3.4): nothing past it sticks
+        self.vertex_contact = (dist < tol) & (xv[:, 0] <= rp.axis_x + tol)
         vc = self.vertex_contact
         self.edge_contact = vc[[self.vpos[a] for a in self.ea]] & vc[[self.vpos[b] for b in self.eb]]
         xm = self.midpoint_positions(d)
