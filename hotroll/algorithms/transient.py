@@ -121,9 +121,9 @@ class TransientRun:
         if self.s.a_f is not None:
             return self.s.a_f
         prof = Q.contact_profile(self.form, self.top, self.d, 1.0)
-        it = Q.integrals(self.form, 1.0)
+        vol, back = Q.a_f_inputs(self.form)
         lam = abs(prof["v_slip"][0]) / self.model.rp.u_roll if len(prof["v_slip"]) else 0.0
-        return estimate_a_f(it["volume_v_p"], self.model.h, lam, it["backward_length"],
+        return estimate_a_f(vol, self.model.h, lam, back,
                             self.model.rp.u_roll, self.model.material.m,
                             a_f_max=self.s.a_f_max)
 

@@ -103,7 +103,7 @@ def neutral_point(profile: dict, rp) -> tuple[list[float], float]:
 # --- integrals -------------------------------------------------------------------------------
 def integrals(form: RollingForm, K: float) -> dict:
     """Forces, torque and the power balance of (3.6) tested with v itself (all per unit width)."""
-    from ngsolve import BND, VOL, Integrate, IfPos, InnerProduct, Norm, specialcf, sqrt, x, y
+    from ngsolve import BND, VOL, Integrate, IfPos, InnerProduct, specialcf, sqrt, x, y
 
     from ..discretisation.forms import strain_rate
     from ..physics.material import edot_squared
@@ -149,15 +149,25 @@ def integrals(form: RollingForm, K: float) -> dict:
         "horizontal_force": K * bnd(chi * trac[0]),
         "roll_torque": K * bnd(chi * (-kf * s) * r),
         "contact_length": bnd(chi),
-        "backward_length": bnd(chi * IfPos(-s, 1.0, 0.0)),
         "slip_measure": bnd(chi * IfPos(s * s, (s * s) ** (p / 2), 0.0)),
         "strain_rate_measure": float(Integrate((3.0 * e2 + 1e-300) ** (p / 2), mesh, VOL)),
-        "volume_v_p": float(Integrate((Norm(u) ** 2 + 1e-300) ** (p / 2), mesh, VOL)),
     }
+    out["volume_v_p"], out["backward_length"] = a_f_inputs(form)
     bal = out["plastic_power"] + out["friction_power"] + out["penalty_power"]
     out["power_balance_error"] = abs(out["roll_power"] - bal) / max(abs(out["roll_power"]), 1e-300)
     out["penalty_share"] = out["penalty_power"] / max(abs(out["roll_power"]), 1e-300)
     return out
+
+
+def a_f_inputs(form: RollingForm) -> tuple[float, float]:
+    """The two integrals of (3.15): int_Omega |v|^p dx and the length of Gamma_C^-."""
+    from ngsolve import BND, VOL, Integrate, IfPos, Norm
+
+    u, p = form.problem.velocity, form.m.Get() + 1.0
+    vol = float(Integrate((Norm(u) ** 2 + 1e-300) ** (p / 2), form.mesh, VOL))
+    back = float(Integrate(form.chi * IfPos(-form.slip(u), 1.0, 0.0), form.mesh, BND,
+                           definedon=form.mesh.Boundaries(TOP)))
+    return vol, back
 
 
 def section_flow(form: RollingForm, x_section: float, width: float) -> dict:
