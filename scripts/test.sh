@@ -1,0 +1,6 @@
+#!/usr/bin/env bash
+# Set up and run the test suite (about a minute on 2 cores).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+.venv/bin/python -m pytest -q "$@"
