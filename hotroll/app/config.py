@@ -9,13 +9,14 @@ single :class:`CaseError`.
 from __future__ import annotations
 
 import json
-import math
 import tomllib
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 from pydantic.fields import FieldInfo
+
+from ..process.geometry import RollPass
 
 #: Contact mesh sizes of the report's Table 2 (m).
 MESH_TABLE: dict[str, float] = {
@@ -83,36 +84,40 @@ class PassConfig(_Section):
         return self
 
     @property
-    def half_entry(self) -> float:
-        return 0.5 * self.entry_thickness
-
-    @property
-    def half_exit(self) -> float:
-        return 0.5 * self.exit_thickness
-
-    @property
     def draft(self) -> float:
         """Thickness reduction per side (m)."""
         return 0.5 * (self.entry_thickness - self.exit_thickness)
 
+    def roll_pass(self) -> RollPass:
+        """The geometry object the solver uses (all derived quantities live there)."""
+        return RollPass(self.roll_radius, 0.5 * self.entry_thickness, 0.5 * self.exit_thickness,
+                        self.roll_angular_velocity, self.roll_axis_x)
+
+    @property
+    def half_entry(self) -> float:
+        return self.roll_pass().half_entry
+
+    @property
+    def half_exit(self) -> float:
+        return self.roll_pass().half_exit
+
     @property
     def roll_centre(self) -> tuple[float, float]:
-        return (self.roll_axis_x, self.half_exit + self.roll_radius)
+        return self.roll_pass().centre
 
     @property
     def roll_surface_speed(self) -> float:
-        return self.roll_angular_velocity * self.roll_radius
+        return self.roll_pass().u_roll
 
     @property
     def contact_length(self) -> float:
-        """Projected contact length sqrt(R^2 - (R - draft)^2) (m)."""
-        r, d = self.roll_radius, self.draft
-        return math.sqrt(max(r * r - (r - d) ** 2, 0.0))
+        """Projected contact length (m)."""
+        return self.roll_pass().contact_length
 
     @property
     def bite_angle(self) -> float:
         """Bite angle acos(1 - draft/R) (rad)."""
-        return math.acos(1.0 - self.draft / self.roll_radius)
+        return self.roll_pass().bite_angle
 
 
 class PlateConfig(_Section):

@@ -28,11 +28,8 @@ def build_model(case: Case):
     from ..algorithms.transient import RollingModel, TransientSettings
     from ..discretisation.mesh import MeshSpec
     from ..physics.material import NortonHoff
-    from ..process.geometry import RollPass
-
-    ps, sv = case.pass_, case.solver
-    rp = RollPass(ps.roll_radius, ps.half_entry, ps.half_exit, ps.roll_angular_velocity,
-                  ps.roll_axis_x)
+    sv = case.solver
+    rp = case.pass_.roll_pass()
     h = case.mesh.h
     end_time = sv.end_time or default_end_time(rp)
     spec = MeshSpec(h=h, fine_length=rp.contact_length + rp.u_roll * end_time + 6 * h,
