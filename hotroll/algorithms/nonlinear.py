@@ -37,11 +37,8 @@ class _Workspace:
         self.du = problem.gf.vec.CreateVector()
         self.backup = problem.gf.vec.CreateVector()
         self.check = problem.gf.vec.CreateVector()
-        free = np.array(list(problem.freedofs), dtype=bool)
-        self.free = free
-        nv = problem.n_velocity_dofs()
-        self.vel_free = free.copy()
-        self.vel_free[nv:] = False
+        self.free = problem.free_mask
+        self.vel_free = problem.free_velocity_mask
 
     def norm(self, vec) -> float:
         return float(np.linalg.norm(vec.FV().NumPy()[self.free]))

@@ -93,7 +93,7 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
     t0 = time.perf_counter()
     model, settings = build_model(case)
     run = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint=fingerprint(case))
-    state = run.run(progress)
+    run.run(progress)
     wall = time.perf_counter() - t0
     summary = write_results(case, run, out, wall)
     if case.output.figures:
@@ -106,8 +106,7 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
 def write_results(case: Case, run, out: Path, wall: float) -> dict:
     from ..post import quantities as Q
 
-    K, rp, state = case.material.K, run.model.rp, run.state
-    hist = state.history
+    K, hist = case.material.K, run.state.history
     prof = Q.contact_profile(run.form, run.top, run.d, K)
     prof["normal_stress_corrected"] = (Q.exit_corrected(prof, run.model.h)
                                       if case.solver.exit_pressure_correction

@@ -9,6 +9,7 @@ U^{i+1} = U^i - J(U^i)^{-1} r(U^i). One code path, two algorithms.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Callable
 
 from ..physics.material import NortonHoff, edot_squared
@@ -78,3 +79,16 @@ class NonlinearProblem:
 
     def n_velocity_dofs(self) -> int:
         return self.fes.components[0].ndof
+
+    @cached_property
+    def free_mask(self):
+        """Boolean numpy mask of the free DOFs (Dirichlet rows excluded)."""
+        import numpy as np
+
+        return np.array(list(self.freedofs), dtype=bool)
+
+    @cached_property
+    def free_velocity_mask(self):
+        mask = self.free_mask.copy()
+        mask[self.n_velocity_dofs():] = False
+        return mask

@@ -442,6 +442,17 @@ def _fig_velocity(run: _Run, path: Path) -> Path | None:
     return _save(fig, path)
 
 
+def _profile_panel(ax, x, y, ylabel: str, title: str, what: str, **style) -> None:
+    """One contact profile against x with its zero line, or a 'not available' panel."""
+    if y is None:
+        _na(ax, f"{what} not available")
+        return
+    ax.plot(x, y, ".-", ms=3, **style)
+    ax.axhline(0.0, color="0.5", lw=0.8)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+
+
 def _fig_contact(run: _Run, path: Path) -> Path | None:
     c = run.contact
     x = _col(c, "x")
@@ -452,13 +463,7 @@ def _fig_contact(run: _Run, path: Path) -> Path | None:
     (a_vs, a_sn), (a_st, a_zoom) = axes
 
     vs = _col(c, "v_slip")
-    if vs is not None:
-        a_vs.plot(x, vs, ".-", ms=3)
-        a_vs.axhline(0.0, color="0.5", lw=0.8)
-        a_vs.set_ylabel(r"$v_s$ [m/s]")
-        a_vs.set_title(r"relative (slip) velocity $v_s$")
-    else:
-        _na(a_vs, "v_slip not available")
+    _profile_panel(a_vs, x, vs, r"$v_s$ [m/s]", r"relative (slip) velocity $v_s$", "v_slip")
 
     sn, snc = _col(c, "normal_stress"), _col(c, "normal_stress_corrected")
     if sn is not None or snc is not None:
@@ -472,14 +477,9 @@ def _fig_contact(run: _Run, path: Path) -> Path | None:
     else:
         _na(a_sn, "normal stress not available")
 
-    st = _col(c, "shear_stress")
-    if st is not None:
-        a_st.plot(x, st, ".-", ms=3, color="tab:green")
-        a_st.axhline(0.0, color="0.5", lw=0.8)
-        a_st.set_ylabel(r"$T_\tau\cdot n_\tau$ [Pa]")
-        a_st.set_title(r"tangential stress $T_\tau\cdot n_\tau$ [Pa]")
-    else:
-        _na(a_st, "shear stress not available")
+    _profile_panel(a_st, x, _col(c, "shear_stress"), r"$T_\tau\cdot n_\tau$ [Pa]",
+                   r"tangential stress $T_\tau\cdot n_\tau$ [Pa]", "shear stress",
+                   color="tab:green")
 
     if vs is not None:
         _zoom_slip(a_zoom, [(run, None)])

@@ -11,32 +11,17 @@ import math
 import numpy as np
 
 from ..discretisation.rolling_form import TOP, RollingForm
-from ..process.contact import BUBBLE_MID, TopBoundary
+from ..process.contact import TopBoundary
 
 
 # --- nodal values on the top boundary ------------------------------------------------------
-def _nodal(vec: np.ndarray, top: TopBoundary, n_scalar: int, contact_only: bool):
-    """Positions and velocities at the top P2 nodes (vertices and edge midpoints)."""
-    d_all = vec  # velocity coefficient vector (component 0 block first)
+def top_nodes(form: RollingForm, top: TopBoundary, disp: np.ndarray, contact_only: bool):
+    """(xy, velocity) at the top-boundary P2 nodes (vertices, then edge midpoints)."""
     verts = top.verts[top.vertex_contact] if contact_only else top.verts
     rows = np.nonzero(top.edge_contact)[0] if contact_only else np.arange(len(top.edge))
-    vv = np.stack([d_all[verts], d_all[n_scalar + verts]], -1)
-    ea, eb = top.ea[rows], top.eb[rows]
-    dofs = top.nv + top.edge[rows]
-    vm = 0.5 * (np.stack([d_all[ea], d_all[n_scalar + ea]], -1)
-                + np.stack([d_all[eb], d_all[n_scalar + eb]], -1)) \
-        + BUBBLE_MID * np.stack([d_all[dofs], d_all[n_scalar + dofs]], -1)
-    return verts, rows, vv, vm
-
-
-def top_nodes(form: RollingForm, top: TopBoundary, disp: np.ndarray, contact_only: bool):
-    """(xy, velocity) at the top-boundary P2 nodes, contact nodes only if asked."""
-    ns = form.fes.components[0].ndof // 2
     vel = form.problem.gf.vec.FV().NumPy()
-    verts, rows, vv, vm = _nodal(vel, top, ns, contact_only)
-    xv = top.vertex_positions(disp, verts)
-    xm = top.midpoint_positions(disp)[rows]
-    return np.vstack([xv, xm]), np.vstack([vv, vm])
+    xy = np.vstack([top.vertex_positions(disp, verts), top.midpoint_positions(disp, rows)])
+    return xy, np.vstack([top.vertex_values(vel, verts), top.midpoint_values(vel, rows)])
 
 
 def contact_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: float) -> dict:

@@ -43,14 +43,24 @@ class TopBoundary:
     def _xy(self, d: np.ndarray, dofs: np.ndarray) -> np.ndarray:
         return np.stack([d[dofs], d[self.n_scalar + dofs]], axis=-1)
 
+    def vertex_values(self, f: np.ndarray, verts=None) -> np.ndarray:
+        """A P2 vector field (coefficient vector ``f``) at top vertices."""
+        return self._xy(f, self.verts if verts is None else verts)
+
+    def midpoint_values(self, f: np.ndarray, rows=None) -> np.ndarray:
+        """A P2 vector field at the midpoints of top edges ``rows`` (all by default)."""
+        rows = slice(None) if rows is None else rows
+        ea, eb, e = self.ea[rows], self.eb[rows], self.edge[rows]
+        return (0.5 * (self._xy(f, ea) + self._xy(f, eb))
+                + BUBBLE_MID * self._xy(f, self.nv + e))
+
     def vertex_positions(self, d: np.ndarray, verts=None) -> np.ndarray:
         verts = self.verts if verts is None else verts
-        return self.X0[verts] + self._xy(d, verts)
+        return self.X0[verts] + self.vertex_values(d, verts)
 
-    def midpoint_positions(self, d: np.ndarray) -> np.ndarray:
-        da, db = self._xy(d, self.ea), self._xy(d, self.eb)
-        bub = self._xy(d, self.nv + self.edge)
-        return self.M0 + 0.5 * (da + db) + BUBBLE_MID * bub
+    def midpoint_positions(self, d: np.ndarray, rows=None) -> np.ndarray:
+        rows = slice(None) if rows is None else rows
+        return self.M0[rows] + self.midpoint_values(d, rows)
 
     def set_vertices(self, d: np.ndarray, verts: np.ndarray, xy: np.ndarray) -> None:
         disp = xy - self.X0[verts]
