@@ -1,8 +1,9 @@
 """Short, coarse rolling runs of the report's geometry through the whole pipeline.
 
 h = 0.02 m (4x coarser than Table 2's C1), a 1 m plate and 0.2 s of rolling, so that the plate
-head has passed the exit section. Checks conservation (mass flux, power balance), the neutral
-point, the slip and normal-stress signs, unit independence, the outlet-driven state and resume.
+head has passed the exit section; the direct steady solver on the same mesh size. Checks
+conservation (mass flux, power balance), the neutral point, the slip and normal-stress signs,
+unit independence, the outlet-driven state, resume, and steady = transient within stated bounds.
 """
 from __future__ import annotations
 
@@ -22,7 +23,7 @@ BASE = {
     "plate": {"length": 1.0},
     "material": {"K": 1.0, "m": 0.2},
     "mesh": {"h_contact": 0.02},
-    "solver": {"end_time": 0.2, "threads": 1},
+    "solver": {"method": "transient", "end_time": 0.2, "threads": 1},
     "output": {"figures": False, "vtk": False},
 }
 
@@ -54,7 +55,21 @@ def estimated(tmp_path_factory):
     return _run(tmp_path_factory, "estimate")
 
 
-@pytest.mark.parametrize("fixture", ["slipping", "estimated"])
+@pytest.fixture(scope="module")
+def steady_slipping(tmp_path_factory):
+    return _run(tmp_path_factory, "steady_af3", **{"solver.method": "steady",
+                                                     "friction.a_f": 3.0})
+
+
+@pytest.fixture(scope="module")
+def steady_estimated(tmp_path_factory):
+    return _run(tmp_path_factory, "steady_estimate", **{"solver.method": "steady"})
+
+
+ALL = ["slipping", "estimated", "steady_slipping", "steady_estimated"]
+
+
+@pytest.mark.parametrize("fixture", ALL)
 def test_conservation(fixture, request):
     s, _, _ = request.getfixturevalue(fixture)
     assert s["mass_flux_error"] < 0.01          # measured 0.6 %
@@ -64,7 +79,7 @@ def test_conservation(fixture, request):
     assert s["roll_power"] > 0 and s["plastic_power"] > 0 and s["friction_power"] >= 0
 
 
-@pytest.mark.parametrize("fixture", ["slipping", "estimated"])
+@pytest.mark.parametrize("fixture", ALL)
 def test_neutral_point_inside_arc(fixture, request):
     s, c, _ = request.getfixturevalue(fixture)
     x_touch = 1.0 - math.sqrt(0.6**2 - 0.55**2)
@@ -75,8 +90,9 @@ def test_neutral_point_inside_arc(fixture, request):
     assert s["forward_slip"] > 0 and s["exit_velocity"] > s["entry_velocity"]
 
 
-def test_slip_changes_sign_at_neutral_point(slipping):
-    s, c, _ = slipping
+@pytest.mark.parametrize("fixture", ["slipping", "steady_slipping"])
+def test_slip_changes_sign_at_neutral_point(fixture, request):
+    s, c, _ = request.getfixturevalue(fixture)
     before = c["angle"] > s["neutral_angle"]
     assert before.sum() >= 5 and (~before).sum() >= 1
     assert np.all(c["v_slip"][before] < 0)
@@ -85,12 +101,14 @@ def test_slip_changes_sign_at_neutral_point(slipping):
     assert np.all(c["shear_stress"][before] > 0) and np.all(c["shear_stress"][~before] < 0)
 
 
-@pytest.mark.parametrize("fixture", ["slipping", "estimated"])
+@pytest.mark.parametrize("fixture", ALL)
 def test_normal_stress_compressive(fixture, request):
     _, c, _ = request.getfixturevalue(fixture)
-    # all but the first and the last contact node, where the boundary condition changes
-    # (the report's oscillations at the entry and exit points)
-    assert np.all(c["normal_stress"][1:-1] < 0)
+    # all but the first contact node and the exit zone of the correction (2h = 0.04 m), where
+    # the boundary condition changes (the report's oscillations at the entry and exit points)
+    inner = c["x"] < 1.0 - 0.04
+    inner[0] = False
+    assert np.all(c["normal_stress"][inner] < 0)
     assert np.all(c["normal_stress_corrected"][1:-1] < 0)
 
 
@@ -127,3 +145,50 @@ def test_outputs_and_resume(slipping):
     again = run_case(_case(**{"friction.a_f": 3.0}), out)   # finished run: nothing to redo
     assert again["steps"] == s["steps"]
     assert again["roll_force"] == pytest.approx(s["roll_force"], rel=1e-12)
+
+
+@pytest.mark.parametrize("pair", [("steady_slipping", "slipping"),
+                                  ("steady_estimated", "estimated")])
+def test_steady_agrees_with_transient(pair, request):
+    """The direct steady solve against the report's scheme on the same mesh size.
+
+    Measured (h = 0.02): roll force -9 %, torque -12 %, forward slip 2.68 % vs 2.63 % (a_f = 3)
+    and 2.69 % vs 2.99 % (estimate), neutral angle within 0.023 rad, a_f 1060 vs 1129. The
+    transient run is not yet steady at 0.2 s and dissipates ~10 % of the roll power in the
+    penalties at the entry (the steady strip 2 %), hence its higher force and torque.
+    """
+    s, _, _ = request.getfixturevalue(pair[0])
+    t, _, _ = request.getfixturevalue(pair[1])
+    assert s["method"] == "steady" and t["method"] == "transient"
+    assert s["converged"]
+    assert s["roll_force"] == pytest.approx(t["roll_force"], rel=0.15)
+    assert s["roll_torque"] == pytest.approx(t["roll_torque"], rel=0.2)
+    assert abs(s["forward_slip"] - t["forward_slip"]) < 0.005
+    assert abs(s["neutral_angle"] - t["neutral_angle"]) < 0.1 * math.acos(1 - 0.05 / 0.6)
+    assert s["a_f"] == pytest.approx(t["a_f"], rel=0.25)
+
+
+def test_steady_outputs_and_unit_independence(tmp_path_factory, steady_slipping):
+    s1, c1, out = steady_slipping
+    assert s1["steps"] == 0 and s1["newton_solves"] >= 2 and s1["contact_loss"] == []
+    hist = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
+    assert len(hist) == s1["newton_solves"] and hist["m"][0] == 1.0 and hist["m"][-1] == 0.2
+    s2, c2, _ = _run(tmp_path_factory, "steady_si", **{"solver.method": "steady",
+                                                         "friction.a_f": 3.0, "material.K": 1.5e8})
+    for key in ("neutral_angle", "forward_slip", "exit_velocity"):
+        assert s2[key] == pytest.approx(s1[key], rel=1e-6, abs=1e-12)
+    assert s2["roll_force"] == pytest.approx(1.5e8 * s1["roll_force"], rel=1e-6)
+
+
+def test_steady_domain_lengths_do_not_matter(tmp_path_factory, steady_slipping):
+    """Doubling the flat entry and exit of the steady strip changes nothing that matters."""
+    s1, _, _ = steady_slipping
+    s2, _, _ = _run(tmp_path_factory, "steady_long", **{
+        "solver.method": "steady", "friction.a_f": 3.0,
+        "solver.steady_entry_length": 2.0, "solver.steady_exit_length": 1.6})
+    assert s2["dofs"] > s1["dofs"]
+    # measured: torque +0.3 %, exit velocity -0.1 %; the roll force +1.5 % here but up to 8 %
+    # with only one length doubled: it follows the discrete first contact node (one element)
+    for key in ("roll_torque", "exit_velocity", "mass_flux_out"):
+        assert s2[key] == pytest.approx(s1[key], rel=0.02)
+    assert s2["roll_force"] == pytest.approx(s1["roll_force"], rel=0.1)

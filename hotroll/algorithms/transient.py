@@ -149,31 +149,12 @@ class TransientRun:
     # --- recording -----------------------------------------------------------------------------
     def measure(self) -> dict:
         """All per-step figures in SI units (stresses times K)."""
-        m, rp = self.model, self.model.rp
-        K = m.material.K
-        prof = Q.contact_profile(self.form, self.top, self.d, K)
-        (xn, yn), ang = Q.neutral_point(prof, rp)
-        it = Q.integrals(self.form, K)
-        # any section carries the same flux (incompressible, v.n = 0 on the free top), so the
-        # sections are placed just clear of the bite: l_c/2 upstream, l_c/4 downstream
-        width = 2.0 * m.h
-        x_in = rp.x_touch - 0.5 * rp.contact_length
-        x_out = rp.axis_x + 0.25 * rp.contact_length
-        sec_in = Q.section_flow(self.form, x_in, width)
-        head = self.head_x()
-        sec_out = (Q.section_flow(self.form, x_out, width) if head > x_out + width
-                   else {"velocity": math.nan, "flux": math.nan, "thickness": math.nan})
-        row = {
-            "step": self.state.step, "time": self.state.time, "a_f": self.form.a_f.Get(),
-            "neutral_x": xn, "neutral_y": yn, "neutral_angle": ang,
-            "entry_velocity": sec_in["velocity"], "exit_velocity": sec_out["velocity"],
-            "mass_flux_in": sec_in["flux"], "mass_flux_out": sec_out["flux"],
-            "exit_thickness_measured": 2.0 * sec_out["thickness"],
-            "forward_slip": sec_out["velocity"] / rp.u_roll - 1.0,
-            "head_x": head, "iterations": self.last_stats.iterations,
-            "residual": self.last_stats.residual, "solver_converged": self.last_stats.converged,
-        }
-        row.update(it)
+        row = {"step": self.state.step, "time": self.state.time}
+        row.update(Q.measure(self.form, self.top, self.d, self.model.material.K, self.model.h,
+                             self.head_x()))
+        row.update({"iterations": self.last_stats.iterations,
+                    "residual": self.last_stats.residual,
+                    "solver_converged": self.last_stats.converged})
         return row
 
     # --- steady state ----------------------------------------------------------------------------

@@ -21,13 +21,15 @@ err_console = Console(stderr=True)
 SUMMARY_KEYS = ["neutral_point", "neutral_angle", "roll_force", "roll_torque", "roll_power",
                 "forward_slip", "a_f", "converged", "steps", "wall_time_s"]
 
-PROGRESS_KEYS = ["step", "time", "a_f", "iterations", "roll_force", "neutral_angle",
+PROGRESS_KEYS = ["step", "time", "m", "a_f", "iterations", "roll_force", "neutral_angle",
                  "forward_slip", "message"]
 
 OutOpt = Annotated[Path, typer.Option("--out", "-o", help="Output directory.")]
 MeshOpt = Annotated[Optional[str], typer.Option(help="Contact mesh: Table 2 name (C1..F2) or h in m.")]
 EndOpt = Annotated[Optional[float], typer.Option(help="Simulated end time in s.")]
 NonlinOpt = Annotated[Optional[str], typer.Option(help="Nonlinear solver: newton or picard.")]
+MethodOpt = Annotated[Optional[str], typer.Option(
+    help="Solution method: steady (direct steady state) or transient (the report's scheme).")]
 ResumeOpt = Annotated[bool, typer.Option("--resume/--no-resume", help="Resume from a checkpoint.")]
 
 
@@ -112,11 +114,14 @@ def run(
     mesh: MeshOpt = None,
     end_time: EndOpt = None,
     nonlinear: NonlinOpt = None,
+    method: MethodOpt = None,
     no_figures: Annotated[bool, typer.Option("--no-figures", help="Do not write figures.")] = False,
     resume: ResumeOpt = True,
 ) -> None:
-    """Run one case file into OUT."""
+    """Run one case file into OUT (the method is the file's [solver] method unless given)."""
     extra = {"output.figures": False} if no_figures else {}
+    if method is not None:
+        extra["solver.method"] = method
     case = _load(case_file, _overrides(mesh, end_time, nonlinear, **extra))
     _run(case, out, resume)
 
@@ -128,13 +133,15 @@ def example(
     mesh: MeshOpt = None,
     end_time: EndOpt = None,
     nonlinear: NonlinOpt = None,
-    method: Annotated[Optional[str], typer.Option(help="Solution method: transient.")] = None,
+    method: Annotated[str, typer.Option(
+        help="steady (default: direct steady state) or transient (the report's time stepping).")
+    ] = "steady",
     resume: ResumeOpt = True,
 ) -> None:
     """Run a report example (3 runs m = 0.15, 0.2, 0.25 and compares them)."""
     if number not in EXAMPLES:
         raise _fail(f"example: unknown number {number!r} (allowed: {', '.join(EXAMPLES)})")
-    extra = {"solver.method": method} if method is not None else {}
+    extra = {"solver.method": method}
     over = _overrides(mesh, end_time, nonlinear, **extra)
     cases = [_load(example_path(name), over) for name in EXAMPLES[number]]  # validate all first
     if len(cases) == 1:

@@ -164,7 +164,9 @@ class MeshConfig(_Section):
 
 
 class SolverConfig(_Section):
-    method: Literal["transient"] = _field("transient", "time integration", "", '"transient"')
+    method: Literal["steady", "transient"] = _field(
+        "steady", "solution method: direct steady state or the report's time stepping", "",
+        '"steady" or "transient"')
     nonlinear: Literal["newton", "picard"] = _field("newton", "nonlinear solver", "",
                                                     '"newton" or "picard"')
     tolerance: float = _field(1e-5, "nonlinear tolerance", "", "> 0", gt=0)
@@ -177,6 +179,10 @@ class SolverConfig(_Section):
     wall_time_limit: PosFloat | None = _field(None, "wall-clock limit (omit: none)", "s", "> 0")
     checkpoint_every: int = _field(25, "steps between checkpoints", "", "an integer >= 1", ge=1)
     threads: int = _field(2, "worker threads", "", "an integer >= 1", ge=1)
+    steady_entry_length: PosFloat | None = _field(
+        None, "steady strip: flat length before the touching point (omit: automatic)", "m", "> 0")
+    steady_exit_length: PosFloat | None = _field(
+        None, "steady strip: flat length after the roll gap (omit: automatic)", "m", "> 0")
     exit_pressure_correction: bool = _field(True, "correct the exit pressure", "", "true or false")
 
 

@@ -47,6 +47,19 @@ def build_model(case: Case):
     return model, settings
 
 
+def steady_settings(case: Case):
+    """Settings of the direct steady solver (same a_f rule, tolerance and contact tolerance)."""
+    from ..algorithms.steady import SteadySettings
+
+    sv = case.solver
+    return SteadySettings(
+        tol=sv.tolerance, max_it=max(sv.max_iterations, 30),
+        a_f=None if case.friction.a_f == "estimate" else float(case.friction.a_f),
+        a_f_max=case.friction.a_f_max, upstream=sv.steady_entry_length,
+        downstream=sv.steady_exit_length, contact_tol=contact_tolerance(case.pass_.roll_pass(),
+                                                                        case.dt))
+
+
 def contact_tolerance(rp, dt: float) -> float:
     """Distance below which a node is in contact (3.9): the report's 1e-5 m (for R = 0.6 m),
     scaled with R, and at least 6 times the drift (U dt)^2 / 2R that explicit steps along the
@@ -92,7 +105,12 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
         (ckpt / "state.npz").unlink()
     t0 = time.perf_counter()
     model, settings = build_model(case)
-    run = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint=fingerprint(case))
+    if case.solver.method == "steady":
+        from ..algorithms.steady import SteadyRun
+
+        run = SteadyRun(model, steady_settings(case), case.plate.length)
+    else:
+        run = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint=fingerprint(case))
     run.run(progress)
     wall = time.perf_counter() - t0
     summary = write_results(case, run, out, wall)
@@ -124,20 +142,24 @@ def write_results(case: Case, run, out: Path, wall: float) -> dict:
 
 def summarise(case: Case, run, prof: dict, wall: float) -> dict:
     """The summary.json dictionary: last-window means and run figures."""
+    from ..post import quantities as Q
+
     rp, state, last = run.model.rp, run.state, run.state.history[-1]
     window = state.history[-run.window:]
+    steady_solver = case.solver.method == "steady"
     mean = {k: float(np.nanmean([r[k] for r in window])) if any(
         math.isfinite(r[k]) for r in window) else math.nan for k in AVERAGED}
     ang = mean["neutral_angle"]
     cx, cy = rp.centre
     outlet_driven = mean["outlet_penalty_power"] < -0.05 * mean["plastic_power"]
     steady = state.status == "steady"
+    loss = Q.contact_loss(prof, prof["normal_stress_corrected"], 2.0 * run.model.h)
     sn_raw, sn_cor = prof["normal_stress"], prof["normal_stress_corrected"]
     seg = np.hypot(np.diff(prof["x"]), np.diff(prof["y"])) if len(prof["x"]) > 1 else []
     trap = (lambda f: float(np.sum(0.5 * (f[1:] + f[:-1]) * seg))) if len(seg) else (lambda f: 0.0)
     iters = [r["iterations"] for r in state.history]
     return {
-        "case_name": case.name, "status": state.status,
+        "case_name": case.name, "method": case.solver.method, "status": state.status,
         "converged": bool(steady and last["solver_converged"] and not outlet_driven),
         "steady_state": steady, "outlet_driven": bool(outlet_driven),
         "neutral_point": [cx - rp.radius * math.sin(ang), cy - rp.radius * math.cos(ang)],
@@ -153,13 +175,18 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         / abs(mean["mass_flux_in"]) if math.isfinite(mean["mass_flux_out"]) else math.nan,
         "exit_correction_normal_force_change": (trap(sn_cor) - trap(sn_raw)) / trap(sn_raw)
         if trap(sn_raw) else 0.0,
-        "steps": last["step"] + 1, "time": last["time"], "dt": run.s.dt,
+        "contact_loss": loss, "contact_loss_detected": bool(loss),
+        "steps": 0 if steady_solver else last["step"] + 1,
+        "time": None if steady_solver else last["time"],
+        "dt": None if steady_solver else run.s.dt,
+        "newton_solves": len(state.history) if steady_solver else None,
         "nonlinear_iterations": int(np.sum(iters)),
-        "iterations_per_step": float(np.mean(iters[1:])) if len(iters) > 1 else float(iters[0]),
+        "iterations_per_step": None if steady_solver else (
+            float(np.mean(iters[1:])) if len(iters) > 1 else float(iters[0])),
         "dofs": run.form.fes.ndof, "h_contact": run.model.h, "wall_time_s": wall,
         "roll_centre": [cx, cy], "roll_radius": rp.radius, "roll_surface_speed": rp.u_roll,
         "contact_start": [float(prof["x"][0]), float(prof["y"][0])] if len(prof["x"]) else None,
         "contact_end": [float(prof["x"][-1]), float(prof["y"][-1])] if len(prof["x"]) else None,
-        "K": case.material.K, "m": case.material.m, "nonlinear": run.s.nonlinear,
+        "K": case.material.K, "m": case.material.m, "nonlinear": "newton" if steady_solver else run.s.nonlinear,
         "averaged_over_steps": len(window),
     }

@@ -3,6 +3,7 @@
 The plate occupies x in [axis_x - L, axis_x], y in [0, half_entry]; its top follows the roll arc
 exactly for x in [x_touch, axis_x]. Boundary names:
 ``sym`` (y = 0), ``out`` (head face), ``arc`` (initial contact), ``top`` (free top), ``in`` (tail).
+The steady strip (``steady_geometry``) adds ``exit``, the flat free top after the roll gap.
 The mesh size is ``h`` on the top boundary and the arc over a fine zone upstream of the roll,
 growing through the thickness to ``core_factor * h`` on the axis and to ``h_far`` far upstream.
 """
@@ -15,7 +16,7 @@ import numpy as np
 
 from ..process.geometry import RollPass
 
-BOUNDARIES = ("sym", "out", "arc", "top", "in")
+BOUNDARIES = ("sym", "out", "arc", "top", "in", "exit")
 
 
 @dataclass(frozen=True)
@@ -65,30 +66,78 @@ def plate_geometry(rp: RollPass, length: float):
 
 
 def top_height(rp: RollPass, x: np.ndarray) -> np.ndarray:
-    """Initial height of the top boundary: flat, then the roll arc."""
+    """Height of the top boundary in the maximum-contact shape: flat, the roll arc, flat."""
     cx, cy = rp.centre
     x = np.asarray(x, dtype=float)
-    on_arc = x > rp.x_touch
-    y = np.full_like(x, rp.half_entry)
+    on_arc = (x > rp.x_touch) & (x < rp.axis_x)
+    y = np.where(x >= rp.axis_x, rp.half_exit, rp.half_entry)
     y[on_arc] = cy - np.sqrt(np.maximum(rp.radius**2 - (x[on_arc] - cx) ** 2, 0.0))
     return y
 
 
-def build_plate_mesh(rp: RollPass, length: float, spec: MeshSpec):
-    """Generate the graded NGSolve mesh (straight-sided; the arc is restored by the P2 geometry)."""
+def steady_geometry(rp: RollPass, upstream: float, downstream: float):
+    """OCC face of the steady strip: flat entry of length ``upstream`` before the touching
+    point, the full roll arc, flat exit at the roll gap of length ``downstream``.
+
+    Boundary names as for the plate, the exit's flat top is ``exit``.
+    """
+    from netgen.occ import ArcOfCircle, Face, OCCGeometry, Pnt, Segment, Wire
+
+    x0, x1 = rp.x_touch - upstream, rp.axis_x + downstream
+    cx, cy = rp.centre
+    xt, h0, h1, R = rp.x_touch, rp.half_entry, rp.half_exit, rp.radius
+    am = 0.5 * (-math.pi / 2 + math.atan2(h0 - cy, xt - cx))
+    pts = [(x0, 0), (x1, 0), (x1, h1), (rp.axis_x, h1), (xt, h0), (x0, h0)]
+    P = [Pnt(x, y, 0) for x, y in pts]
+    edges = [Segment(P[0], P[1]), Segment(P[1], P[2]), Segment(P[2], P[3]),
+             ArcOfCircle(P[3], Pnt(cx + R * math.cos(am), cy + R * math.sin(am), 0), P[4]),
+             Segment(P[4], P[5]), Segment(P[5], P[0])]
+    face = Face(Wire(edges))
+    scale = max(1.0, x1 - x0)
+    for ed in face.edges:
+        c = ed.center
+        if abs(c.y) < 1e-12 * scale:
+            ed.name = "sym"
+        elif abs(c.x - x1) < 1e-9 * scale:
+            ed.name = "out"
+        elif abs(c.x - x0) < 1e-9 * scale:
+            ed.name = "in"
+        elif c.x > rp.axis_x:
+            ed.name = "exit"
+        elif abs(c.y - h0) < 1e-12 * max(1.0, h0):
+            ed.name = "top"
+        else:
+            ed.name = "arc"
+    return OCCGeometry(face, dim=2)
+
+
+def _graded_mesh(geometry, rp: RollPass, spec: MeshSpec, x_lo: float, x_hi: float):
+    """Mesh ``geometry`` with size h on the top over [x_lo, x_hi], growing to
+    ``core_factor * h`` on the axis and to ``spec.far`` elsewhere."""
     import ngsolve
     from netgen.meshing import MeshingParameters
 
     h = spec.h
     mp = MeshingParameters(maxh=spec.far(rp), grading=spec.grading)
-    x_lo = max(rp.axis_x - length, rp.axis_x - spec.fine_length)
-    xs = np.arange(x_lo, rp.axis_x + 0.5 * h, 0.5 * h)
-    ytop = top_height(rp, xs)
+    xs = np.arange(x_lo, x_hi + 0.5 * h, 0.5 * h)
     hc = spec.core_factor * h
-    for x, yt in zip(xs, ytop):
+    for x, yt in zip(xs, top_height(rp, xs)):
         # size grows linearly from h at the top to core_factor*h on the axis
         n = max(2, int(math.ceil(yt / h)))
         for y in np.linspace(yt, 0.0, n):
             mp.RestrictH(float(x), float(y), 0.0, float(h + (hc - h) * (1.0 - y / yt)))
-    ngmesh = plate_geometry(rp, length).GenerateMesh(mp=mp)
-    return ngsolve.Mesh(ngmesh)
+    return ngsolve.Mesh(geometry.GenerateMesh(mp=mp))
+
+
+def build_plate_mesh(rp: RollPass, length: float, spec: MeshSpec):
+    """Generate the graded NGSolve mesh (straight-sided; the arc is restored by the P2 geometry)."""
+    x_lo = max(rp.axis_x - length, rp.axis_x - spec.fine_length)
+    return _graded_mesh(plate_geometry(rp, length), rp, spec, x_lo, rp.axis_x)
+
+
+def build_steady_mesh(rp: RollPass, upstream: float, downstream: float, spec: MeshSpec,
+                      margin: float):
+    """Graded mesh of the steady strip; fine over the arc and ``margin`` either side of it."""
+    x_lo = max(rp.x_touch - upstream, rp.x_touch - margin)
+    x_hi = min(rp.axis_x + downstream, rp.axis_x + margin)
+    return _graded_mesh(steady_geometry(rp, upstream, downstream), rp, spec, x_lo, x_hi)

@@ -25,7 +25,7 @@ from ..process.geometry import RollPass
 from .forms import NonlinearProblem, norton_hoff_volume, one_sided
 from .spaces import taylor_hood
 
-TOP = "top|arc"
+TOP = "top|arc|exit"   # the whole top boundary (the steady strip adds "exit")
 
 
 @dataclass(frozen=True)

@@ -85,6 +85,51 @@ def neutral_point(profile: dict, rp) -> tuple[list[float], float]:
     return [cx - rp.radius * math.sin(a_n), cy - rp.radius * math.cos(a_n)], float(a_n)
 
 
+def measure(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: float, h: float,
+            head_x: float) -> dict:
+    """The per-configuration figures (SI, stresses times K) recorded by both solvers."""
+    rp = form.rp
+    prof = contact_profile(form, top, disp, K)
+    (xn, yn), ang = neutral_point(prof, rp)
+    # any cross-section carries the same flux (incompressible, v.n = 0 on the free top); the
+    # tail and head faces are cross-sections the strip crosses rigidly, where the flux integral
+    # is exact. The head counts once it is past the bite by l_c/4 (before that: nan).
+    sec_in = face_flow(form, "in")
+    sec_out = (face_flow(form, "out") if head_x > rp.axis_x + 0.25 * rp.contact_length + 2 * h
+               else {"velocity": math.nan, "flux": math.nan, "thickness": math.nan})
+    row = {
+        "a_f": form.a_f.Get(), "neutral_x": xn, "neutral_y": yn, "neutral_angle": ang,
+        "entry_velocity": sec_in["velocity"], "exit_velocity": sec_out["velocity"],
+        "mass_flux_in": sec_in["flux"], "mass_flux_out": sec_out["flux"],
+        "exit_thickness_measured": 2.0 * sec_out["thickness"],
+        "forward_slip": sec_out["velocity"] / rp.u_roll - 1.0, "head_x": head_x,
+    }
+    row.update(integrals(form, K))
+    return row
+
+
+def contact_loss(profile: dict, normal_stress: np.ndarray, min_length: float) -> list:
+    """Stretches [x_start, x_end] of the contact, at least ``min_length`` long along the arc,
+    where the normal stress is tensile: there the strip would leave the roll."""
+    sn = np.asarray(normal_stress)
+    if len(sn) < 2:
+        return []
+    xy = np.stack([profile["x"], profile["y"]], -1)
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))])
+    out, i = [], 0
+    while i < len(sn):
+        if sn[i] > 0:
+            j = i
+            while j + 1 < len(sn) and sn[j + 1] > 0:
+                j += 1
+            if s[j] - s[i] >= min_length:
+                out.append([float(xy[i, 0]), float(xy[j, 0])])
+            i = j + 1
+        else:
+            i += 1
+    return out
+
+
 # --- integrals -------------------------------------------------------------------------------
 def integrals(form: RollingForm, K: float) -> dict:
     """Forces, torque and the power balance of (3.6) tested with v itself (all per unit width)."""
@@ -155,17 +200,16 @@ def a_f_inputs(form: RollingForm) -> tuple[float, float]:
     return vol, back
 
 
-def section_flow(form: RollingForm, x_section: float, width: float) -> dict:
-    """Mean velocity, thickness and flux (m^2/s, half model) in a band around x = x_section."""
-    from ngsolve import Integrate, IfPos, x
+def face_flow(form: RollingForm, face: str) -> dict:
+    """Flux (m^2/s, half model), projected height and mean velocity through the face ``in``
+    (tail / inlet) or ``out`` (head / outlet): flux = |int v.n ds|, exact for any face shape."""
+    from ngsolve import BND, Integrate, specialcf
 
-    u = form.problem.velocity
-    band = IfPos((x - (x_section - width / 2)) * ((x_section + width / 2) - x), 1.0, 0.0)
-    area = float(Integrate(band, form.mesh))
-    if area <= 0.0:
-        return {"velocity": math.nan, "thickness": math.nan, "flux": math.nan}
-    q = float(Integrate(band * u[0], form.mesh))
-    return {"velocity": q / area, "thickness": area / width, "flux": q / width}
+    nh = specialcf.normal(2)
+    region = form.mesh.Boundaries(face)
+    q = abs(float(Integrate(form.problem.velocity * nh, form.mesh, BND, definedon=region)))
+    height = abs(float(Integrate(nh[0], form.mesh, BND, definedon=region)))
+    return {"velocity": q / height if height > 0 else math.nan, "thickness": height, "flux": q}
 
 
 def exit_corrected(profile: dict, h: float, zone: float = 2.0, fit: float = 6.0) -> np.ndarray:

@@ -12,7 +12,7 @@ import numpy as np
 from .geometry import RollPass
 
 BUBBLE_MID = -0.125   # NGSolve's order-2 H1 edge shape function at the edge midpoint
-TOP_REGIONS = ("top", "arc")
+TOP_REGIONS = ("top", "arc", "exit")
 
 
 class TopBoundary:
