@@ -62,7 +62,7 @@ def default_lengths(rp) -> tuple[float, float]:
     return max(lc, 4.0 * rp.half_entry), max(lc, 4.0 * rp.half_exit)
 
 
-def m_path(m: float) -> list[float]:
+def continuation_path(m: float) -> list[float]:
     """Continuation 1 -> m: geometric steps of at most a factor 2 in m."""
     n = max(1, math.ceil(math.log(1.0 / m) / math.log(2.0)))
     return [float(v) for v in np.geomspace(1.0, m, n + 1)[1:]] if m < 1.0 else [m]
@@ -121,7 +121,6 @@ class SteadyRun:
 
     # --- the interface the runner shares with TransientRun -------------------------------------
     window = 1           # summary scalars: the last (converged) row
-    nonlinear = "newton"
 
     def run(self, progress=None, warm: np.ndarray | None = None,
             warm_a_f: float | None = None) -> TransientState:
@@ -193,7 +192,7 @@ class SteadyRun:
             else:
                 self._initial_guess()
                 f.a_f.Set(s.a_f if s.a_f is not None else s.a_f_start)
-                path = [1.0] + (list(s.m_path) or m_path(target))
+                path = [1.0] + (list(s.m_path) or continuation_path(target))
             for i, m in enumerate(path):
                 f.m.Set(m)
                 final = i == len(path) - 1
