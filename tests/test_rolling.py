@@ -104,12 +104,12 @@ def test_slip_changes_sign_at_neutral_point(fixture, request):
 @pytest.mark.parametrize("fixture", ALL)
 def test_normal_stress_compressive(fixture, request):
     _, c, _ = request.getfixturevalue(fixture)
-    # all but the first contact node and the exit zone of the correction (2h = 0.04 m), where
-    # the boundary condition changes (the report's oscillations at the entry and exit points)
-    inner = c["x"] < 1.0 - 0.04
-    inner[0] = False
+    # all but the entry and exit zones of 2h = 0.04 m, where the boundary condition changes
+    # (the report's oscillations at the entry and exit points; with the traction-free steady
+    # tops the entry overshoot reaches the second contact node)
+    inner = (c["x"] < 1.0 - 0.04) & (c["x"] > c["x"][0] + 0.03)
     assert np.all(c["normal_stress"][inner] < 0)
-    assert np.all(c["normal_stress_corrected"][1:-1] < 0)
+    assert np.all(c["normal_stress_corrected"][inner] < 0)
 
 
 def test_estimate_gives_large_a_f_and_sticking(estimated, slipping):
@@ -152,27 +152,37 @@ def test_outputs_and_resume(slipping):
 def test_steady_agrees_with_transient(pair, request):
     """The direct steady solve against the report's scheme on the same mesh size.
 
-    Measured (h = 0.02): roll force -9 %, torque -12 %, forward slip 2.68 % vs 2.63 % (a_f = 3)
-    and 2.69 % vs 2.99 % (estimate), neutral angle within 0.023 rad, a_f 1060 vs 1129. The
-    transient run is not yet steady at 0.2 s and dissipates ~10 % of the roll power in the
-    penalties at the entry (the steady strip 2 %), hence its higher force and torque.
+    Measured (h = 0.02, a_f = 3 / estimated): forward slip 2.58 vs 2.63 % / 2.97 vs 2.99 %,
+    neutral angle 0.035 vs 0.044 / 0.051 vs 0.073 rad, a_f 1162 vs 1129, torque -8 / -12 %,
+    plastic power -3 / -5 %, roll force -24 / -16 %. The transient run is not steady at 0.2 s
+    and its top is still held near its initial flat shape by the penalty (3.2d): ~10 % of its
+    roll power goes into the penalties at the entry corner (the steady strip 4-7 %), which
+    loads the first contact nodes; the steady tops are traced to traction-free streamlines.
+    The roll force, which that corner dominates, is the loosest figure.
     """
     s, _, _ = request.getfixturevalue(pair[0])
     t, _, _ = request.getfixturevalue(pair[1])
     assert s["method"] == "steady" and t["method"] == "transient"
-    assert s["converged"]
-    assert s["roll_force"] == pytest.approx(t["roll_force"], rel=0.15)
-    assert s["roll_torque"] == pytest.approx(t["roll_torque"], rel=0.2)
-    assert abs(s["forward_slip"] - t["forward_slip"]) < 0.005
+    assert s["converged"] and s["fixed_point_settled"]
+    assert abs(s["forward_slip"] - t["forward_slip"]) < 0.002
     assert abs(s["neutral_angle"] - t["neutral_angle"]) < 0.1 * math.acos(1 - 0.05 / 0.6)
-    assert s["a_f"] == pytest.approx(t["a_f"], rel=0.25)
+    assert s["a_f"] == pytest.approx(t["a_f"], rel=0.1)
+    assert s["plastic_power"] == pytest.approx(t["plastic_power"], rel=0.07)
+    assert s["roll_torque"] == pytest.approx(t["roll_torque"], rel=0.15)
+    assert s["roll_force"] == pytest.approx(t["roll_force"], rel=0.3)
+    assert s["roll_force"] < t["roll_force"]
 
 
 def test_steady_outputs_and_unit_independence(tmp_path_factory, steady_slipping):
     s1, c1, out = steady_slipping
-    assert s1["steps"] == 0 and s1["newton_solves"] >= 2 and s1["contact_loss"] == []
+    assert s1["steps"] == 0 and s1["newton_solves"] >= 1 and s1["contact_loss"] == []
+    assert s1["fixed_point_settled"] and s1["coupling_updates"] >= 2
     hist = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
-    assert len(hist) == s1["newton_solves"] and hist["m"][0] == 1.0 and hist["m"][-1] == 0.2
+    # one row per coupling update and one per Newton solve, all at the target m (cold start
+    # from the kinematic guess, no continuation)
+    assert len(hist) == s1["newton_solves"] + s1["coupling_updates"]
+    assert np.all(hist["m"] == 0.2)
+    assert hist["iterations"].sum() == s1["nonlinear_iterations"]
     s2, c2, _ = _run(tmp_path_factory, "steady_si", **{"solver.method": "steady",
                                                          "friction.a_f": 3.0, "material.K": 1.5e8})
     for key in ("neutral_angle", "forward_slip", "exit_velocity"):

@@ -75,10 +75,16 @@ def default_end_time(rp) -> float:
     return 3.0 * rp.contact_length / rp.u_roll
 
 
+#: Solver keys that do not change the computed fields (a run may resume with other values).
+_NOT_PHYSICS = ("wall_time_limit", "threads", "checkpoint_every")
+
+
 def fingerprint(case: Case) -> str:
+    """Hash of everything that determines the fields (not output, threads, limits)."""
     d = case.to_dict()
     d.pop("output", None)
-    d.get("solver", {}).pop("wall_time_limit", None)
+    for key in _NOT_PHYSICS:
+        d.get("solver", {}).pop(key, None)
     return hashlib.sha256(repr(sorted(_flat(d).items())).encode()).hexdigest()[:16]
 
 
@@ -179,7 +185,11 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "steps": 0 if steady_solver else last["step"] + 1,
         "time": None if steady_solver else last["time"],
         "dt": None if steady_solver else run.s.dt,
-        "newton_solves": len(state.history) if steady_solver else None,
+        "newton_solves": len(run.result.stats) if steady_solver else None,
+        "coupling_updates": len(run.result.surface_moves or run.result.a_f_history)
+        if steady_solver else None,
+        "fixed_point_settled": bool(run.result.settled) if steady_solver else None,
+        "contact_cycle": bool(run.result.contact_cycle) if steady_solver else None,
         "nonlinear_iterations": int(np.sum(iters)),
         "iterations_per_step": None if steady_solver else (
             float(np.mean(iters[1:])) if len(iters) > 1 else float(iters[0])),

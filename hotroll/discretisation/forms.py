@@ -52,6 +52,7 @@ class NonlinearProblem:
     gf_w: object = field(init=False)
     a_newton: object = field(init=False)
     a_picard: object = field(init=False)
+    inverses: dict = field(init=False, default_factory=dict, repr=False)  # kept factorisations
 
     def __post_init__(self):
         from ngsolve import BilinearForm, GridFunction
