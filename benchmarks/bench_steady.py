@@ -28,7 +28,8 @@ from _common import example1, list_arg, mesh_arg, mesh_label, print_table, write
 
 COLUMNS = ["mesh", "dofs", "newton_iterations", "wall_s", "mesh_s", "factorisation_s",
            "outside_linear_share", "peak_memory_mb", "warm_iterations", "warm_s",
-           "neutral_angle", "roll_force", "forward_slip", "a_f", "transient_s", "ratio"]
+           "neutral_angle", "roll_force", "forward_slip", "a_f", "converged", "transient_s",
+           "ratio"]
 
 
 def one(mesh, threads: int, transient: bool) -> dict:

@@ -59,7 +59,8 @@ class SteadySettings:
     surface_tol: float = 1e-3        # shape converged when no top node moves more than this x h
     max_outer: int = 30              # a_f / free-surface updates at the target m
     couple_below: float = 5e-2       # update them once the Newton update is below this x U
-    relax: float = 0.5               # under-relaxation of the free-surface update
+    relax: float = 0.5               # under-relaxation of the free-surface update (first)
+    aitken_max: float = 10.0         # largest Aitken factor of the free-surface update
 
 
 def default_lengths(rp) -> tuple[float, float]:
@@ -91,6 +92,7 @@ class SteadyResult:
     settled: bool = False        # a_f and the free surface reached their fixed point
     fallback: bool = False       # the direct solve failed; solved again along m = 1 -> target
     contact_cycle: bool = False  # the first contact node alternated between two neighbours
+    stagnated: bool = False      # the fixed point stopped at a noise floor above the tolerances
 
     @property
     def converged(self) -> bool:
@@ -234,15 +236,18 @@ class SteadyRun:
             self._update_coupled(res)
             record(st)
         f.m.Set(path[-1])
-        state = {"settled": False, "updates": 0}
+        state = {"settled": False, "changes": []}
 
         def couple() -> bool:
             """One a_f / surface update; False once settled (or at the cap): freeze."""
-            if state["settled"] or state["updates"] >= s.max_outer:
+            changes = state["changes"]
+            if state["settled"] or len(changes) >= s.max_outer:
                 return False
-            state["updates"] += 1
-            change = self._update_coupled(res)
-            state["settled"] = change <= 1.0
+            changes.append(self._update_coupled(res))
+            # settled: converged, or stagnated at a noise floor (the smallest change of the
+            # last 5 updates no smaller than that of the 5 before)
+            res.stagnated = len(changes) >= 10 and min(changes[-5:]) >= min(changes[-10:-5])
+            state["settled"] = changes[-1] <= 1.0 or res.stagnated
             record(SolveStats(iterations=0, converged=False))
             return True
 
@@ -300,8 +305,8 @@ class SteadyRun:
         if len(self._contacts) >= 1 and not np.array_equal(self._contacts[-1],
                                                            self.top.edge_contact):
             self._aitken_state.pop("entry", None)   # the contact set changed: start afresh
-        y_new = tp["y"] + np.where(ex, self._aitken("exit", r * ex),
-                                   self._aitken("entry", r * ~ex)) * r
+        y_new = tp["y"] + np.where(ex, self._aitken("exit", r * ex, self.s.aitken_max),
+                                   self._aitken("entry", r * ~ex, self.s.aitken_max)) * r
         moved = float(np.max(np.abs(y_new - tp["y"])))
         height = top_height_function(tp["x"], y_new)
         self.d[:] = self.shape.scale(self.d_ref, lambda x: top_height(rp, x), height)
@@ -327,17 +332,19 @@ class SteadyRun:
         self.form.problem.gf.vec[:] = 0.0
         self.form.problem.gf.components[0].Set(CF((q / H, q * y * dH / H**2)))
 
-    def _aitken(self, key: str, r: np.ndarray, w_max: float = 50.0) -> float:
+    def _aitken(self, key: str, r: np.ndarray, w_max: float) -> float:
         """Aitken's relaxation factor for one part of the surface fixed point y <- y + w r:
-        w_k = -w_{k-1} r_{k-1}.(r_k - r_{k-1}) / |r_k - r_{k-1}|^2 (within [relax, 50]).
+        w_k = -w_{k-1} r_{k-1}.(r_k - r_{k-1}) / |r_k - r_{k-1}|^2, kept in [relax, w_max],
+        and back to ``relax`` when the residual grows (the safeguard against overshooting).
 
-        Used on the exit top, where the fixed point has one slow, smooth mode (the exit
-        thickness creeps by about the same amount each update); not on the entry top, where
-        the first contact edge coming and going makes the map too rough for it (measured)."""
+        The tops' fixed point has slow, smooth modes (the top creeps by about the same amount
+        each update, see the module docstring); Aitken's factor extrapolates along them."""
         prev, w = self._aitken_state.get(key, (None, self.s.relax))
         if prev is not None:
             dr = r - prev
-            if float(dr @ dr) > 0.0:
+            if float(r @ r) > float(prev @ prev):
+                w = self.s.relax
+            elif float(dr @ dr) > 0.0:
                 w = float(np.clip(-w * float(prev @ dr) / float(dr @ dr), self.s.relax, w_max))
         self._aitken_state[key] = (r.copy(), w)
         return w

@@ -190,6 +190,9 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         if steady_solver else None,
         "fixed_point_settled": bool(run.result.settled) if steady_solver else None,
         "contact_cycle": bool(run.result.contact_cycle) if steady_solver else None,
+        "fixed_point_stagnated": bool(run.result.stagnated) if steady_solver else None,
+        "last_surface_move_h": float(run.result.surface_moves[-1] / run.model.h)
+        if steady_solver and run.result.surface_moves else None,
         "nonlinear_iterations": int(np.sum(iters)),
         "iterations_per_step": None if steady_solver else (
             float(np.mean(iters[1:])) if len(iters) > 1 else float(iters[0])),
