@@ -131,6 +131,7 @@ class SteadyRun:
         self.contact_start = rp.x_touch
         self.mesh_time = time.perf_counter() - t0
         self.record = True    # measure after every solve (history.csv); off in benchmarks
+        self.noise_floor = 0.0  # change (in tolerances) at which the last fixed point stagnated
 
     # --- the interface the runner shares with TransientRun -------------------------------------
     window = 1           # summary scalars: the last (converged) row
@@ -204,6 +205,7 @@ class SteadyRun:
                 f.a_f.Set(s.a_f if s.a_f is not None else (warm_a_f or self._estimate_a_f()))
                 self._follow([target], res, record)
             else:
+                self.noise_floor = 0.0
                 self._cold_start()
                 path = list(s.m_path) or [target]
                 self._follow(path, res, record)
@@ -247,7 +249,10 @@ class SteadyRun:
             # settled: converged, or stagnated at a noise floor (the smallest change of the
             # last 5 updates no smaller than that of the 5 before)
             res.stagnated = len(changes) >= 10 and min(changes[-5:]) >= min(changes[-10:-5])
-            state["settled"] = changes[-1] <= 1.0 or res.stagnated
+            # a warm start knows the noise floor of the solve it started from
+            state["settled"] = changes[-1] <= max(1.0, self.noise_floor) or res.stagnated
+            if res.stagnated:
+                self.noise_floor = min(changes[-5:])
             record(SolveStats(iterations=0, converged=False))
             return True
 
