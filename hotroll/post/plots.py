@@ -549,10 +549,11 @@ def _fig_history(run: _Run, path: Path) -> Path | None:
     if h is None:
         return None
     t = _col(h, "time")
-    xlabel = "time [s]"
-    if t is None or not np.isfinite(t).any():
+    xlabel, title = "time [s]", "time history"
+    steady = t is None or not np.isfinite(t).any()
+    if steady:   # the steady solver: one row per a_f / free-surface update and per Newton solve
         t = _col(h, "step")
-        xlabel = "step"
+        xlabel, title = "a_f / free-surface update", "steady solver history"
     if t is None:
         return None
     fig, axes = plt.subplots(2, 3, figsize=(13, 7), sharex=True, layout="constrained")
@@ -563,6 +564,8 @@ def _fig_history(run: _Run, path: Path) -> Path | None:
             ax.set_title(label)
             continue
         if key == "iterations":
+            if steady:
+                y, label = np.cumsum(y), "Newton iterations (cumulative)"
             ax.step(t, y, where="mid")
             ax.yaxis.set_major_locator(MaxNLocator(integer=True))
         else:
@@ -572,7 +575,7 @@ def _fig_history(run: _Run, path: Path) -> Path | None:
         ax.set_title(label)
         ax.set_xlabel(xlabel)
         ax.grid(alpha=0.3)
-    fig.suptitle(_title(run, "time history"))
+    fig.suptitle(_title(run, title))
     return _save(fig, path)
 
 
