@@ -147,6 +147,46 @@ def test_outputs_and_resume(slipping):
     assert again["roll_force"] == pytest.approx(s["roll_force"], rel=1e-12)
 
 
+def test_linear_solver_failure_keeps_finished_steps(tmp_path, monkeypatch):
+    """A step whose linear systems cannot be solved ends the run as 'failed' with the reason;
+    the finished steps' history, fields and summary are written, not lost."""
+    import hotroll.algorithms.transient as T
+    from hotroll.algorithms.nonlinear import LinearSolveError
+
+    real, calls = T.solve, {"n": 0}
+
+    def failing(*args, **kw):
+        calls["n"] += 1
+        if calls["n"] == 4:       # initial solve + a_f iterations are separate; fail a step
+            raise LinearSolveError("no direct solver (test)")
+        return real(*args, **kw)
+
+    monkeypatch.setattr(T, "solve", failing)
+    s = run_case(_case(**{"friction.a_f": 3.0, "solver.end_time": 0.05}), tmp_path)
+    assert s["status"] == "failed" and not s["converged"]
+    assert "no direct solver (test)" in s["failure"]
+    hist = np.genfromtxt(tmp_path / "history.csv", delimiter=",", names=True)
+    assert len(hist) == s["steps"] >= 2 and np.all(np.isfinite(hist["roll_force"]))
+    assert (tmp_path / "fields.npz").exists() and (tmp_path / "checkpoint/state.npz").exists()
+
+
+def test_tangled_mesh_is_detected():
+    """An element turned inside out by the Lagrangian update stops the run with its place."""
+    from hotroll.algorithms.transient import TangledMeshError, TransientRun
+    from hotroll.app.runner import build_model
+
+    model, settings = build_model(_case(**{"friction.a_f": 3.0}))
+    run = TransientRun(model, settings)
+    run._check_mesh()                                  # the initial mesh is fine
+    X = run.top.X0[: run.mesh.nv]
+    i = int(np.argmin(np.hypot(X[:, 0] - 0.5, X[:, 1] - 0.1)))   # a vertex inside the plate
+    ns = run.form.fes.components[0].ndof // 2
+    run.d[ns + i] = 0.5                                # pushed far up through its neighbours
+    run.mesh.SetDeformation(run.disp)
+    with pytest.raises(TangledMeshError, match="inside out"):
+        run._check_mesh()
+
+
 @pytest.mark.parametrize("pair", [("steady_slipping", "slipping"),
                                   ("steady_estimated", "estimated")])
 def test_steady_agrees_with_transient(pair, request):

@@ -31,7 +31,11 @@ from ..physics.material import NortonHoff
 from ..post import quantities as Q
 from ..process.contact import TopBoundary
 from ..process.geometry import RollPass
-from .nonlinear import SolveStats, picard, solve
+from .nonlinear import LinearSolveError, SolveStats, picard, solve
+
+
+class TangledMeshError(RuntimeError):
+    """The moving mesh has an element with a non-positive Jacobian determinant."""
 
 
 @dataclass
@@ -73,6 +77,7 @@ class TransientState:
     time: float = 0.0
     history: list = field(default_factory=list)
     status: str = "running"   # running | steady | end_time | max_steps | wall_time | failed
+    failure: str = ""         # why a failed run stopped
 
 
 class TransientRun:
@@ -191,7 +196,16 @@ class TransientRun:
                 else:
                     if s.a_f is None:
                         self.form.a_f.Set(self._estimate_a_f())
-                    self.last_stats = self._solve()
+                    vec = self.form.problem.gf.vec.FV().NumPy()
+                    last = vec.copy()
+                    try:
+                        self._check_mesh()
+                        self.last_stats = self._solve()
+                    except (LinearSolveError, TangledMeshError) as e:
+                        # keep what is finished: the last step's fields, the history, a checkpoint
+                        vec[:] = last
+                        st.status, st.failure = "failed", f"step {st.step}: {e}"
+                        break
                 row = self.measure()
                 st.history.append(row)
                 if progress:
@@ -230,6 +244,23 @@ class TransientRun:
         self.state.time += self.s.dt
         self._detect(project=self.state.step % self.s.project_every == 0)
         self.mesh.SetDeformation(self.disp)
+
+    def _check_mesh(self) -> None:
+        """Raise TangledMeshError if (3.7) has turned an element inside out (det J <= 0)."""
+        from ngsolve import L2, Det, GridFunction, specialcf, x
+
+        if not hasattr(self, "_det"):
+            space = L2(self.mesh, order=0)
+            self._det, self._xc = GridFunction(space), GridFunction(space)
+        self._det.Set(Det(specialcf.JacobianMatrix(2)))
+        det = self._det.vec.FV().NumPy()
+        bad = det <= 0.0
+        if bad.any():
+            self._xc.Set(x)
+            xs = self._xc.vec.FV().NumPy()[bad]
+            raise TangledMeshError(f"{int(bad.sum())} elements turned inside out by the "
+                                   f"Lagrangian update (3.7), at x = {xs.min():.4g}.."
+                                   f"{xs.max():.4g} m")
 
     # --- checkpoints -----------------------------------------------------------------------------
     def save_checkpoint(self) -> None:
