@@ -85,14 +85,14 @@ class SteadyResult:
     wall_time: float = 0.0
     mesh_time: float = 0.0
 
-    @property
-    def iterations(self) -> int:
-        return sum(s.iterations for s in self.stats)
-
     settled: bool = False        # a_f and the free surface reached their fixed point
     fallback: bool = False       # the direct solve failed; solved again along m = 1 -> target
     contact_cycle: bool = False  # the first contact node alternated between two neighbours
     stagnated: bool = False      # the fixed point stopped at a noise floor above the tolerances
+
+    @property
+    def iterations(self) -> int:
+        return sum(s.iterations for s in self.stats)
 
     @property
     def converged(self) -> bool:
@@ -122,10 +122,7 @@ class SteadyRun:
         self.disp = ngsolve.GridFunction(V)
         self.d = self.disp.vec.FV().NumPy()
         self.top = TopBoundary(self.mesh, V.ndof // 2)
-        # the arc is the contact; projection puts the P2 midpoints exactly on the roll
-        self.top.detect(rp, self.d, settings.contact_tol, project_contact=True)
-        self.top.write_indicator(self.form.chi.vec.FV().NumPy())
-        self.mesh.SetDeformation(self.disp)
+        self._set_shape()   # the arc is the contact, its P2 midpoints projected onto the roll
         self.d_ref = self.d.copy()
         self.shape = StripShape(self.mesh, V.ndof // 2)
         self.contact_start = rp.x_touch
@@ -220,9 +217,7 @@ class SteadyRun:
     def _cold_start(self) -> None:
         """Reference strip shape, kinematic velocity guess and a_f (3.15) from it."""
         self.d[:] = self.d_ref
-        self.top.detect(self.model.rp, self.d, self.s.contact_tol, project_contact=True)
-        self.top.write_indicator(self.form.chi.vec.FV().NumPy())
-        self.mesh.SetDeformation(self.disp)
+        self._set_shape()
         self._kinematic_guess()
         self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else self._estimate_a_f())
 
@@ -307,18 +302,20 @@ class SteadyRun:
         self.contact_start = start
         r = y_new - tp["y"]
         ex = tp["x"] > rp.axis_x
-        if len(self._contacts) >= 1 and not np.array_equal(self._contacts[-1],
-                                                           self.top.edge_contact):
-            self._aitken_state.pop("entry", None)   # the contact set changed: start afresh
         y_new = tp["y"] + np.where(ex, self._aitken("exit", r * ex, self.s.aitken_max),
                                    self._aitken("entry", r * ~ex, self.s.aitken_max)) * r
         moved = float(np.max(np.abs(y_new - tp["y"])))
         height = top_height_function(tp["x"], y_new)
         self.d[:] = self.shape.scale(self.d_ref, lambda x: top_height(rp, x), height)
-        self.top.detect(rp, self.d, self.s.contact_tol, project_contact=True)
+        self._set_shape()
+        return moved
+
+    def _set_shape(self) -> None:
+        """After a change of the displacement d: contact (3.9) with the contact nodes projected
+        onto the roll, the contact indicator, the mesh deformation."""
+        self.top.detect(self.model.rp, self.d, self.s.contact_tol, project_contact=True)
         self.top.write_indicator(self.form.chi.vec.FV().NumPy())
         self.mesh.SetDeformation(self.disp)
-        return moved
 
     def _kinematic_guess(self) -> None:
         """Divergence-free slab flow through the strip: v_x = q / H(x), v_y = v_x y H'(x) / H(x)

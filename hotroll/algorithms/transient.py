@@ -250,14 +250,13 @@ class TransientRun:
         from ngsolve import L2, Det, GridFunction, specialcf, x
 
         if not hasattr(self, "_det"):
-            space = L2(self.mesh, order=0)
-            self._det, self._xc = GridFunction(space), GridFunction(space)
+            self._det = GridFunction(L2(self.mesh, order=0))
         self._det.Set(Det(specialcf.JacobianMatrix(2)))
-        det = self._det.vec.FV().NumPy()
-        bad = det <= 0.0
+        bad = self._det.vec.FV().NumPy() <= 0.0
         if bad.any():
-            self._xc.Set(x)
-            xs = self._xc.vec.FV().NumPy()[bad]
+            xc = GridFunction(self._det.space)
+            xc.Set(x)
+            xs = xc.vec.FV().NumPy()[bad]
             raise TangledMeshError(f"{int(bad.sum())} elements turned inside out by the "
                                    f"Lagrangian update (3.7), at x = {xs.min():.4g}.."
                                    f"{xs.max():.4g} m")

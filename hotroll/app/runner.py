@@ -166,7 +166,7 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
     iters = [r["iterations"] for r in state.history]
     return {
         "case_name": case.name, "method": case.solver.method, "status": state.status,
-        "failure": getattr(state, "failure", "") or None,
+        "failure": state.failure or None,
         "converged": bool(steady and last["solver_converged"] and not outlet_driven),
         "steady_state": steady, "outlet_driven": bool(outlet_driven),
         "neutral_point": [cx - rp.radius * math.sin(ang), cy - rp.radius * math.cos(ang)],

@@ -32,37 +32,8 @@ class MeshSpec:
 
 
 def plate_geometry(rp: RollPass, length: float):
-    """OCC face of the initial plate with named edges."""
-    from netgen.occ import ArcOfCircle, Face, OCCGeometry, Pnt, Segment, Wire
-
-    x0, x1 = rp.axis_x - length, rp.axis_x
-    cx, cy = rp.centre
-    xt, h0, h1, R = rp.x_touch, rp.half_entry, rp.half_exit, rp.radius
-    a0, a1 = -math.pi / 2, math.atan2(h0 - cy, xt - cx)
-    am = 0.5 * (a0 + a1)
-    edges = [
-        Segment(Pnt(x0, 0, 0), Pnt(x1, 0, 0)),
-        Segment(Pnt(x1, 0, 0), Pnt(x1, h1, 0)),
-        ArcOfCircle(Pnt(x1, h1, 0), Pnt(cx + R * math.cos(am), cy + R * math.sin(am), 0),
-                    Pnt(xt, h0, 0)),
-        Segment(Pnt(xt, h0, 0), Pnt(x0, h0, 0)),
-        Segment(Pnt(x0, h0, 0), Pnt(x0, 0, 0)),
-    ]
-    face = Face(Wire(edges))
-    # name the edges of the face itself (names on the input segments are not kept)
-    for ed in face.edges:
-        c = ed.center
-        if abs(c.y) < 1e-12 * max(1.0, length):
-            ed.name = "sym"
-        elif abs(c.x - x1) < 1e-9 * length and c.y < h1 + 1e-12:
-            ed.name = "out"
-        elif abs(c.x - x0) < 1e-9 * length:
-            ed.name = "in"
-        elif abs(c.y - h0) < 1e-12 * max(1.0, h0):
-            ed.name = "top"
-        else:
-            ed.name = "arc"
-    return OCCGeometry(face, dim=2)
+    """OCC face of the initial plate with named edges: the strip ending at the roll gap."""
+    return _strip_geometry(rp, rp.axis_x - length, rp.axis_x)
 
 
 def top_height(rp: RollPass, x: np.ndarray) -> np.ndarray:
@@ -77,22 +48,29 @@ def top_height(rp: RollPass, x: np.ndarray) -> np.ndarray:
 
 def steady_geometry(rp: RollPass, upstream: float, downstream: float):
     """OCC face of the steady strip: flat entry of length ``upstream`` before the touching
-    point, the full roll arc, flat exit at the roll gap of length ``downstream``.
+    point, the full roll arc, flat exit at the roll gap of length ``downstream``."""
+    return _strip_geometry(rp, rp.x_touch - upstream, rp.axis_x + downstream)
 
-    Boundary names as for the plate, the exit's flat top is ``exit``.
+
+def _strip_geometry(rp: RollPass, x0: float, x1: float):
+    """OCC face from x0 to x1 >= X_roll: flat at the entry half-thickness up to the touching
+    point, the roll arc down to the gap at X_roll, flat at the gap after it (none if x1 = X_roll).
+
+    Edges named ``sym`` (y = 0), ``in`` (x = x0), ``out`` (x = x1), ``top`` (flat entry),
+    ``arc`` and ``exit`` (flat top after the gap).
     """
     from netgen.occ import ArcOfCircle, Face, OCCGeometry, Pnt, Segment, Wire
 
-    x0, x1 = rp.x_touch - upstream, rp.axis_x + downstream
     cx, cy = rp.centre
     xt, h0, h1, R = rp.x_touch, rp.half_entry, rp.half_exit, rp.radius
     am = 0.5 * (-math.pi / 2 + math.atan2(h0 - cy, xt - cx))
-    pts = [(x0, 0), (x1, 0), (x1, h1), (rp.axis_x, h1), (xt, h0), (x0, h0)]
-    P = [Pnt(x, y, 0) for x, y in pts]
-    edges = [Segment(P[0], P[1]), Segment(P[1], P[2]), Segment(P[2], P[3]),
-             ArcOfCircle(P[3], Pnt(cx + R * math.cos(am), cy + R * math.sin(am), 0), P[4]),
-             Segment(P[4], P[5]), Segment(P[5], P[0])]
+    gap = [(x1, h1)] + ([(rp.axis_x, h1)] if x1 > rp.axis_x else [])
+    P = [Pnt(x, y, 0) for x, y in [(x0, 0), (x1, 0), *gap, (xt, h0), (x0, h0)]]
+    arc = len(P) - 3     # from the gap point at X_roll to the touching point
+    edges = [ArcOfCircle(P[i], Pnt(cx + R * math.cos(am), cy + R * math.sin(am), 0), P[i + 1])
+             if i == arc else Segment(P[i], P[(i + 1) % len(P)]) for i in range(len(P))]
     face = Face(Wire(edges))
+    # name the edges of the face itself (names on the input segments are not kept)
     scale = max(1.0, x1 - x0)
     for ed in face.edges:
         c = ed.center
