@@ -7,7 +7,8 @@ and stresses are K times the reduced ones; this is how the penalties of Table 1 
 - on the contact Gamma_C (edges flagged by ``chi``): viscoplastic friction (2.29a) on the slip
   v_s = (v - U_roll).t t (2.27), and the bilateral penalty gamma_vC (dv.n)(phi.n) for (2.28a);
   n and t are the roll's normal and tangent at the point, so U_roll.n = 0 exactly;
-- on the free top Gamma_0 (top edges not in contact): gamma_v0 (v.n)(phi.n) (3.2d) and the
+- on the free top Gamma_0 (top edges not in contact): gamma_v0 (v.n)(phi.n) (3.2d), n the
+  mesh normal on Gamma_0L and e_y on the flat exit surface Gamma_0R (``free_normal``), and the
   one-sided inlet penalty (3.2a) for x <= X_roll (Gamma_0L) or outlet penalty (3.2b) for
   x > X_roll (Gamma_0R);
 - on the tail face Gamma_in: (3.2a); on the head face Gamma_out: (3.2b) plus gamma_v0 v_y phi_y,
@@ -73,6 +74,15 @@ class RollingForm:
         t = CF((-(y - cy) / r, (x - cx) / r))
         return n, t
 
+    def free_normal(self, u):
+        """u.n on the free top for (3.2d): the mesh normal before the gap, the normal of the
+        flat exit surface, e_y, after it (x > X_roll). The Lagrangian exit surface is never
+        exactly flat: with its own normal, (3.2d) pins u_x wherever it wrinkles, the wrinkles
+        grow and the mesh tangles (see docs/theory.md, "Free exit surface")."""
+        from ngsolve import IfPos, specialcf, x
+
+        return IfPos(x - self.rp.axis_x, u[1], u * specialcf.normal(2))
+
     def slip(self, u):
         """Scalar slip v_s . t = u.t - |U_roll| (2.27); negative where the plate lags the roll."""
         _, t = self.roll_frame()
@@ -80,7 +90,7 @@ class RollingForm:
 
     # --- the form ---------------------------------------------------------------------------
     def integrand(self, u, p, w, v, q):
-        from ngsolve import IfPos, dx, ds, specialcf, x
+        from ngsolve import IfPos, dx, ds, x
 
         m, rp, pen = self.m, self.rp, self.penalties
         n, t = self.roll_frame()
@@ -95,10 +105,9 @@ class RollingForm:
         k_f = self.friction.coefficient(self.a_f, s_w * s_w, m=m, K=1.0)
         contact = k_f * s_u * (v * t) + gam_s * (u * n) * (v * n)
 
-        nh = specialcf.normal(2)
         inlet = gam_io * one_sided(u[0] - U, w[0] - U) * v[0]
         outlet = -gam_io * one_sided(U - u[0], U - w[0]) * v[0]
-        free = gam_s * (u * nh) * (v * nh) + IfPos(x - rp.axis_x, outlet, inlet)
+        free = gam_s * self.free_normal(u) * self.free_normal(v) + IfPos(x - rp.axis_x, outlet, inlet)
 
         return (vol * dx
                 + (chi * contact + (1.0 - chi) * free) * ds(TOP)

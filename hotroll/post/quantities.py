@@ -133,7 +133,7 @@ def contact_loss(profile: dict, normal_stress: np.ndarray, min_length: float) ->
 # --- integrals -------------------------------------------------------------------------------
 def integrals(form: RollingForm, K: float) -> dict:
     """Forces, torque and the power balance of (3.6) tested with v itself (all per unit width)."""
-    from ngsolve import BND, VOL, Integrate, IfPos, InnerProduct, specialcf, sqrt, x, y
+    from ngsolve import BND, VOL, Integrate, IfPos, InnerProduct, sqrt, x, y
 
     from ..discretisation.forms import strain_rate
     from ..physics.material import edot_squared
@@ -151,7 +151,6 @@ def integrals(form: RollingForm, K: float) -> dict:
     eps = strain_rate(u)
     e2 = edot_squared(eps)
     mu = form.material.viscosity(e2, m=m, K=1.0)
-    nh = specialcf.normal(2)
     cx, cy = rp.centre
     r = sqrt((x - cx) ** 2 + (y - cy) ** 2)
     trac = -(kf * s) * t - gam * (u * n) * n          # traction on the plate (reduced)
@@ -161,7 +160,7 @@ def integrals(form: RollingForm, K: float) -> dict:
 
     inlet = gio * IfPos(u[0] - U, u[0] - U, 0.0) * u[0]
     outlet = -gio * IfPos(U - u[0], U - u[0], 0.0) * u[0]
-    free_pen = bnd((1 - chi) * (gam * (u * nh) ** 2 + IfPos(x - rp.axis_x, outlet, inlet)))
+    free_pen = bnd((1 - chi) * (gam * form.free_normal(u) ** 2 + IfPos(x - rp.axis_x, outlet, inlet)))
     face_pen = bnd(inlet, mesh.Boundaries("in")) + bnd(outlet + gam * u[1] ** 2,
                                                       mesh.Boundaries("out"))
     contact_pen = bnd(chi * gam * (u * n) ** 2)
