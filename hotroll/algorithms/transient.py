@@ -6,12 +6,13 @@ the roll back onto it and flag contact nodes (3.9); every 10 steps put all conta
 roll surface. The first iterate of the first step uses m = 1 (Section 3.4).
 
 Steady state (the report judges it by eye from Fig. 3; the histories oscillate with the period
-of the contact projection): a window is a whole number (>= 6) of projection periods, at least the
-time the roll surface needs to travel 3 h (the summary averages over whole periods covering 3 h). The run is steady when, for the roll force, torque,
-strain-rate measure, forward slip and neutral angle, the means over the last two windows differ
-by at most ``steady_tol`` (relative; 10 x bite angle for the angle) or by at most twice their
-standard error (batch means over the projection periods: the drift is below the noise), at
-least one contact transit time l_c/|U| after the start, with the head past the exit section.
+of the contact projection): a window is a whole number (>= 6) of projection periods, at least
+the time the roll surface needs to travel 3 h (the summary averages over whole periods covering
+3 h). The run is steady when, for the roll force, torque, strain-rate measure, forward slip and
+neutral angle, the means over the last two windows differ by at most ``steady_tol`` (relative;
+10 x bite angle for the angle) or by at most twice their standard error (batch means over the
+projection periods: the drift is below the noise), at least one contact transit time l_c/|U|
+after the start, with the head past the exit section.
 """
 from __future__ import annotations
 

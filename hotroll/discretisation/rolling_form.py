@@ -107,7 +107,8 @@ class RollingForm:
 
         inlet = gam_io * one_sided(u[0] - U, w[0] - U) * v[0]
         outlet = -gam_io * one_sided(U - u[0], U - w[0]) * v[0]
-        free = gam_s * self.free_normal(u) * self.free_normal(v) + IfPos(x - rp.axis_x, outlet, inlet)
+        free = (gam_s * self.free_normal(u) * self.free_normal(v)
+                + IfPos(x - rp.axis_x, outlet, inlet))
 
         return (vol * dx
                 + (chi * contact + (1.0 - chi) * free) * ds(TOP)
