@@ -52,10 +52,7 @@ def steady_reached(history: list, window: int, period: int, tol: float,
         rows = np.array([r[key] for r in history[-2 * window:]], dtype=float)
         last, prev = np.split(rows.reshape(-1, period).mean(axis=1), 2)   # batch means
         a, b = last.mean(), prev.mean()
-        if key == "neutral_angle":
-            scale = 10.0 * bite_angle
-        else:
-            scale = 1.0 + abs(a) if key == "forward_slip" else abs(a)
+        scale = {"neutral_angle": 10.0 * bite_angle, "forward_slip": 1.0 + abs(a)}.get(key, abs(a))
         noise = 2.0 * math.sqrt((last.var(ddof=1) + prev.var(ddof=1)) / len(last))
         if not (math.isfinite(a) and math.isfinite(b) and abs(a - b) <= max(tol * scale, noise)):
             return False

@@ -160,7 +160,8 @@ def integrals(form: RollingForm, K: float) -> dict:
 
     inlet = gio * IfPos(u[0] - U, u[0] - U, 0.0) * u[0]
     outlet = -gio * IfPos(U - u[0], U - u[0], 0.0) * u[0]
-    free_pen = bnd((1 - chi) * (gam * form.free_normal(u) ** 2 + IfPos(x - rp.axis_x, outlet, inlet)))
+    free_pen = bnd((1 - chi) * (gam * form.free_normal(u) ** 2
+                                + IfPos(x - rp.axis_x, outlet, inlet)))
     face_pen = bnd(inlet, mesh.Boundaries("in")) + bnd(outlet + gam * u[1] ** 2,
                                                       mesh.Boundaries("out"))
     contact_pen = bnd(chi * gam * (u * n) ** 2)
