@@ -187,6 +187,39 @@ def test_tangled_mesh_is_detected():
         run._check_mesh()
 
 
+def test_contact_is_bilateral_until_the_exit():
+    """(3.9) with the bilateral constraint (2.28a): a contact node that drifts 5 tol off the
+    roll between projections stays in contact (and is put back on the roll by the next
+    projection); without ``bilateral`` the report's distance rule releases it; a node past
+    the exit point M is always released; a far node never gets caught."""
+    from hotroll.algorithms.transient import TransientRun
+    from hotroll.app.runner import build_model
+
+    model, settings = build_model(_case(**{"friction.a_f": 3.0}))
+    run = TransientRun(model, settings)
+    top, rp, tol = run.top, model.rp, settings.contact_tol
+    P = top.vertex_positions(run.d)
+    on = np.nonzero(top.vertex_contact & (P[:, 0] < rp.axis_x - 0.05))[0]
+    assert len(on) >= 3
+    k = on[len(on) // 2]
+    r = np.hypot(*(P[k] - rp.centre))
+    off = np.array(rp.centre) + (P[k] - rp.centre) * (r + 5 * tol) / r   # 5 tol off the roll
+    assert rp.signed_distance(off[None])[0] == pytest.approx(5 * tol, rel=1e-6)
+    for bilateral, kept in ((False, False), (True, True)):
+        top.vertex_contact[k] = True
+        top.set_vertices(run.d, top.verts[[k]], off[None])
+        top.detect(rp, run.d, tol, project_contact=False, bilateral=bilateral)
+        assert top.vertex_contact[k] == kept
+    top.detect(rp, run.d, tol, project_contact=True, bilateral=True)
+    assert abs(rp.signed_distance(top.vertex_positions(run.d)[[k]])[0]) < 1e-12
+    far = int(np.argmin(P[:, 0]))                      # the tail corner, far upstream
+    assert not top.vertex_contact[far]
+    last = int(np.argmax(np.where(top.vertex_contact, P[:, 0], -np.inf)))   # at M
+    top.set_vertices(run.d, top.verts[[last]], np.array([[rp.axis_x + 2 * tol, rp.half_exit]]))
+    top.detect(rp, run.d, tol, project_contact=False, bilateral=True)
+    assert not top.vertex_contact[last]
+
+
 def _history(drift: float, n: int = 120, seed: int = 0) -> list:
     """Rows like the report's histories: a spike every 10 steps (the contact projection),
     1 % random noise, and a relative linear drift of ``drift`` over the n rows."""

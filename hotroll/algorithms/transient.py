@@ -2,8 +2,9 @@
 
 Each step n: a_f from (3.15) with the previous velocity; solve (3.6) on Omega_n (Picard (3.8) or
 Newton); move every P2 geometry node, x_{n+1} = x_n + dt v_n (3.7); project nodes that entered
-the roll back onto it and flag contact nodes (3.9); every 10 steps put all contact nodes on the
-roll surface. The first iterate of the first step uses m = 1 (Section 3.4).
+the roll back onto it and flag contact nodes (3.9), a contact node staying in contact up to the
+exit point (bilateral (2.28a)); every 10 steps put all contact nodes on the roll surface. The
+first iterate of the first step uses m = 1 (Section 3.4).
 
 Steady state (the report judges it by eye from Fig. 3; the histories oscillate with the period
 of the contact projection): a window is a whole number (>= 6) of projection periods, at least
@@ -141,7 +142,8 @@ class TransientRun:
 
     # --- geometry ----------------------------------------------------------------------------
     def _detect(self, project: bool) -> None:
-        self.top.detect(self.model.rp, self.d, self.s.contact_tol, project)
+        self.top.detect(self.model.rp, self.d, self.s.contact_tol, project,
+                        bilateral=True)
         self.top.write_indicator(self.form.chi.vec.FV().NumPy())
 
     def head_x(self) -> float:
@@ -287,6 +289,7 @@ class TransientRun:
         st = self.state
         tmp = self.ckpt / "state.tmp.npz"
         np.savez(tmp, disp=self.d, sol=self.form.problem.gf.vec.FV().NumPy(),
+                 contact=self.top.vertex_contact,
                  a_f=self.form.a_f.Get(), step=st.step, time=st.time,
                  meta=json.dumps({"fingerprint": self.fingerprint, "status": st.status,
                                   "history": st.history, "settings": asdict(self.s)}))
@@ -312,6 +315,8 @@ class TransientRun:
             self.d[:] = z["disp"]
             self.form.problem.gf.vec.FV().NumPy()[:] = z["sol"]
             self.form.a_f.Set(float(z["a_f"]))
+            if "contact" in z.files:      # the bilateral contact set carries over
+                self.top.vertex_contact[:] = z["contact"]
             meta = json.loads(str(z["meta"]))
             self.state = TransientState(int(z["step"]), float(z["time"]), meta["history"],
                                         "running")

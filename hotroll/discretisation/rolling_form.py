@@ -88,15 +88,23 @@ class RollingForm:
         _, t = self.roll_frame()
         return u * t - self.rp.u_roll
 
+    def inlet_penalty(self, u, w):
+        """(3.2a) per unit test v_x: gamma_in [v_x - |U_roll|]_+, active set taken at w."""
+        U = self.rp.u_roll
+        return self.penalties.inlet_outlet(self.m) * one_sided(u[0] - U, w[0] - U)
+
+    def outlet_penalty(self, u, w):
+        """(3.2b) per unit test v_x: -gamma_out [|U_roll| - v_x]_+, active set taken at w."""
+        U = self.rp.u_roll
+        return -self.penalties.inlet_outlet(self.m) * one_sided(U - u[0], U - w[0])
+
     # --- the form ---------------------------------------------------------------------------
     def integrand(self, u, p, w, v, q):
         from ngsolve import IfPos, dx, ds, x
 
         m, rp, pen = self.m, self.rp, self.penalties
         n, t = self.roll_frame()
-        U = rp.u_roll
         gam_s = pen.surface(x, rp.soft_zone)
-        gam_io = pen.inlet_outlet(m)
         chi = self.chi
 
         vol = norton_hoff_volume(self.material, m, u, p, w, v, q, K=1.0)
@@ -105,8 +113,8 @@ class RollingForm:
         k_f = self.friction.coefficient(self.a_f, s_w * s_w, m=m, K=1.0)
         contact = k_f * s_u * (v * t) + gam_s * (u * n) * (v * n)
 
-        inlet = gam_io * one_sided(u[0] - U, w[0] - U) * v[0]
-        outlet = -gam_io * one_sided(U - u[0], U - w[0]) * v[0]
+        inlet = self.inlet_penalty(u, w) * v[0]
+        outlet = self.outlet_penalty(u, w) * v[0]
         free = (gam_s * self.free_normal(u) * self.free_normal(v)
                 + IfPos(x - rp.axis_x, outlet, inlet))
 

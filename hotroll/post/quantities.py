@@ -146,7 +146,6 @@ def integrals(form: RollingForm, K: float) -> dict:
     s = form.slip(u)
     kf = form.friction.coefficient(form.a_f, s * s, m=m, K=1.0)
     gam = pen.surface(x, rp.soft_zone)
-    gio = pen.inlet_outlet(m)
     U = rp.u_roll
     eps = strain_rate(u)
     e2 = edot_squared(eps)
@@ -158,8 +157,8 @@ def integrals(form: RollingForm, K: float) -> dict:
     def bnd(cf, region=top):
         return float(Integrate(cf, mesh, BND, definedon=region))
 
-    inlet = gio * IfPos(u[0] - U, u[0] - U, 0.0) * u[0]
-    outlet = -gio * IfPos(U - u[0], U - u[0], 0.0) * u[0]
+    inlet = form.inlet_penalty(u, u) * u[0]
+    outlet = form.outlet_penalty(u, u) * u[0]
     free_pen = bnd((1 - chi) * (gam * form.free_normal(u) ** 2
                                 + IfPos(x - rp.axis_x, outlet, inlet)))
     face_pen = bnd(inlet, mesh.Boundaries("in")) + bnd(outlet + gam * u[1] ** 2,

@@ -75,10 +75,13 @@ class TopBoundary:
         d[dofs], d[self.n_scalar + dofs] = c[:, 0], c[:, 1]
 
     # --- contact (3.9) -----------------------------------------------------------------------
-    def detect(self, rp: RollPass, d: np.ndarray, tol: float, project_contact: bool) -> int:
+    def detect(self, rp: RollPass, d: np.ndarray, tol: float, project_contact: bool,
+               bilateral: bool = False) -> int:
         """Project penetrating nodes back onto the roll and flag contact nodes and edges.
 
-        A node is in contact when its distance to the roll is below ``tol`` (3.9a); nodes
+        A node is in contact when its distance to the roll is below ``tol`` (3.9a); with
+        ``bilateral`` (the moving plate) a node once in contact also stays so: the constraint
+        (2.28a) holds it to the roll, and only the last contact point M releases it. Nodes
         inside the roll are always projected; with ``project_contact`` (every 10 steps) all
         contact nodes are put on the roll surface. An edge is in contact when both its vertices
         are; the midpoints of contact edges then follow the same projection rule. Nodes past
@@ -87,11 +90,12 @@ class TopBoundary:
         """
         xv = self.vertex_positions(d)
         dist = rp.signed_distance(xv)
-        move = dist < (tol if project_contact else 0.0)
+        held = (dist < tol) | (self.vertex_contact if bilateral else False)
+        move = (held if project_contact else False) | (dist < 0.0)
         if move.any():
             self.set_vertices(d, self.verts[move], rp.project(xv[move]))
         # the last contact point is M = (X_roll, gap) (Section 3.4): nothing past it sticks
-        self.vertex_contact = (dist < tol) & (xv[:, 0] <= rp.axis_x + tol)
+        self.vertex_contact = held & (xv[:, 0] <= rp.axis_x + tol)
         vc = self.vertex_contact
         self.edge_contact = vc[[self.vpos[a] for a in self.ea]] & vc[[self.vpos[b] for b in self.eb]]
         xm = self.midpoint_positions(d)
