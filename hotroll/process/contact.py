@@ -90,12 +90,13 @@ class TopBoundary:
         """
         xv = self.vertex_positions(d)
         dist = rp.signed_distance(xv)
-        held = (dist < tol) | (self.vertex_contact if bilateral else False)
+        # the last contact point is M = (X_roll, gap) (Section 3.4): nothing past it sticks
+        before_m = xv[:, 0] <= rp.axis_x + tol
+        held = (dist < tol) | (self.vertex_contact & before_m if bilateral else False)
         move = (held if project_contact else False) | (dist < 0.0)
         if move.any():
             self.set_vertices(d, self.verts[move], rp.project(xv[move]))
-        # the last contact point is M = (X_roll, gap) (Section 3.4): nothing past it sticks
-        self.vertex_contact = held & (xv[:, 0] <= rp.axis_x + tol)
+        self.vertex_contact = held & before_m
         vc = self.vertex_contact
         self.edge_contact = vc[[self.vpos[a] for a in self.ea]] & vc[[self.vpos[b] for b in self.eb]]
         xm = self.midpoint_positions(d)
