@@ -130,6 +130,7 @@ class TransientRun:
         self.disp = ngsolve.GridFunction(V)
         self.top = TopBoundary(self.mesh, V.ndof // 2)
         self.d = self.disp.vec.FV().NumPy()
+        self._det = ngsolve.GridFunction(ngsolve.L2(self.mesh, order=0))   # for _check_mesh
         # summary means: whole projection periods covering 3 h of roll travel; the steady test
         # compares two windows of at least 6 periods each
         period = max(1, settings.project_every)
@@ -269,10 +270,8 @@ class TransientRun:
 
     def _check_mesh(self) -> None:
         """Raise TangledMeshError if (3.7) has turned an element inside out (det J <= 0)."""
-        from ngsolve import L2, Det, GridFunction, specialcf, x
+        from ngsolve import Det, GridFunction, specialcf, x
 
-        if not hasattr(self, "_det"):
-            self._det = GridFunction(L2(self.mesh, order=0))
         self._det.Set(Det(specialcf.JacobianMatrix(2)))
         bad = self._det.vec.FV().NumPy() <= 0.0
         if bad.any():
