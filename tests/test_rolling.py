@@ -333,3 +333,36 @@ def test_steady_domain_lengths_do_not_matter(tmp_path_factory, steady_slipping):
     for key in ("roll_torque", "exit_velocity", "mass_flux_out"):
         assert s2[key] == pytest.approx(s1[key], rel=0.02)
     assert s2["roll_force"] == pytest.approx(s1["roll_force"], rel=0.1)
+
+
+@pytest.mark.parametrize("hand", [True, False])
+def test_newton_jacobian_is_the_exact_linearisation(hand):
+    """The assembled Jacobian (Norton-Hoff tangent by hand + boundary terms by symbolic
+    differentiation, or the whole residual differentiated) equals NGSolve's automatic
+    linearisation of the residual, at a state with contact, friction and active penalties."""
+    import numpy as np
+
+    from hotroll.algorithms.steady import SteadyRun
+    from hotroll.app.runner import build_model, steady_settings
+    from hotroll.discretisation.forms import NonlinearProblem
+
+    case = _case(**{"solver.method": "steady"})
+    model, _ = build_model(case)
+    run = SteadyRun(model, steady_settings(case), case.plate.length)
+    run._cold_start()
+    form = run.form
+    form.a_f.Set(37.0)
+    prob = form.problem if hand else NonlinearProblem(form.fes, form.integrand,
+                                                      velocity_scale=model.rp.u_roll)
+    rng = np.random.default_rng(1)
+    vec = prob.gf.vec.FV().NumPy()
+    vec[:] = form.problem.gf.vec.FV().NumPy()
+    vec[:] *= 1.0 + 0.3 * rng.standard_normal(vec.size)   # both signs of slip, inlet/outlet active
+    assert np.sum(form.chi.vec.FV().NumPy()) > 5
+    prob.a_newton.AssembleLinearization(prob.gf.vec)
+    prob.a_jacobian.Assemble()
+    x = prob.gf.vec.CreateVector()
+    x.FV().NumPy()[:] = rng.standard_normal(x.size)
+    a = (prob.a_newton.mat * x).Evaluate().FV().NumPy()
+    b = (prob.a_jacobian.mat * x).Evaluate().FV().NumPy()
+    assert np.linalg.norm(a - b) <= 1e-12 * np.linalg.norm(a)

@@ -66,11 +66,11 @@ def test_factorisation_is_kept_and_refreshed():
     run = _steady_run()
     run.run()
     problem = run.form.problem
-    assert id(problem.a_newton) in problem.inverses
-    kept = problem.inverses[id(problem.a_newton)]
+    assert id(problem.a_jacobian) in problem.inverses
+    kept = problem.inverses[id(problem.a_jacobian)]
     nv = problem.n_velocity_dofs()
     before = problem.gf.vec.FV().NumPy()[:nv].copy()
     st = newton(problem, 1e-5, 5)                    # at the solution: refactorised values
     assert st.converged and st.iterations <= 2
-    assert problem.inverses[id(problem.a_newton)] is kept
+    assert problem.inverses[id(problem.a_jacobian)] is kept
     assert np.max(np.abs(problem.gf.vec.FV().NumPy()[:nv] - before)) < 1e-4 * run.model.rp.u_roll

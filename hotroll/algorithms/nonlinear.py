@@ -57,26 +57,33 @@ class LinearSolveError(RuntimeError):
     """No direct solver produced an accurate solution of the (Picard or Newton) system."""
 
 
-def _linear_step(form, problem, ws, stats, residual_ready: bool = False) -> None:
+def _linear_step(form, problem, ws, stats, residual_ready: bool = False,
+                 jacobian=None) -> None:
     """Assemble the (Picard or Newton) matrix at gf and compute du = J^{-1} r.
 
-    ``r`` is evaluated unless the caller left the residual at gf in ``ws.r`` already.
+    ``r`` is evaluated by ``form`` unless the caller left the residual at gf in ``ws.r``. The
+    matrix is ``form``'s linearisation at gf, or ``jacobian`` (a form linear in the trial
+    functions, coefficients at gf) assembled as it stands.
     """
     t0 = time.perf_counter()
     if not residual_ready:
         form.Apply(problem.gf.vec, ws.r)
-    form.AssembleLinearization(problem.gf.vec)
+    if jacobian is None:
+        form.AssembleLinearization(problem.gf.vec)
+        jacobian = form
+    else:
+        jacobian.Assemble()
     t1 = time.perf_counter()
     rnorm = max(ws.norm(ws.r), 1e-300)
-    cached = problem.inverses.get(id(form))
-    if not (cached is not None and _update_and_solve(cached, form, ws, rnorm)):
+    cached = problem.inverses.get(id(jacobian))
+    if not (cached is not None and _update_and_solve(cached, jacobian, ws, rnorm)):
         for name in LINEAR_SOLVERS:
             try:
-                inv = form.mat.Inverse(problem.freedofs, inverse=name)
+                inv = jacobian.mat.Inverse(problem.freedofs, inverse=name)
             except Exception:  # noqa: BLE001 - NGSolve raises plain exceptions (zero pivot, no MKL)
                 continue
-            if _accurate(inv, form, ws, rnorm):
-                problem.inverses[id(form)] = inv
+            if _accurate(inv, jacobian, ws, rnorm):
+                problem.inverses[id(jacobian)] = inv
                 break
         else:
             raise LinearSolveError(f"no direct solver in {LINEAR_SOLVERS} solved the system "
@@ -137,7 +144,7 @@ def newton(
     form = problem.a_newton
     residual_ready = False
     for it in range(1, max_it + 1):
-        _linear_step(form, problem, ws, stats, residual_ready=residual_ready)
+        _linear_step(form, problem, ws, stats, residual_ready, problem.a_jacobian)
         r0 = ws.norm(ws.r)
         ws.backup.data = problem.gf.vec
         alpha = 1.0

@@ -40,6 +40,7 @@ from ..process.contact import TopBoundary
 from ..process.free_surface import StripShape, top_height_function, trace_top
 from .nonlinear import SolveStats, newton
 from .transient import RollingModel, TransientState
+from .threads import solver_threads
 
 
 @dataclass
@@ -183,8 +184,6 @@ class SteadyRun:
               progress=None) -> SteadyResult:
         """Newton at the target m from the kinematic guess (cold) or from ``warm`` (a neighbour's
         solution), with a_f (3.15) and the free surface updated inside the iteration."""
-        from ngsolve import TaskManager
-
         f, s, res = self.form, self.s, SteadyResult(mesh_time=self.mesh_time)
 
         def record(st):
@@ -196,7 +195,7 @@ class SteadyRun:
         target = self.model.material.m
         t0 = time.perf_counter()
         vec = f.problem.gf.vec.FV().NumPy()
-        with TaskManager():
+        with solver_threads():
             if warm is not None and warm.shape == vec.shape:
                 vec[:] = warm
                 f.a_f.Set(s.a_f if s.a_f is not None else (warm_a_f or self._estimate_a_f()))

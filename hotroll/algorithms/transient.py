@@ -36,6 +36,7 @@ from ..post import quantities as Q
 from ..process.contact import TopBoundary
 from ..process.geometry import RollPass
 from .nonlinear import LinearSolveError, SolveStats, picard, solve
+from .threads import solver_threads
 
 
 STEADY_KEYS = ("roll_force", "roll_torque", "strain_rate_measure", "forward_slip",
@@ -203,11 +204,9 @@ class TransientRun:
 
     # --- main loop -------------------------------------------------------------------------------
     def run(self, progress: Callable[[dict], None] | None = None) -> TransientState:
-        from ngsolve import TaskManager
-
         st, s = self.state, self.s
         t_wall = time.perf_counter()
-        with TaskManager():
+        with solver_threads():
             if st.history and st.history[-1]["step"] == st.step:   # resumed after a finished run
                 st.status = self._terminal(t_wall) or "running"
                 if st.status != "running":

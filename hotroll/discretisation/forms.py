@@ -5,6 +5,13 @@ pressure, ``w`` the velocity at which nonlinear coefficients are evaluated, ``v,
 Newton uses w = u (exact linearisation by NGSolve); Picard (3.8) uses w = the previous iterate, so
 the Picard matrix J(U^i) is the linearisation of the frozen form and the Picard step is
 U^{i+1} = U^i - J(U^i)^{-1} r(U^i). One code path, two algorithms.
+
+Newton's Jacobian is also kept as a form of its own, linear in the trial functions with its
+coefficients at the iterate, so that it assembles as a plain bilinear form: by default the
+residual integrand at the iterate differentiated symbolically (``CoefficientFunction.Diff``), or
+a hand-written tangent (``norton_hoff_tangent`` for the volume term: half the assembly time of
+``AssembleLinearization`` on Example 1, C2). Both are the same matrix as
+``AssembleLinearization`` to rounding (tested).
 """
 from __future__ import annotations
 
@@ -37,21 +44,39 @@ def norton_hoff_volume(material: NortonHoff, m, u, p, w, v, q, K=1.0):
     return mu * InnerProduct(strain_rate(u), strain_rate(v)) - p * div(v) - q * div(u)
 
 
+def norton_hoff_tangent(material: NortonHoff, m, w, u, p, v, q, K=1.0):
+    """Newton's Jacobian of ``norton_hoff_volume`` at w along (u, p): with mu(edot^2) of (2.21),
+    mu [eps(u):eps(v) + (m-1) (2/3) (eps(w):eps(u)) (eps(w):eps(v)) / (eps0^2 + edot(w)^2)]
+    - p div v - q div u."""
+    from ngsolve import InnerProduct, div
+
+    ew, eu, ev = strain_rate(w), strain_rate(u), strain_rate(v)
+    e2 = edot_squared(ew)
+    mu = material.viscosity(e2, m=m, K=K)
+    ratio = (m - 1.0) * (2.0 / 3.0) / (material.eps0**2 + e2)
+    return (mu * (InnerProduct(eu, ev) + ratio * InnerProduct(ew, eu) * InnerProduct(ew, ev))
+            - p * div(v) - q * div(u))
+
+
 @dataclass
 class NonlinearProblem:
     """A mixed velocity-pressure problem with its Newton and Picard forms.
 
     ``integrand(u, p, w, v, q)`` returns an NGSolve SumOfIntegrals. ``velocity_scale`` makes the
-    stopping test ``max|du| <= tol * velocity_scale`` independent of units.
+    stopping test ``max|du| <= tol * velocity_scale`` independent of units. ``jacobian(w, u, p,
+    v, q)`` (optional) returns Newton's Jacobian at the velocity w, linear in (u, p); without it
+    the residual integrand is differentiated symbolically.
     """
 
     fes: object
     integrand: Callable
     velocity_scale: float = 1.0
+    jacobian: Callable | None = None
     gf: object = field(init=False)
     gf_w: object = field(init=False)
     a_newton: object = field(init=False)
     a_picard: object = field(init=False)
+    a_jacobian: object = field(init=False)
     inverses: dict = field(init=False, default_factory=dict, repr=False)  # kept factorisations
 
     def __post_init__(self):
@@ -65,6 +90,15 @@ class NonlinearProblem:
         self.a_newton += self.integrand(u, p, u, v, q).Compile()
         self.a_picard = BilinearForm(self.fes)
         self.a_picard += self.integrand(u, p, w_frozen, v, q).Compile()
+        # Newton's Jacobian at gf along (u, p)
+        gu, gp = self.gf.components
+        if self.jacobian is not None:
+            tangent = self.jacobian(gu, u, p, v, q)
+        else:
+            residual = self.integrand(gu, gp, gu, v, q)
+            tangent = residual.Diff(gu, u) + residual.Diff(gp, p)
+        self.a_jacobian = BilinearForm(self.fes)
+        self.a_jacobian += tangent.Compile()
 
     @property
     def freedofs(self):

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from ..physics.friction import ViscoplasticFriction
 from ..physics.material import NortonHoff
 from ..process.geometry import RollPass
-from .forms import NonlinearProblem, norton_hoff_volume, one_sided
+from .forms import NonlinearProblem, norton_hoff_tangent, norton_hoff_volume, one_sided
 from .spaces import taylor_hood
 
 TOP = "top|arc|exit"   # the whole top boundary (the steady strip adds "exit")
@@ -61,7 +61,8 @@ class RollingForm:
         self.m = Parameter(material.m)      # set to 1 for the very first iterate (Section 3.4)
         self.a_f = Parameter(1.0)           # friction parameter, updated by (3.15) every step
         self.chi = GridFunction(FacetFESpace(mesh, order=0))  # 1 on contact edges
-        self.problem = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll)
+        self.problem = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll,
+                                        jacobian=self.jacobian)
 
     # --- geometry of the roll as coefficient functions ------------------------------------
     def roll_frame(self):
@@ -100,14 +101,28 @@ class RollingForm:
 
     # --- the form ---------------------------------------------------------------------------
     def integrand(self, u, p, w, v, q):
-        from ngsolve import IfPos, dx, ds, x
+        """The residual form (3.6), coefficients at w (w = u: Newton; the last iterate: Picard)."""
+        from ngsolve import dx
+
+        vol = norton_hoff_volume(self.material, self.m, u, p, w, v, q, K=1.0)
+        return vol * dx + self.boundary(u, w, v)
+
+    def jacobian(self, w, u, p, v, q):
+        """Newton's Jacobian of (3.6) at w: the Norton-Hoff tangent by hand, the boundary terms
+        differentiated symbolically (w is the iterate's GridFunction component)."""
+        from ngsolve import dx
+
+        vol = norton_hoff_tangent(self.material, self.m, w, u, p, v, q, K=1.0)
+        return vol * dx + self.boundary(w, w, v).Diff(w, u)
+
+    def boundary(self, u, w, v):
+        """Friction (2.29a) and penalty terms (3.2), (3.3) on the boundary, coefficients at w."""
+        from ngsolve import IfPos, ds, x
 
         m, rp, pen = self.m, self.rp, self.penalties
         n, t = self.roll_frame()
         gam_s = pen.surface(x, rp.soft_zone)
         chi = self.chi
-
-        vol = norton_hoff_volume(self.material, m, u, p, w, v, q, K=1.0)
 
         s_u, s_w = self.slip(u), self.slip(w)
         k_f = self.friction.coefficient(self.a_f, s_w * s_w, m=m, K=1.0)
@@ -118,7 +133,6 @@ class RollingForm:
         free = (gam_s * self.free_normal(u) * self.free_normal(v)
                 + IfPos(x - rp.axis_x, outlet, inlet))
 
-        return (vol * dx
-                + (chi * contact + (1.0 - chi) * free) * ds(TOP)
+        return ((chi * contact + (1.0 - chi) * free) * ds(TOP)
                 + inlet * ds("in")
                 + (outlet + gam_s * u[1] * v[1]) * ds("out"))
