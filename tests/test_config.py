@@ -78,6 +78,7 @@ def test_table_values():
     ("friction", "a_f", -1, "friction.a_f: must be"),
     ("plate", "length", 0.5, "plate.length: must be >= 3 x projected contact length"),
     ("mesh", "h_contact", 0.1, "mesh.h_contact: must be < contact_length/4"),
+    ("mesh", "h_contact", 0.06, "mesh.h_contact: must be <= exit half-thickness/4 = 0.05 m"),
     ("solver", "max_iterations", 0, "solver.max_iterations: must be an integer >= 1"),
     ("solver", "nonlinear", "bfgs", "solver.nonlinear:"),
 ])

@@ -216,6 +216,11 @@ class Case(_Section):
             shown = f"{self.mesh.h_contact} = {h:g}" if isinstance(self.mesh.h_contact, str) else f"{h:g}"
             problems.append(f"mesh.h_contact: must be < contact_length/4 = {lc / 4:.6g} m, "
                             f"got {shown} m")
+        half_exit = self.pass_.exit_thickness / 2
+        if h > half_exit / 4:
+            problems.append(f"mesh.h_contact: must be <= exit half-thickness/4 = "
+                            f"{half_exit / 4:.6g} m (4 elements through the exit half-"
+                            f"thickness), got {h:g} m")
         if self.mesh.h_far is not None and self.mesh.h_far < h:
             problems.append(f"mesh.h_far: must be >= mesh.h_contact ({h:g} m), "
                             f"got {self.mesh.h_far:g} m")
