@@ -39,8 +39,8 @@ from ..post import quantities as Q
 from ..process.contact import TopBoundary
 from ..process.free_surface import StripShape, top_height_function, trace_top
 from .nonlinear import SolveStats, newton
-from .transient import RollingModel, TransientState
 from .threads import solver_threads
+from .transient import RollingModel, TransientState
 
 
 @dataclass
