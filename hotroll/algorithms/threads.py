@@ -2,7 +2,7 @@
 
 numpy's OpenBLAS (and the one NGSolve ships) spin-wait on their own threads after every call;
 with NGSolve's task manager on the same cores, that doubled the time of assembly, residuals and
-refactorisations (Example 1 on C2, 2 cores: 20.5 s -> 8.4 s of steady solving). Inside a solve
+refactorisations (Example 1 on C2, 2 cores: 20.5 s -> 9.5-10.9 s of steady solving). Inside a solve
 numpy only handles vectors, for which one thread is plenty.
 """
 from __future__ import annotations

@@ -9,8 +9,8 @@ U^{i+1} = U^i - J(U^i)^{-1} r(U^i). One code path, two algorithms.
 Newton's Jacobian is also kept as a form of its own, linear in the trial functions with its
 coefficients at the iterate, so that it assembles as a plain bilinear form: by default the
 residual integrand at the iterate differentiated symbolically (``CoefficientFunction.Diff``), or
-a hand-written tangent (``norton_hoff_tangent`` for the volume term: half the assembly time of
-``AssembleLinearization`` on Example 1, C2). Both are the same matrix as
+a hand-written tangent (``norton_hoff_tangent`` for the volume term: 0.036 s against 0.063 s with
+``AssembleLinearization`` per assembly on Example 1, C2). Both are the same matrix as
 ``AssembleLinearization`` to rounding (tested).
 """
 from __future__ import annotations
