@@ -1,4 +1,4 @@
-"""Helpers shared by scripts/mesh_table.py, scripts/af_study.py and benchmarks/bench_example1.py.
+"""Helpers shared by scripts/mesh_table.py, af_study.py, agreement.py and benchmarks/bench_example1.py.
 
 Example 1 with dotted overrides, command-line options common to all three, a run that skips
 finished outputs and survives a failing case, and tables written as CSV and Markdown.
@@ -99,15 +99,19 @@ class _Progress:
 
 
 def finished_summary(case: Case, out: Path) -> dict | None:
-    """summary.json of an earlier, finished run of exactly ``case`` in ``out`` (else None)."""
+    """summary.json of an earlier, finished run of ``case`` in ``out`` (else None): same
+    fingerprint (the physics; threads, limits and output options may differ)."""
     import json
+
+    from hotroll.app.runner import fingerprint
 
     toml, summ = Path(out) / "case.toml", Path(out) / "summary.json"
     try:
-        if toml.read_text() != case.to_toml() or summ.stat().st_mtime < toml.stat().st_mtime:
+        if (fingerprint(load_case(toml)) != fingerprint(case)
+                or summ.stat().st_mtime < toml.stat().st_mtime):
             return None
         summary = json.loads(summ.read_text())
-    except (OSError, ValueError):
+    except (OSError, ValueError, CaseError):
         return None
     return summary if summary.get("status") in FINISHED else None
 

@@ -100,3 +100,39 @@ def test_compression_unit_independent(m):
     assert big["u_error"] < 1e-6
     assert big["force"] / (1e8 * ref["force"]) == pytest.approx(1.0, abs=1e-10)
     assert big["pressure"] / (1e8 * ref["pressure"]) == pytest.approx(1.0, abs=1e-10)
+
+
+def test_nodal_update_measure_reads_p2_nodes():
+    """The stopping test of (3.8c) reads velocities at the P2 nodes: for an interpolated
+    quadratic field, vertex and midpoint values equal the field there (the edge DOFs are bubble
+    coefficients, 8 times the midpoint deviation, and must not enter the test as velocities)."""
+    import ngsolve as ng
+    from netgen.geom2d import unit_square
+
+    from hotroll.discretisation.forms import NonlinearProblem
+    from hotroll.discretisation.spaces import P2Nodes, taylor_hood
+
+    mesh = ng.Mesh(unit_square.GenerateMesh(maxh=0.3))
+    fes = taylor_hood(mesh, dirichlety="")
+    (u, p), (v, q) = fes.TnT()
+    problem = NonlinearProblem(fes, lambda u, p, w, v, q: ng.InnerProduct(u, v) * ng.dx)
+    f = (ng.x * ng.x - 0.5 * ng.y, 2 * ng.x * ng.y)
+    problem.gf.components[0].Set(ng.CoefficientFunction(f))
+    vec = problem.gf.vec.FV().NumPy()
+    nodes = P2Nodes(mesh, fes.components[0].ndof // 2)
+    vals = nodes.values(vec)
+    pts = np.array([v.point for v in mesh.vertices])
+    mids = 0.5 * (pts[nodes.ea] + pts[nodes.eb])
+    xy = np.concatenate([pts, mids])
+    exact = np.array([xy[:, 0] ** 2 - 0.5 * xy[:, 1], 2 * xy[:, 0] * xy[:, 1]])
+    assert np.allclose(vals, exact, atol=1e-12)
+    assert problem.max_nodal_velocity(problem.gf.vec) == pytest.approx(np.abs(exact).max(),
+                                                                        rel=1e-12)
+    # a single edge DOF is a bubble coefficient: the measure is NGSolve's value at the midpoint
+    problem.gf.vec[:] = 0.0
+    problem.gf.vec[mesh.nv] = 1.0
+    mid = mids[0]
+    at_mid = problem.gf.components[0](mesh(float(mid[0]), float(mid[1])))
+    assert problem.max_nodal_velocity(problem.gf.vec) == pytest.approx(abs(at_mid[0]),
+                                                                        rel=1e-12)
+    assert abs(at_mid[0]) < 0.2

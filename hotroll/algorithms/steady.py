@@ -59,7 +59,8 @@ class SteadySettings:
     free_surface: bool = True        # free tops as streamlines (False: the flat tops fixed)
     surface_tol: float = 1e-3        # shape converged when no top node moves more than this x h
     max_outer: int = 30              # a_f / free-surface updates at the target m
-    couple_below: float = 5e-2       # update them once the Newton update is below this x U
+    couple_below: float = 1e-2       # update them once the Newton update (at the P2 nodes) is
+                                     # below this x U
     relax: float = 0.5               # under-relaxation of the free-surface update (first)
     aitken_max: float = 10.0         # largest Aitken factor of the free-surface update
 

@@ -63,7 +63,8 @@ class NonlinearProblem:
     """A mixed velocity-pressure problem with its Newton and Picard forms.
 
     ``integrand(u, p, w, v, q)`` returns an NGSolve SumOfIntegrals. ``velocity_scale`` makes the
-    stopping test ``max|du| <= tol * velocity_scale`` independent of units. ``jacobian(w, u, p,
+    stopping test ``max|du| <= tol * velocity_scale`` independent of units; |du| is taken at
+    the velocity nodes (vertices and edge midpoints for P2), not over the coefficients. ``jacobian(w, u, p,
     v, q)`` (optional) returns Newton's Jacobian at the velocity w, linear in (u, p); without it
     the residual integrand is differentiated symbolically.
     """
@@ -121,6 +122,27 @@ class NonlinearProblem:
         import numpy as np
 
         return np.array(list(self.freedofs), dtype=bool)
+
+    def max_nodal_velocity(self, vec) -> float:
+        """max |v| over the velocity nodes of the coefficient vector ``vec`` (free DOFs only)."""
+        import numpy as np
+
+        a = np.where(self.free_velocity_mask, vec.FV().NumPy(), 0.0)
+        nodes = self._velocity_nodes
+        vals = nodes.values(a) if nodes is not None else a[: self.n_velocity_dofs()]
+        return float(np.max(np.abs(vals))) if vals.size else 0.0
+
+    @cached_property
+    def _velocity_nodes(self):
+        from .spaces import P2Nodes
+
+        V = self.fes.components[0]
+        if getattr(V, "globalorder", 2) != 2:
+            return None
+        try:
+            return P2Nodes(self.fes.mesh, V.ndof // 2)
+        except ValueError:
+            return None
 
     @cached_property
     def free_velocity_mask(self):

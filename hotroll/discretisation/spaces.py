@@ -1,6 +1,12 @@
 """Taylor-Hood P2/P1 spaces (report (3.4), l = k - 1 for inf-sup stability)."""
 from __future__ import annotations
 
+import numpy as np
+
+#: NGSolve's order-2 H1 edge shape function at the edge midpoint: the edge DOF of a P2 field is
+#: the coefficient of this bubble, not a nodal value.
+BUBBLE_MID = -0.125
+
 
 def taylor_hood(mesh, dirichletx: str = "", dirichlety: str = "sym", order: int = 2):
     """Velocity VectorH1(order) x pressure H1(order - 1), component-wise Dirichlet regions."""
@@ -9,3 +15,21 @@ def taylor_hood(mesh, dirichletx: str = "", dirichlety: str = "sym", order: int 
     V = VectorH1(mesh, order=order, dirichletx=dirichletx, dirichlety=dirichlety)
     Q = H1(mesh, order=order - 1)
     return V * Q
+
+
+class P2Nodes:
+    """Nodal values (vertices and edge midpoints) of a P2 VectorH1 coefficient vector."""
+
+    def __init__(self, mesh, ndof_scalar: int):
+        nv = mesh.nv
+        ev = np.array([[v.nr for v in e.vertices] for e in mesh.edges], dtype=int).reshape(-1, 2)
+        if nv + len(ev) != ndof_scalar:
+            raise ValueError(f"not a P2 space: {ndof_scalar} DOFs per component, expected "
+                             f"{nv} vertices + {len(ev)} edges")
+        self.n, self.nv, self.ea, self.eb = ndof_scalar, nv, ev[:, 0], ev[:, 1]
+
+    def values(self, f: np.ndarray) -> np.ndarray:
+        """Nodal values of both components, shape (2, vertices + edges)."""
+        c = f[: 2 * self.n].reshape(2, self.n)
+        mid = 0.5 * (c[:, self.ea] + c[:, self.eb]) + BUBBLE_MID * c[:, self.nv:]
+        return np.concatenate([c[:, : self.nv], mid], axis=1)

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..discretisation.spaces import BUBBLE_MID
 from .geometry import RollPass
 
-BUBBLE_MID = -0.125   # NGSolve's order-2 H1 edge shape function at the edge midpoint
 TOP_REGIONS = ("top", "arc", "exit")
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .contact import BUBBLE_MID
+from ..discretisation.spaces import BUBBLE_MID
 from .geometry import RollPass
 
 
