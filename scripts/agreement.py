@@ -34,6 +34,8 @@ NOTES = [
     "SI units; angles in rad; roll force N/m and torque N m/m per unit width on the upper roll "
     "(K = 1); transient figures are means over its last averaging window.",
     "d_* = transient minus steady; force and torque in % of the steady value, slip in points.",
+    "steady_s and transient_s are wall times of the last invocation (a resumed or reused run "
+    "counts only that part).",
     "transient_status 'steady' = the report's scheme reached its steady state; otherwise its "
     "figures are those at the stop, not a steady answer.",
 ]

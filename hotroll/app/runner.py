@@ -1,8 +1,8 @@
 """From a validated case to results on disk: case -> model -> solver -> fields -> files.
 
 Scalar results in ``summary.json`` are means over the last steady-state window (the report's
-histories oscillate periodically with the discrete entry/exit of contact nodes); profiles and
-fields are those of the last step.
+histories oscillate periodically with the discrete entry/exit of contact nodes), leaving out
+steps whose nonlinear solve stopped unconverged; profiles and fields are those of the last step.
 """
 from __future__ import annotations
 
@@ -151,10 +151,13 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
     from ..post import quantities as Q
 
     rp, state, last = run.model.rp, run.state, run.state.history[-1]
+    # a step whose nonlinear solve did not converge (max_iterations reached) is not a solution:
+    # its figures stay in history.csv but not in the means
     window = state.history[-run.window:]
+    solved = [r for r in window if r.get("solver_converged", True)] or window
     steady_solver = case.solver.method == "steady"
-    mean = {k: float(np.nanmean([r[k] for r in window])) if any(
-        math.isfinite(r[k]) for r in window) else math.nan for k in AVERAGED}
+    mean = {k: float(np.nanmean([r[k] for r in solved])) if any(
+        math.isfinite(r[k]) for r in solved) else math.nan for k in AVERAGED}
     ang = mean["neutral_angle"]
     cx, cy = rp.centre
     outlet_driven = mean["outlet_penalty_power"] < -0.05 * mean["plastic_power"]
@@ -202,5 +205,6 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "contact_start": [float(prof["x"][0]), float(prof["y"][0])] if len(prof["x"]) else None,
         "contact_end": [float(prof["x"][-1]), float(prof["y"][-1])] if len(prof["x"]) else None,
         "K": case.material.K, "m": case.material.m, "nonlinear": "newton" if steady_solver else run.s.nonlinear,
-        "averaged_over_steps": len(window),
+        "averaged_over_steps": len(solved),
+        "unconverged_steps_in_window": len(window) - len(solved),
     }
