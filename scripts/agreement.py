@@ -49,7 +49,7 @@ def row(name: str, label: str, steady: dict, transient: dict) -> dict:
     """One table row from the two summaries (missing figures become n/a)."""
     s = steady if has_output(steady) else {}
     t = transient if has_output(transient) else {}
-    g = lambda d, k: d.get(k, math.nan) if d.get(k) is not None else math.nan  # noqa: E731
+    g = lambda d, k: math.nan if d.get(k) is None else d[k]  # noqa: E731
     out = {"example": CASES.get(name, name), "mesh": label,
            "steady_its": s.get("nonlinear_iterations"), "steady_s": g(s, "wall_time_s"),
            "transient_steps": t.get("steps"), "transient_status": transient.get("status"),

@@ -136,12 +136,9 @@ class NonlinearProblem:
     def _velocity_nodes(self):
         from .spaces import P2Nodes
 
-        V = self.fes.components[0]
-        if getattr(V, "globalorder", 2) != 2:
-            return None
         try:
-            return P2Nodes(self.fes.mesh, V.ndof // 2)
-        except ValueError:
+            return P2Nodes(self.fes.mesh, self.n_velocity_dofs() // 2)
+        except ValueError:     # not P2: the coefficients are the nodal values (P1)
             return None
 
     @cached_property

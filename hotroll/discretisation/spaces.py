@@ -18,7 +18,8 @@ def taylor_hood(mesh, dirichletx: str = "", dirichlety: str = "sym", order: int 
 
 
 class P2Nodes:
-    """Nodal values (vertices and edge midpoints) of a P2 VectorH1 coefficient vector."""
+    """The nodes of a P2 VectorH1 field (vertices, then edge midpoints) and the map between its
+    coefficient vector and its nodal values."""
 
     def __init__(self, mesh, ndof_scalar: int):
         nv = mesh.nv
@@ -27,9 +28,18 @@ class P2Nodes:
             raise ValueError(f"not a P2 space: {ndof_scalar} DOFs per component, expected "
                              f"{nv} vertices + {len(ev)} edges")
         self.n, self.nv, self.ea, self.eb = ndof_scalar, nv, ev[:, 0], ev[:, 1]
+        X = np.array([v.point for v in mesh.vertices])[:, :2]
+        self.X0 = np.concatenate([X, 0.5 * (X[self.ea] + X[self.eb])])   # reference nodes
 
     def values(self, f: np.ndarray) -> np.ndarray:
         """Nodal values of both components, shape (2, vertices + edges)."""
         c = f[: 2 * self.n].reshape(2, self.n)
         mid = 0.5 * (c[:, self.ea] + c[:, self.eb]) + BUBBLE_MID * c[:, self.nv:]
         return np.concatenate([c[:, : self.nv], mid], axis=1)
+
+    def coefficients(self, vals: np.ndarray) -> np.ndarray:
+        """The coefficient vector with nodal values ``vals`` (shape (2, vertices + edges)):
+        the inverse of ``values``."""
+        vert, mid = vals[:, : self.nv], vals[:, self.nv:]
+        bubble = (mid - 0.5 * (vert[:, self.ea] + vert[:, self.eb])) / BUBBLE_MID
+        return np.concatenate([vert, bubble], axis=1).reshape(-1)

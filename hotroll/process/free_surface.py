@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..discretisation.spaces import BUBBLE_MID
+from ..discretisation.spaces import P2Nodes
 from .geometry import RollPass
 
 
@@ -19,33 +19,15 @@ class StripShape:
     """All P2 geometry nodes of a mesh and their vertical scaling through the displacement."""
 
     def __init__(self, mesh, n_scalar: int):
-        self.n_scalar, self.nv = n_scalar, mesh.nv
-        ed = np.array([[e.nr, e.vertices[0].nr, e.vertices[1].nr] for e in mesh.edges], dtype=int)
-        self.edge, self.ea, self.eb = ed[:, 0], ed[:, 1], ed[:, 2]
-        self.X0 = np.array([v.point for v in mesh.vertices])[:, :2]
-
-    def _mid(self, d, X):
-        a, b, e = self.ea, self.eb, self.nv + self.edge
-        ns = self.n_scalar
-        lin = 0.5 * (X[a] + X[b])
-        bub = np.stack([d[e], d[ns + e]], -1)
-        return lin + BUBBLE_MID * bub
+        self.nodes = P2Nodes(mesh, n_scalar)
 
     def scale(self, d_ref: np.ndarray, height_ref, height_new) -> np.ndarray:
         """Displacement that maps the shape of ``d_ref`` to the new top height (callables of x)."""
-        ns, nv = self.n_scalar, self.nv
-        d = d_ref.copy()
-        X = self.X0 + np.stack([d_ref[:nv], d_ref[ns:ns + nv]], -1)
-        M = self._mid(d_ref, X)
-        Xn = X.copy()
-        Xn[:, 1] *= height_new(X[:, 0]) / height_ref(X[:, 0])
-        Mn = M.copy()
-        Mn[:, 1] *= height_new(M[:, 0]) / height_ref(M[:, 0])
-        d[:nv], d[ns:ns + nv] = Xn[:, 0] - self.X0[:, 0], Xn[:, 1] - self.X0[:, 1]
-        c = (Mn - 0.5 * (Xn[self.ea] + Xn[self.eb])) / BUBBLE_MID
-        e = nv + self.edge
-        d[e], d[ns + e] = c[:, 0], c[:, 1]
-        return d
+        nodes = self.nodes
+        P = nodes.X0 + nodes.values(d_ref).T          # node positions of the d_ref shape
+        Pn = P.copy()
+        Pn[:, 1] *= height_new(P[:, 0]) / height_ref(P[:, 0])
+        return nodes.coefficients((Pn - nodes.X0).T)
 
 
 def trace_top(rp: RollPass, xs: np.ndarray, vx: np.ndarray, vy: np.ndarray, y_in: float,
