@@ -60,7 +60,7 @@ def one(mesh, threads: int, transient: bool) -> dict:
     mat = model.material
     run.model.material = NortonHoff(mat.K, mat.m + 0.01, mat.eps0)
     t1 = time.perf_counter()
-    warm = run.solve(warm=run.solution, warm_a_f=run.form.a_f.Get())
+    warm = run.solve(warm=run.warm_start())
     out = {
         "mesh": mesh_label(mesh), "dofs": run.dofs, "newton_iterations": its,
         "wall_s": wall, "mesh_s": res.mesh_time, "factorisation_s": lin / max(its, 1),

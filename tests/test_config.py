@@ -173,7 +173,7 @@ def test_cli_meshes():
 def fake_runner(monkeypatch):
     calls = []
 
-    def run_case(case, out, *, resume=True, progress=None):
+    def run_case(case, out, *, resume=True, progress=None, sweep=None):
         calls.append((case, out, resume))
         progress and progress({"step": 1, "time": 0.1, "message": "started"})
         return {"roll_force": 1.25, "converged": True, "steps": 3}
@@ -209,3 +209,25 @@ def test_cli_example3(tmp_path, fake_runner, monkeypatch):
     assert list(compared["runs"]) == ["m = 0.15", "m = 0.2", "m = 0.25"]
     assert compared["runs"]["m = 0.2"] == tmp_path / "example1"
     assert compared["png"] == tmp_path / "compare.png"
+
+
+def test_cli_sweep(tmp_path, fake_runner):
+    result = runner.invoke(app, ["sweep", str(example_path("example1")), "--param",
+                                 "material.m", "--values", "0.15, 0.3", "--out", str(tmp_path),
+                                 "--method", "steady", "--no-figures"])
+    assert result.exit_code == 0, result.output
+    assert [c.material.m for c, _, _ in fake_runner] == [0.15, 0.3]
+    assert [out.name for _, out, _ in fake_runner] == ["material.m=0.15", "material.m=0.3"]
+    assert all(c.solver.method == "steady" and not c.output.figures for c, _, _ in fake_runner)
+    rows = (tmp_path / "sweep.csv").read_text().splitlines()
+    assert rows[0].startswith("param,value,status") and len(rows) == 3
+    assert rows[2].split(",")[:2] == ["material.m", "0.3"]
+
+
+def test_cli_sweep_bad_value_before_run(tmp_path, fake_runner):
+    result = runner.invoke(app, ["sweep", str(example_path("example1")), "--param",
+                                 "material.m", "--values", "0.2,1.5", "--out", str(tmp_path)])
+    assert result.exit_code == 2 and "material.m" in result.output and not fake_runner
+    result = runner.invoke(app, ["sweep", str(example_path("example1")), "--param",
+                                 "material.mm", "--values", "0.2", "--out", str(tmp_path)])
+    assert result.exit_code == 2 and "mm" in result.output and not fake_runner

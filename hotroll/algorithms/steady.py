@@ -24,6 +24,7 @@ reported (``contact_loss``), not hidden.
 """
 from __future__ import annotations
 
+import hashlib
 import math
 import time
 from dataclasses import dataclass, field
@@ -79,6 +80,27 @@ def continuation_path(m: float) -> list[float]:
 
 
 @dataclass
+class WarmStart:
+    """A solved steady state that a neighbouring case on the same mesh can start from: its
+    velocity-pressure vector, strip shape (displacement), a_f, the noise floor its free-surface
+    fixed point stagnated at, and the m and roll speed it was solved for."""
+
+    solution: np.ndarray
+    displacement: np.ndarray
+    a_f: float
+    noise_floor: float
+    m: float
+    u_roll: float
+    mesh_key: str
+
+
+def mesh_key(mesh) -> str:
+    """Hash of the vertex coordinates and element count: equal keys, same mesh and DOFs."""
+    pts = np.array([v.point for v in mesh.vertices], dtype=float)
+    return hashlib.sha256(pts.tobytes() + str(mesh.ne).encode()).hexdigest()[:16]
+
+
+@dataclass
 class SteadyResult:
     stats: list = field(default_factory=list)   # SolveStats per solve
     rows: list = field(default_factory=list)    # measured figures after each solve
@@ -128,6 +150,7 @@ class SteadyRun:
         self.d_ref = self.d.copy()
         self.shape = StripShape(self.mesh, V.ndof // 2)
         self.contact_start = rp.x_touch
+        self.mesh_key = mesh_key(self.mesh)
         self.mesh_time = time.perf_counter() - t0
         self.record = True    # measure after every solve (history.csv); off in benchmarks
         self.noise_floor = 0.0  # change (in tolerances) at which the last fixed point stagnated
@@ -135,10 +158,9 @@ class SteadyRun:
     # --- the interface the runner shares with TransientRun -------------------------------------
     window = 1           # summary scalars: the last (converged) row
 
-    def run(self, progress=None, warm: np.ndarray | None = None,
-            warm_a_f: float | None = None) -> TransientState:
+    def run(self, progress=None, warm: WarmStart | None = None) -> TransientState:
         """Solve, record one history row per Newton solve (its m, a_f and figures)."""
-        self.result = self.solve(warm, warm_a_f, progress)
+        self.result = self.solve(warm, progress)
         r = self.result
         status = ("steady" if r.converged else
                   "unsettled" if r.stats[-1].converged else "failed")
@@ -181,10 +203,15 @@ class SteadyRun:
         return estimate_a_f(vol, self.model.h, lam, back, rp.u_roll, m, a_f_max=self.s.a_f_max)
 
     # --- the solve ------------------------------------------------------------------------------
-    def solve(self, warm: np.ndarray | None = None, warm_a_f: float | None = None,
-              progress=None) -> SteadyResult:
+    def warm_start(self) -> WarmStart:
+        """This run's solved state, to start a neighbouring case from."""
+        return WarmStart(self.solution, self.d.copy(), self.form.a_f.Get(), self.noise_floor,
+                         self.form.m.Get(), self.model.rp.u_roll, self.mesh_key)
+
+    def solve(self, warm: WarmStart | None = None, progress=None) -> SteadyResult:
         """Newton at the target m from the kinematic guess (cold) or from ``warm`` (a neighbour's
-        solution), with a_f (3.15) and the free surface updated inside the iteration."""
+        solution on the same mesh), with a_f (3.15) and the free surface updated inside the
+        iteration."""
         f, s, res = self.form, self.s, SteadyResult(mesh_time=self.mesh_time)
 
         def record(st):
@@ -197,9 +224,8 @@ class SteadyRun:
         t0 = time.perf_counter()
         vec = f.problem.gf.vec.FV().NumPy()
         with solver_threads():
-            if warm is not None and warm.shape == vec.shape:
-                vec[:] = warm
-                f.a_f.Set(s.a_f if s.a_f is not None else (warm_a_f or self._estimate_a_f()))
+            if warm is not None:
+                self._warm(warm, vec, target)
                 self._follow([target], res, record)
             else:
                 self.noise_floor = 0.0
@@ -213,6 +239,20 @@ class SteadyRun:
                     self._follow([1.0] + continuation_path(target), res, record)
         res.wall_time = time.perf_counter() - t0 + self.mesh_time
         return res
+
+    def _warm(self, warm: WarmStart, vec: np.ndarray, target: float) -> None:
+        """Start from a neighbour's state: its shape and a_f, its velocity scaled to this roll
+        speed and its (reduced) pressure by the Norton-Hoff rate factor (U/U_warm)^m."""
+        if warm.mesh_key != self.mesh_key or warm.solution.shape != vec.shape:
+            raise ValueError("warm start: the neighbour was solved on another mesh")
+        ratio = self.model.rp.u_roll / warm.u_roll
+        nv = self.form.problem.n_velocity_dofs()
+        vec[:nv] = ratio * warm.solution[:nv]
+        vec[nv:] = ratio**target * warm.solution[nv:]
+        self.d[:] = warm.displacement
+        self._set_shape()
+        self.noise_floor = warm.noise_floor
+        self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else warm.a_f)
 
     def _cold_start(self) -> None:
         """Reference strip shape, kinematic velocity guess and a_f (3.15) from it."""

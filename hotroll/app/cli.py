@@ -90,13 +90,13 @@ def _fmt(v: Any) -> str:
     return f"{v:.6g}" if isinstance(v, float) else str(v)
 
 
-def _run(case: Case, out: Path, resume: bool) -> dict:
+def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
     try:
         from hotroll.app.runner import run_case
     except ImportError as e:
         raise _fail(f"runner not available: {e}", code=1) from None
     console.print(Text(f"running {case.name} -> {out}", style="bold"))
-    summary = run_case(case, out, resume=resume, progress=_Progress()) or {}
+    summary = run_case(case, out, resume=resume, progress=_Progress(), sweep=sweep) or {}
     table = Table(title=escape(f"{case.name}: summary"))
     table.add_column("quantity")
     table.add_column("value", justify="right")
@@ -147,9 +147,11 @@ def example(
     if len(cases) == 1:
         _run(cases[0], out, resume)
         return
-    runs = {}
+    from hotroll.app.sweep import Sweep
+
+    runs, sweep = {}, Sweep()
     for case in cases:
-        _run(case, out / case.name, resume)
+        _run(case, out / case.name, resume, sweep)
         runs[f"m = {case.material.m:g}"] = out / case.name
     try:
         from hotroll.post.plots import plot_compare
@@ -158,6 +160,57 @@ def example(
         return
     png = plot_compare(runs, out / "compare.png")
     console.print(Text(f"comparison plot: {png or out / 'compare.png'}"))
+
+
+def _value(text: str) -> Any:
+    """A sweep value from the command line: a number where it parses as one, else the text."""
+    try:
+        return float(text)
+    except ValueError:
+        return text.strip()
+
+
+@app.command()
+def sweep(
+    case_file: Annotated[Path, typer.Argument(help="Case description (TOML).")],
+    param: Annotated[str, typer.Option(help='Dotted key to vary, e.g. "material.m".')],
+    values: Annotated[str, typer.Option(help='Comma-separated values, e.g. "0.15,0.2,0.25".')],
+    out: OutOpt,
+    mesh: MeshOpt = None,
+    method: MethodOpt = None,
+    no_figures: Annotated[bool, typer.Option("--no-figures", help="Do not write figures.")] = False,
+    warm: Annotated[bool, typer.Option(
+        "--warm/--cold", help="Start each steady solve from the nearest solved case (default) "
+        "or from scratch.")] = True,
+    resume: ResumeOpt = True,
+) -> None:
+    """Run a case for several values of one parameter into OUT/<param>=<value>, each steady
+    solve started from the nearest solved one on the same mesh (--warm, the default) or cold;
+    table in OUT/sweep.csv."""
+    from hotroll.app.output import write_csv
+    from hotroll.app.sweep import Sweep
+
+    vals = [_value(v) for v in values.split(",") if v.strip()]
+    if not vals:
+        raise _fail("sweep: --values is empty (give comma-separated values)")
+    extra = {} if method is None else {"solver.method": method}
+    if no_figures:
+        extra["output.figures"] = False
+    base = _overrides(mesh, None, None, **extra)
+    cases = [_load(case_file, base | {param: v}) for v in vals]   # validate all first
+    rows, sw = [], Sweep() if warm else None
+    for v, case in zip(vals, cases):
+        label = f"{param}={v:g}" if isinstance(v, float) else f"{param}={v}"
+        case = case.with_overrides(name=f"{case.name} {label}")
+        s = _run(case, out / label, resume, sw)
+        rows.append({"param": param, "value": v, **{k: s.get(k) for k in SWEEP_KEYS}})
+    out.mkdir(parents=True, exist_ok=True)
+    write_csv(out / "sweep.csv", rows)
+    console.print(Text(f"sweep table: {out / 'sweep.csv'}"))
+
+
+SWEEP_KEYS = ["status", "converged", "neutral_angle", "roll_force", "roll_torque", "roll_power",
+              "forward_slip", "a_f", "nonlinear_iterations", "wall_time_s", "warm_start_from"]
 
 
 @app.command()

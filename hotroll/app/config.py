@@ -362,3 +362,11 @@ def _toml_value(v: Any) -> str:
     if isinstance(v, str):
         return json.dumps(v, ensure_ascii=False)
     raise TypeError(f"cannot write {type(v).__name__} to TOML")
+
+
+def flat(d: dict, pre: str = "") -> dict:
+    """Nested dict -> {"section.key": value}."""
+    out = {}
+    for k, v in d.items():
+        out.update(flat(v, f"{pre}{k}.") if isinstance(v, dict) else {f"{pre}{k}": v})
+    return out

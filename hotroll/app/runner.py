@@ -14,7 +14,7 @@ from typing import Callable
 
 import numpy as np
 
-from .config import Case
+from .config import Case, flat
 from .output import vertex_fields, write_csv, write_json, write_npz, write_vtk
 
 AVERAGED = ("roll_force", "roll_torque", "roll_power", "forward_slip", "entry_velocity",
@@ -85,19 +85,15 @@ def fingerprint(case: Case) -> str:
     d.pop("output", None)
     for key in _NOT_PHYSICS:
         d.get("solver", {}).pop(key, None)
-    return hashlib.sha256(repr(sorted(_flat(d).items())).encode()).hexdigest()[:16]
-
-
-def _flat(d: dict, pre: str = "") -> dict:
-    out = {}
-    for k, v in d.items():
-        out.update(_flat(v, f"{pre}{k}.") if isinstance(v, dict) else {f"{pre}{k}": v})
-    return out
+    return hashlib.sha256(repr(sorted(flat(d).items())).encode()).hexdigest()[:16]
 
 
 def run_case(case: Case, out: Path, *, resume: bool = True,
-             progress: Callable[[dict], None] | None = None) -> dict:
-    """Run one case and write summary.json, contact.csv, top.csv, history.csv, fields, figures."""
+             progress: Callable[[dict], None] | None = None, sweep=None) -> dict:
+    """Run one case and write summary.json, contact.csv, top.csv, history.csv, fields, figures.
+
+    ``sweep`` (an ``app.sweep.Sweep``): a steady case starts from the nearest case the sweep
+    has solved on the same mesh (``warm_start_from`` in the summary)."""
     import ngsolve
 
     from ..algorithms.transient import TransientRun
@@ -111,15 +107,25 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
         (ckpt / "state.npz").unlink()
     t0 = time.perf_counter()
     model, settings = build_model(case)
+    extra = {}
     if case.solver.method == "steady":
         from ..algorithms.steady import SteadyRun
 
-        run = SteadyRun(model, steady_settings(case), case.plate.length)
+        near = warm = None
+        if sweep is None:
+            run = SteadyRun(model, steady_settings(case), case.plate.length)
+        else:
+            run = sweep.steady_run(case, model)
+            near, warm = sweep.nearest(case, run)
+        run.run(progress, warm=warm)
+        if sweep is not None:
+            sweep.add(case, run)
+        extra["warm_start_from"] = near
     else:
         run = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint=fingerprint(case))
-    run.run(progress)
+        run.run(progress)
     wall = time.perf_counter() - t0
-    summary = write_results(case, run, out, wall)
+    summary = write_results(case, run, out, wall, extra)
     if case.output.figures:
         from ..post.plots import plot_all
 
@@ -127,7 +133,7 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
     return summary
 
 
-def write_results(case: Case, run, out: Path, wall: float) -> dict:
+def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = None) -> dict:
     from ..post import quantities as Q
 
     K, hist = case.material.K, run.state.history
@@ -141,7 +147,7 @@ def write_results(case: Case, run, out: Path, wall: float) -> dict:
     write_npz(out / "fields.npz", **vertex_fields(run))
     if case.output.vtk:
         write_vtk(run, out / "fields.vtu")
-    summary = summarise(case, run, prof, wall)
+    summary = summarise(case, run, prof, wall) | (extra or {})
     write_json(out / "summary.json", summary)
     return summary
 
