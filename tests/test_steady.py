@@ -120,3 +120,24 @@ def test_warm_start_from_another_mesh_is_refused():
     assert sweep.nearest(case, fine) == (None, None)
     with pytest.raises(ValueError, match="another mesh"):
         fine.solve(warm=coarse.warm_start())
+
+
+def test_failed_warm_start_falls_back_to_a_cold_solve(tmp_path):
+    """A warm start that does not converge (here a neighbour's state broken to NaN) is solved
+    again from cold, lands on the cold answer and says so in the summary."""
+    from dataclasses import replace
+
+    from hotroll.app.sweep import Sweep
+
+    case = _case(**{"solver.method": "steady", "friction.a_f": 3.0})
+    cold = run_case(case, tmp_path / "cold")
+    sweep = Sweep()
+    run_case(case.with_overrides(name="first"), tmp_path / "first", sweep=sweep)
+    name, params, state = sweep.solved[0]
+    broken = replace(state, solution=np.full_like(state.solution, np.nan))
+    sweep.solved[0] = (name, params, broken)
+    s = run_case(case.with_overrides(name="second"), tmp_path / "second", sweep=sweep)
+    assert s["warm_start_from"] == "first" and s["warm_start_failed"]
+    assert s["converged"] and not cold["warm_start_failed"]
+    for key in ("roll_force", "roll_torque", "forward_slip", "neutral_angle"):
+        assert s[key] == pytest.approx(cold[key], rel=1e-4), key

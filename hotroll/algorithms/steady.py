@@ -39,7 +39,7 @@ from ..physics.material import NortonHoff
 from ..post import quantities as Q
 from ..process.contact import TopBoundary
 from ..process.free_surface import StripShape, top_height_function, trace_top
-from .nonlinear import SolveStats, newton
+from .nonlinear import LinearSolveError, SolveStats, newton
 from .threads import solver_threads
 from .transient import RollingModel, TransientState
 
@@ -113,6 +113,7 @@ class SteadyResult:
     fallback: bool = False       # the direct solve failed; solved again along m = 1 -> target
     contact_cycle: bool = False  # the first contact node alternated between two neighbours
     stagnated: bool = False      # the fixed point stopped at a noise floor above the tolerances
+    warm_failed: bool = False    # the warm start did not converge; solved again from cold
 
     @property
     def iterations(self) -> int:
@@ -226,8 +227,13 @@ class SteadyRun:
         with solver_threads():
             if warm is not None:
                 self._warm(warm, vec, target)
-                self._follow([target], res, record)
-            else:
+                try:
+                    self._follow([target], res, record)
+                except LinearSolveError:
+                    res.stats.append(SolveStats())
+                # a neighbour too far off (or a broken state): start again from cold
+                res.warm_failed = not res.stats[-1].converged
+            if warm is None or res.warm_failed:
                 self.noise_floor = 0.0
                 self._cold_start()
                 path = list(s.m_path) or [target]

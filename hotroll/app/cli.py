@@ -210,7 +210,8 @@ def sweep(
 
 
 SWEEP_KEYS = ["status", "converged", "neutral_angle", "roll_force", "roll_torque", "roll_power",
-              "forward_slip", "a_f", "nonlinear_iterations", "wall_time_s", "warm_start_from"]
+              "forward_slip", "a_f", "nonlinear_iterations", "wall_time_s", "warm_start_from",
+              "warm_start_failed"]
 
 
 @app.command()

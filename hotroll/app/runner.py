@@ -121,6 +121,7 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
         if sweep is not None:
             sweep.add(case, run)
         extra["warm_start_from"] = near
+        extra["warm_start_failed"] = bool(run.result.warm_failed)
     else:
         run = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint=fingerprint(case))
         run.run(progress)
