@@ -56,6 +56,27 @@ def estimated(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
+def settled(tmp_path_factory):
+    """The report's scheme with a_f = 3 run to its automatic steady state (traced tops;
+    measured: 165 steps, 23 s on one thread)."""
+    return _run(tmp_path_factory, "af3_steady_state", **{"friction.a_f": 3.0,
+                                                         "solver.end_time": 3.0})
+
+
+@pytest.fixture(scope="module")
+def settled_constrained(tmp_path_factory):
+    return _run(tmp_path_factory, "af3_constrained", **{"friction.a_f": 3.0,
+                                                        "solver.end_time": 3.0,
+                                                        "plate.free_surface": "constrained"})
+
+
+@pytest.fixture(scope="module")
+def steady_constrained(tmp_path_factory):
+    return _run(tmp_path_factory, "steady_constrained", **{
+        "solver.method": "steady", "friction.a_f": 3.0, "plate.free_surface": "constrained"})
+
+
+@pytest.fixture(scope="module")
 def steady_slipping(tmp_path_factory):
     return _run(tmp_path_factory, "steady_af3", **{"solver.method": "steady",
                                                      "friction.a_f": 3.0})
@@ -90,15 +111,20 @@ def test_neutral_point_inside_arc(fixture, request):
     assert s["forward_slip"] > 0 and s["exit_velocity"] > s["entry_velocity"]
 
 
-@pytest.mark.parametrize("fixture", ["slipping", "steady_slipping"])
+@pytest.mark.parametrize("fixture", ["settled", "steady_slipping"])
 def test_slip_changes_sign_at_neutral_point(fixture, request):
     s, c, _ = request.getfixturevalue(fixture)
     before = c["angle"] > s["neutral_angle"]
     assert before.sum() >= 5 and (~before).sum() >= 1
-    assert np.all(c["v_slip"][before] < 0)
-    assert np.all(c["v_slip"][~before] > 0)
+    # the summary's neutral angle is a window mean, the profile the last step's: a node
+    # next to it may slip by a few 1e-7 m/s either way
+    noise = 1e-5 * s["roll_surface_speed"]
+    assert np.all(c["v_slip"][before] < noise)
+    assert np.all(c["v_slip"][~before] > -noise)
     # friction pulls the plate in before the neutral point and holds it back after it
-    assert np.all(c["shear_stress"][before] > 0) and np.all(c["shear_stress"][~before] < 0)
+    moving = np.abs(c["v_slip"]) > noise
+    assert np.all(c["shear_stress"][before & moving] > 0)
+    assert np.all(c["shear_stress"][~before & moving] < 0)
 
 
 @pytest.mark.parametrize("fixture", ALL)
@@ -275,33 +301,53 @@ def test_free_exit_surface_penalises_vertical_motion_only():
     assert abs(on("top", run.form.free_normal(vel) ** 2) - on("top", (vel * nh) ** 2)) < 1e-12
 
 
-@pytest.mark.parametrize("pair", [("steady_slipping", "slipping"),
-                                  ("steady_estimated", "estimated")])
-def test_steady_agrees_with_transient(pair, request):
-    """The direct steady solve against the report's scheme on the same mesh size.
-
-    Measured (h = 0.02, a_f = 3 / estimated): forward slip 2.23 vs 2.53 % / 2.46 vs 2.89 %,
-    neutral angle 0.035 vs 0.044 / 0.051 vs 0.079 rad, a_f 1120 vs 1097, torque -8 / -13 %,
-    roll force -21 / -13 %. The transient's forward slip swings by
-    +-0.5 points with the contact projection, and its mass flux out exceeds the flux in by
-    0.5 % (the projections add volume), which enters its slip one to one: hence 0.5 points.
-    The transient run is not steady at 0.2 s
-    and its top is still held near its initial flat shape by the penalty (3.2d): ~10 % of its
-    roll power goes into the penalties at the entry corner (the steady strip 4-7 %), which
-    loads the first contact nodes; the steady tops are traced to traction-free streamlines.
-    The roll force, which that corner dominates, is the loosest figure.
-    """
+@pytest.mark.parametrize("pair, bounds", [
+    # measured (h = 0.02, a_f = 3): force +0.8 %, torque +2.8 %, slip +0.17 points,
+    # neutral angle +0.004 rad
+    (("steady_slipping", "settled"), {"force": 0.03, "torque": 0.05, "slip": 3e-3,
+                                      "angle": 0.01, "plastic": 0.05}),
+    # measured: force -8 %, torque -2 %, slip -0.06 points, angle +0.008 rad, plastic power
+    # -5.5 %; the transient's flat tops end at the discrete first contact node, 1 h = 0.02 m
+    # wide here
+    (("steady_constrained", "settled_constrained"), {"force": 0.12, "torque": 0.05,
+                                                     "slip": 3e-3, "angle": 0.015,
+                                                     "plastic": 0.08}),
+])
+def test_steady_agrees_with_transient(pair, bounds, request):
+    """The direct steady solve against the report's scheme run to its steady state, same
+    model (free-surface model, friction, penalties) and mesh size."""
     s, _, _ = request.getfixturevalue(pair[0])
     t, _, _ = request.getfixturevalue(pair[1])
     assert s["method"] == "steady" and t["method"] == "transient"
-    assert s["converged"] and s["fixed_point_settled"]
-    assert abs(s["forward_slip"] - t["forward_slip"]) < max(0.002, t["mass_flux_error"] * 1.1)
-    assert abs(s["neutral_angle"] - t["neutral_angle"]) < 0.1 * math.acos(1 - 0.05 / 0.6)
-    assert s["a_f"] == pytest.approx(t["a_f"], rel=0.1)
-    assert s["plastic_power"] == pytest.approx(t["plastic_power"], rel=0.07)
-    assert s["roll_torque"] == pytest.approx(t["roll_torque"], rel=0.15)
-    assert s["roll_force"] == pytest.approx(t["roll_force"], rel=0.3)
-    assert s["roll_force"] < t["roll_force"]
+    assert s["free_surface"] == t["free_surface"]
+    assert s["converged"] and s["fixed_point_settled"] and t["status"] == "steady"
+    assert s["roll_force"] == pytest.approx(t["roll_force"], rel=bounds["force"])
+    assert s["roll_torque"] == pytest.approx(t["roll_torque"], rel=bounds["torque"])
+    assert abs(s["forward_slip"] - t["forward_slip"]) < bounds["slip"]
+    assert abs(s["neutral_angle"] - t["neutral_angle"]) < bounds["angle"]
+    assert s["plastic_power"] == pytest.approx(t["plastic_power"], rel=bounds["plastic"])
+
+
+@pytest.mark.parametrize("fixture", ["steady_slipping", "steady_estimated", "steady_constrained"])
+def test_force_balance(fixture, request):
+    """The plate's forces close: roll + free tops + faces + symmetry reaction = 0, the last
+    from the residual of the volume terms (a roll force scaled by 1.1 breaks it). Traced tops
+    carry nothing, so the roll's horizontal force vanishes (no tension) and its vertical force
+    is the symmetry line's reaction; constrained tops carry part of the load (measured: 36 %
+    of the roll force at a_f = 5)."""
+    s, _, _ = request.getfixturevalue(fixture)
+    fb = s["force_balance"]
+    roll = fb["roll"]
+    assert -roll[1] == pytest.approx(s["roll_force"], rel=1e-12)
+    assert s["balance_error"] < 1e-4
+    total = np.sum([fb[k] for k in ("roll", "free_top", "face", "symmetry")], axis=0)
+    assert np.hypot(*total) < 1e-4 * s["roll_force"]
+    if s["free_surface"] == "traced":
+        assert abs(roll[0]) < 1e-3 * abs(roll[1])
+        assert fb["free_top"] == [0.0, 0.0]
+        assert fb["symmetry"][1] == pytest.approx(s["roll_force"], rel=1e-3)
+    else:
+        assert 0.2 < s["free_top_force_share"] < 0.6
 
 
 def test_steady_outputs_and_unit_independence(tmp_path_factory, steady_slipping):

@@ -31,14 +31,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..discretisation.mesh import build_steady_mesh, top_height
+from ..discretisation.mesh import build_steady_mesh
 from ..discretisation.rolling_form import PenaltyTable, RollingForm
 from ..physics.friction import ViscoplasticFriction
 from ..physics.friction_estimate import estimate_a_f
 from ..physics.material import NortonHoff
 from ..post import quantities as Q
 from ..process.contact import TopBoundary
-from ..process.free_surface import StripShape, top_height_function, trace_top
+from ..process.free_surface import StripMap, StripShape, kinematic_update
 from .nonlinear import LinearSolveError, SolveStats, newton
 from .threads import solver_threads
 from .transient import RollingModel, TransientState
@@ -57,13 +57,11 @@ class SteadySettings:
     m_path: tuple[float, ...] = ()   # continuation in m ending at the target (() : direct)
     stage_tol: float = 1e-2          # Newton tolerance on the intermediate stages
     fine_margin: float = 0.25        # fine mesh this many contact lengths (+4h) around the arc
-    free_surface: bool = True        # free tops as streamlines (False: the flat tops fixed)
-    surface_tol: float = 1e-3        # shape converged when no top node moves more than this x h
+    free_surface: str = "traced"     # "traced": streamline tops; "constrained": flat, (3.2d)
+    surface_tol: float = 1e-2        # shape converged when no traced top moves more than this x h
     max_outer: int = 30              # a_f / free-surface updates at the target m
     couple_below: float = 1e-2       # update them once the Newton update (at the P2 nodes) is
                                      # below this x U
-    relax: float = 0.5               # under-relaxation of the free-surface update (first)
-    aitken_max: float = 10.0         # largest Aitken factor of the free-surface update
 
 
 def default_lengths(rp) -> tuple[float, float]:
@@ -82,13 +80,11 @@ def continuation_path(m: float) -> list[float]:
 @dataclass
 class WarmStart:
     """A solved steady state that a neighbouring case on the same mesh can start from: its
-    velocity-pressure vector, strip shape (displacement), a_f, the noise floor its free-surface
-    fixed point stagnated at, and the m and roll speed it was solved for."""
+    velocity-pressure vector, strip shape, a_f, and the m and roll speed it was solved for."""
 
     solution: np.ndarray
-    displacement: np.ndarray
+    shape: StripShape
     a_f: float
-    noise_floor: float
     m: float
     u_roll: float
     mesh_key: str
@@ -104,15 +100,13 @@ def mesh_key(mesh) -> str:
 class SteadyResult:
     stats: list = field(default_factory=list)   # SolveStats per solve
     rows: list = field(default_factory=list)    # measured figures after each solve
-    surface_moves: list = field(default_factory=list)   # largest top-node move per update, m
+    surface_moves: list = field(default_factory=list)   # surface residual per update, m
     a_f_history: list = field(default_factory=list)
     wall_time: float = 0.0
     mesh_time: float = 0.0
 
     settled: bool = False        # a_f and the free surface reached their fixed point
     fallback: bool = False       # the direct solve failed; solved again along m = 1 -> target
-    contact_cycle: bool = False  # the first contact node alternated between two neighbours
-    stagnated: bool = False      # the fixed point stopped at a noise floor above the tolerances
     warm_failed: bool = False    # the warm start did not converge; solved again from cold
 
     @property
@@ -125,12 +119,15 @@ class SteadyResult:
 
 
 class SteadyRun:
-    """The steady strip, its form and the continuation Newton solve."""
+    """The steady strip, its form and the coupled Newton solve."""
 
     def __init__(self, model: RollingModel, settings: SteadySettings, plate_length: float):
         import ngsolve
 
         t0 = time.perf_counter()
+        if settings.free_surface not in ("traced", "constrained"):
+            raise ValueError(f"plate.free_surface must be 'traced' or 'constrained', got "
+                             f"{settings.free_surface!r}")
         self.model, self.s = model, settings
         rp, mat = model.rp, model.material
         up, down = default_lengths(rp)
@@ -142,19 +139,23 @@ class SteadyRun:
                                       + 4 * model.h)
         reduced = NortonHoff(1.0, mat.m, mat.eps0)
         friction = ViscoplasticFriction(1.0, mat.m, model.v_reg)
-        self.form = RollingForm(self.mesh, rp, reduced, friction, PenaltyTable(model.h))
+        self.form = RollingForm(self.mesh, rp, reduced, friction, PenaltyTable(model.h),
+                                free_surface=settings.free_surface)
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.d = self.disp.vec.FV().NumPy()
         self.top = TopBoundary(self.mesh, V.ndof // 2)
-        self._set_shape()   # the arc is the contact, its P2 midpoints projected onto the roll
+        # reference shape: the arc's P2 midpoints on the roll; the contact is the arc
+        self.top.detect(rp, self.d, settings.contact_tol, project_contact=True)
         self.d_ref = self.d.copy()
-        self.shape = StripShape(self.mesh, V.ndof // 2)
-        self.contact_start = rp.x_touch
+        self.arc = self.top.region == "arc"
+        self.map = StripMap(rp, self.mesh, V.ndof // 2, self.d_ref, rp.x_touch - self.upstream)
+        self.shape = StripShape.flat(rp)
+        self._set_shape()
+        self._top_part = self._top_parts()
         self.mesh_key = mesh_key(self.mesh)
         self.mesh_time = time.perf_counter() - t0
         self.record = True    # measure after every solve (history.csv); off in benchmarks
-        self.noise_floor = 0.0  # change (in tolerances) at which the last fixed point stagnated
 
     # --- the interface the runner shares with TransientRun -------------------------------------
     window = 1           # summary scalars: the last (converged) row
@@ -174,6 +175,10 @@ class SteadyRun:
     @property
     def last_stats(self) -> SolveStats:
         return self.result.stats[-1]
+
+    @property
+    def contact_start(self) -> float:
+        return self.shape.x_c
 
     def measure(self, stats: SolveStats, index: int) -> dict:
         row = {"step": index, "time": math.nan, "m": self.form.m.Get()}
@@ -206,14 +211,14 @@ class SteadyRun:
     # --- the solve ------------------------------------------------------------------------------
     def warm_start(self) -> WarmStart:
         """This run's solved state, to start a neighbouring case from."""
-        return WarmStart(self.solution, self.d.copy(), self.form.a_f.Get(), self.noise_floor,
+        return WarmStart(self.solution, self.shape.copy(), self.form.a_f.Get(),
                          self.form.m.Get(), self.model.rp.u_roll, self.mesh_key)
 
     def solve(self, warm: WarmStart | None = None, progress=None) -> SteadyResult:
         """Newton at the target m from the kinematic guess (cold) or from ``warm`` (a neighbour's
         solution on the same mesh), with a_f (3.15) and the free surface updated inside the
         iteration."""
-        f, s, res = self.form, self.s, SteadyResult(mesh_time=self.mesh_time)
+        s, res = self.s, SteadyResult(mesh_time=self.mesh_time)
 
         def record(st):
             if self.record:
@@ -223,7 +228,7 @@ class SteadyRun:
 
         target = self.model.material.m
         t0 = time.perf_counter()
-        vec = f.problem.gf.vec.FV().NumPy()
+        vec = self.form.problem.gf.vec.FV().NumPy()
         with solver_threads():
             if warm is not None:
                 self._warm(warm, vec, target)
@@ -234,7 +239,6 @@ class SteadyRun:
                 # a neighbour too far off (or a broken state): start again from cold
                 res.warm_failed = not res.stats[-1].converged
             if warm is None or res.warm_failed:
-                self.noise_floor = 0.0
                 self._cold_start()
                 path = list(s.m_path) or [target]
                 self._follow(path, res, record)
@@ -255,14 +259,13 @@ class SteadyRun:
         nv = self.form.problem.n_velocity_dofs()
         vec[:nv] = ratio * warm.solution[:nv]
         vec[nv:] = ratio**target * warm.solution[nv:]
-        self.d[:] = warm.displacement
+        self.shape = warm.shape.copy()
         self._set_shape()
-        self.noise_floor = warm.noise_floor
         self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else warm.a_f)
 
     def _cold_start(self) -> None:
         """Reference strip shape, kinematic velocity guess and a_f (3.15) from it."""
-        self.d[:] = self.d_ref
+        self.shape = StripShape.flat(self.model.rp)
         self._set_shape()
         self._kinematic_guess()
         self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else self._estimate_a_f())
@@ -271,7 +274,6 @@ class SteadyRun:
         """Loose Newton solves at the intermediate m of ``path``, then the coupled Newton at the
         last: a_f and the surface updated inside it until they settle (or ``max_outer``)."""
         f, s = self.form, self.s
-        self._contacts, self._aitken_state = [], {}
         for m in path[:-1]:
             f.m.Set(m)
             st = newton(f.problem, s.stage_tol, s.max_it)
@@ -279,87 +281,67 @@ class SteadyRun:
             self._update_coupled(res)
             record(st)
         f.m.Set(path[-1])
-        state = {"settled": False, "changes": []}
+        state = {"settled": False, "updates": 0}
 
         def couple() -> bool:
             """One a_f / surface update; False once settled (or at the cap): freeze."""
-            changes = state["changes"]
-            if state["settled"] or len(changes) >= s.max_outer:
+            if state["settled"] or state["updates"] >= s.max_outer:
                 return False
-            changes.append(self._update_coupled(res))
-            # settled: converged, or stagnated at a noise floor (the smallest change of the
-            # last 5 updates no smaller than that of the 5 before)
-            res.stagnated = len(changes) >= 10 and min(changes[-5:]) >= min(changes[-10:-5])
-            # a warm start knows the noise floor of the solve it started from
-            state["settled"] = changes[-1] <= max(1.0, self.noise_floor) or res.stagnated
-            if res.stagnated:
-                self.noise_floor = min(changes[-5:])
+            state["updates"] += 1
+            state["settled"] = self._update_coupled(res) <= 1.0
             record(SolveStats(iterations=0, converged=False))
             return True
 
-        st = newton(f.problem, s.tol, s.max_it + 3 * s.max_outer, couple=couple,
-                    couple_below=s.couple_below)
+        coupled = s.a_f is None or s.free_surface == "traced"
+        st = newton(f.problem, s.tol, s.max_it + 3 * s.max_outer,
+                    couple=couple if coupled else None, couple_below=s.couple_below)
         res.stats.append(st)
-        res.settled = state["settled"] or not (s.a_f is None or s.free_surface)
+        res.settled = state["settled"] or not coupled
         record(st)
 
     def _update_coupled(self, res: SteadyResult) -> float:
-        """Update a_f (3.15) and the free surface; return the change in units of tolerance.
-
-        A contact edge that comes or goes counts as not converged, unless the contact set
-        returns to the one of two updates before (the first contact node alternating between
-        two neighbours: the contact start is then resolved to one edge, reported as
-        ``contact_cycle``).
-        """
+        """Update a_f (3.15) and the free surface; return the change in units of tolerance."""
         s, f, change = self.s, self.form, 0.0
         if s.a_f is None:
             a_old, a_new = f.a_f.Get(), self._estimate_a_f()
             res.a_f_history.append(a_new)
             f.a_f.Set(a_new)
             change = abs(a_new - a_old) / (s.a_f_rtol * a_new)
-        if s.free_surface:
-            contact = self.top.edge_contact.copy()
+        if s.free_surface == "traced":
             moved = self.update_surface()
             res.surface_moves.append(moved)
             change = max(change, moved / (s.surface_tol * self.model.h))
-            new = self.top.edge_contact.copy()
-            if not np.array_equal(contact, new):
-                if len(self._contacts) >= 2 and np.array_equal(self._contacts[-2], new):
-                    res.contact_cycle = True
-                else:
-                    change = max(change, 2.0)   # a contact edge came or went: not settled
-            self._contacts.append(new)
         return change
 
-    def update_surface(self) -> float:
-        """Re-trace the free tops as streamlines, move the mesh, re-detect the contact (3.9).
+    def _top_parts(self) -> np.ndarray:
+        """Part of every top P2 node (vertices, then edge midpoints, as ``Q.top_nodes``):
+        0 free entry top, 1 contact (arc), 2 free exit top."""
+        top, rp = self.top, self.model.rp
+        xv = top.X0[top.verts, 0]
+        verts = np.where(top.vertex_contact, 1, np.where(xv < rp.x_touch, 0, 2))
+        mids = np.select([top.region == "top", top.region == "arc"], [0, 1], 2)
+        return np.concatenate([verts, mids])
 
-        Returns the largest vertical move of a top node (m).
-        """
-        rp = self.model.rp
-        tp = Q.top_profile(self.form, self.top, self.d)
-        # the strip is flat and rigid more than the default entry length ahead of the bite;
-        # tracing from there keeps the result independent of a longer entry
-        y_new = tp["y"].copy()
-        k = tp["x"] >= rp.x_touch - default_lengths(rp)[0]
-        y_new[~k] = rp.half_entry
-        y_new[k], start = trace_top(rp, tp["x"][k], tp["v1"][k], tp["v2"][k], rp.half_entry,
-                                    rp.axis_x)
-        self.contact_start = start
-        r = y_new - tp["y"]
-        ex = tp["x"] > rp.axis_x
-        y_new = tp["y"] + np.where(ex, self._aitken("exit", r * ex, self.s.aitken_max),
-                                   self._aitken("entry", r * ~ex, self.s.aitken_max)) * r
-        moved = float(np.max(np.abs(y_new - tp["y"])))
-        height = top_height_function(tp["x"], y_new)
-        self.d[:] = self.shape.scale(self.d_ref, lambda x: top_height(rp, x), height)
+    def update_surface(self) -> float:
+        """Trace the free tops along the flow, move the contact start, remap the mesh.
+
+        Returns the largest distance (m) between a traced top and the current one."""
+        top, rp = self.top, self.model.rp
+        vel = self.form.problem.gf.vec.FV().NumPy()
+        xy = np.vstack([top.vertex_positions(self.d), top.midpoint_positions(self.d)])
+        v = np.vstack([top.vertex_values(vel), top.midpoint_values(vel)])
+        order = np.argsort(xy[:, 0], kind="stable")
+        x_up = rp.x_touch - default_lengths(rp)[0]
+        self.shape, residual = kinematic_update(rp, self.shape, xy[order], v[order],
+                                                self._top_part[order], x_up,
+                                                self.map.x_bounds())
         self._set_shape()
-        return moved
+        return residual
 
     def _set_shape(self) -> None:
-        """After a change of the displacement d: contact (3.9) with the contact nodes projected
-        onto the roll, the contact indicator, the mesh deformation."""
-        self.top.detect(self.model.rp, self.d, self.s.contact_tol, project_contact=True)
+        """Map the mesh onto ``self.shape``; the contact is the arc's chain of edges."""
+        self.d[:] = self.map.displacement(self.shape)
+        self.top.set_contact_edges(self.arc)
         self.top.write_indicator(self.form.chi.vec.FV().NumPy())
         self.mesh.SetDeformation(self.disp)
 
@@ -379,23 +361,6 @@ class SteadyRun:
         q = rp.u_roll * rp.half_exit
         self.form.problem.gf.vec[:] = 0.0
         self.form.problem.gf.components[0].Set(CF((q / H, q * y * dH / H**2)))
-
-    def _aitken(self, key: str, r: np.ndarray, w_max: float) -> float:
-        """Aitken's relaxation factor for one part of the surface fixed point y <- y + w r:
-        w_k = -w_{k-1} r_{k-1}.(r_k - r_{k-1}) / |r_k - r_{k-1}|^2, kept in [relax, w_max],
-        and back to ``relax`` when the residual grows (the safeguard against overshooting).
-
-        The tops' fixed point has slow, smooth modes (the top creeps by about the same amount
-        each update, see the module docstring); Aitken's factor extrapolates along them."""
-        prev, w = self._aitken_state.get(key, (None, self.s.relax))
-        if prev is not None:
-            dr = r - prev
-            if float(r @ r) > float(prev @ prev):
-                w = self.s.relax
-            elif float(dr @ dr) > 0.0:
-                w = float(np.clip(-w * float(prev @ dr) / float(dr @ dr), self.s.relax, w_max))
-        self._aitken_state[key] = (r.copy(), w)
-        return w
 
     @property
     def solution(self) -> np.ndarray:

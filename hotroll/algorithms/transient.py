@@ -81,6 +81,8 @@ class TransientSettings:
     a_f: float | None = None      # None: estimate (3.15) at every step
     a_f_max: float = 1e6
     a_f_start: float = 1.0        # a_f of the very first solve when estimating
+    free_surface: str = "traced"  # "traced": free tops move with the material, no (3.2d);
+                                  # "constrained": (3.2d) on them, held at their flat heights
 
 
 @dataclass
@@ -126,7 +128,8 @@ class TransientRun:
             self.mesh.ngmesh.Save(str(self.ckpt / "mesh.vol"))
         reduced = NortonHoff(1.0, mat.m, mat.eps0)
         friction = ViscoplasticFriction(1.0, mat.m, model.v_reg)
-        self.form = RollingForm(self.mesh, rp, reduced, friction, PenaltyTable(model.h))
+        self.form = RollingForm(self.mesh, rp, reduced, friction, PenaltyTable(model.h),
+                                free_surface=settings.free_surface)
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.top = TopBoundary(self.mesh, V.ndof // 2)
@@ -265,7 +268,27 @@ class TransientRun:
         self.state.step += 1
         self.state.time += self.s.dt
         self._detect(project=self.state.step % self.s.project_every == 0)
+        if self.s.free_surface == "constrained":
+            self._hold_free_tops()
         self.mesh.SetDeformation(self.disp)
+
+    def _hold_free_tops(self) -> None:
+        """Constrained model: (3.2d) says the free tops do not move normally; the flat tops
+        keep their heights (entry thickness before X_roll, the gap after it) and the nodes only
+        slide along them. Without this they creep by the penalty's leak v.n = sigma_n/gamma."""
+        rp, top = self.model.rp, self.top
+        free = ~self.top.vertex_contact
+        verts = top.verts[free]
+        xy = top.vertex_positions(self.d, verts)
+        xy[:, 1] = np.where(xy[:, 0] > rp.axis_x, rp.half_exit, rp.half_entry)
+        top.set_vertices(self.d, verts, xy)
+        rows = np.nonzero(~top.edge_contact)[0]
+        xm = top.midpoint_positions(self.d, rows)
+        ends = np.stack([top.vertex_positions(self.d, top.ea[rows])[:, 1],
+                         top.vertex_positions(self.d, top.eb[rows])[:, 1]], 1)
+        # a free edge's midpoint goes on the chord of its ends (flat edges: the flat height)
+        xm[:, 1] = ends.mean(axis=1)
+        top.set_midpoints(self.d, rows, xm)
 
     def _check_mesh(self) -> None:
         """Raise TangledMeshError if (3.7) has turned an element inside out (det J <= 0)."""

@@ -123,6 +123,9 @@ class PassConfig(_Section):
 class PlateConfig(_Section):
     length: float = _field(
         ..., "initial plate length, at least 3 x the projected contact length", "m", "> 0", gt=0)
+    free_surface: Literal["traced", "constrained"] = _field(
+        "traced", "free tops before and after the bite: traction-free streamlines (traced) or "
+        "held flat by the penalty (3.2d) (constrained)", "", '"traced" or "constrained"')
 
 
 class MaterialConfig(_Section):

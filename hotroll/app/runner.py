@@ -43,7 +43,7 @@ def build_model(case: Case):
         wall_time_limit=sv.wall_time_limit, checkpoint_every=sv.checkpoint_every,
         contact_tol=contact_tolerance(rp, case.dt),
         a_f=None if case.friction.a_f == "estimate" else float(case.friction.a_f),
-        a_f_max=case.friction.a_f_max)
+        a_f_max=case.friction.a_f_max, free_surface=case.plate.free_surface)
     return model, settings
 
 
@@ -57,7 +57,8 @@ def steady_settings(case: Case):
         a_f=None if case.friction.a_f == "estimate" else float(case.friction.a_f),
         a_f_max=case.friction.a_f_max, upstream=sv.steady_entry_length,
         downstream=sv.steady_exit_length, contact_tol=contact_tolerance(case.pass_.roll_pass(),
-                                                                        case.dt))
+                                                                        case.dt),
+        free_surface=case.plate.free_surface)
 
 
 def contact_tolerance(rp, dt: float) -> float:
@@ -186,6 +187,10 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
                                 "mass_flux_out", "plastic_power", "friction_power",
                                 "penalty_power", "outlet_penalty_power", "horizontal_force",
                                 "a_f", "contact_length")},
+        "force_balance": {part: [last.get(f"{part}_force_x", 0.0), last[f"{part}_force_y"]]
+                          for part in ("roll", "free_top", "face", "symmetry")},
+        "balance_error": last["balance_error"],
+        "free_top_force_share": last["free_top_force_share"],
         "power_balance_error": last["power_balance_error"],
         "penalty_share": last["penalty_share"],
         "mass_flux_error": abs(mean["mass_flux_out"] - mean["mass_flux_in"])
@@ -200,9 +205,8 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "coupling_updates": len(run.result.surface_moves or run.result.a_f_history)
         if steady_solver else None,
         "fixed_point_settled": bool(run.result.settled) if steady_solver else None,
-        "contact_cycle": bool(run.result.contact_cycle) if steady_solver else None,
-        "fixed_point_stagnated": bool(run.result.stagnated) if steady_solver else None,
-        "last_surface_move_h": float(run.result.surface_moves[-1] / run.model.h)
+        "free_surface": case.plate.free_surface,
+        "surface_residual_h": float(run.result.surface_moves[-1] / run.model.h)
         if steady_solver and run.result.surface_moves else None,
         "nonlinear_iterations": int(np.sum(iters)),
         "iterations_per_step": None if steady_solver else (

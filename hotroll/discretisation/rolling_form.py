@@ -52,10 +52,11 @@ class RollingForm:
     """Spaces, parameters and the Newton/Picard forms of (3.6) on one (moving) mesh."""
 
     def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: ViscoplasticFriction,
-                 penalties: PenaltyTable):
+                 penalties: PenaltyTable, free_surface: str = "constrained"):
         from ngsolve import FacetFESpace, GridFunction, Parameter
 
         self.mesh, self.rp = mesh, rp
+        self.free_surface = free_surface
         self.material, self.friction, self.penalties = material, friction, penalties
         self.fes = taylor_hood(mesh, dirichlety="sym")
         self.m = Parameter(material.m)      # set to 1 for the very first iterate (Section 3.4)
@@ -130,8 +131,9 @@ class RollingForm:
 
         inlet = self.inlet_penalty(u, w) * v[0]
         outlet = self.outlet_penalty(u, w) * v[0]
-        free = (gam_s * self.free_normal(u) * self.free_normal(v)
-                + IfPos(x - rp.axis_x, outlet, inlet))
+        free = IfPos(x - rp.axis_x, outlet, inlet)
+        if self.free_surface == "constrained":
+            free = free + gam_s * self.free_normal(u) * self.free_normal(v)
 
         return ((chi * contact + (1.0 - chi) * free) * ds(TOP)
                 + inlet * ds("in")

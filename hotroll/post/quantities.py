@@ -159,8 +159,8 @@ def integrals(form: RollingForm, K: float) -> dict:
 
     inlet = form.inlet_penalty(u, u) * u[0]
     outlet = form.outlet_penalty(u, u) * u[0]
-    free_pen = bnd((1 - chi) * (gam * form.free_normal(u) ** 2
-                                + IfPos(x - rp.axis_x, outlet, inlet)))
+    top_pen = gam * form.free_normal(u) ** 2 if form.free_surface == "constrained" else 0.0
+    free_pen = bnd((1 - chi) * (top_pen + IfPos(x - rp.axis_x, outlet, inlet)))
     face_pen = bnd(inlet, mesh.Boundaries("in")) + bnd(outlet + gam * u[1] ** 2,
                                                       mesh.Boundaries("out"))
     contact_pen = bnd(chi * gam * (u * n) ** 2)
@@ -181,10 +181,65 @@ def integrals(form: RollingForm, K: float) -> dict:
         "slip_measure": bnd(chi * IfPos(s * s, (s * s) ** (p / 2), 0.0)),
         "strain_rate_measure": float(Integrate((3.0 * e2 + 1e-300) ** (p / 2), mesh, VOL)),
     }
+    out.update(force_balance(form, K))
     out["volume_v_p"], out["backward_length"] = a_f_inputs(form)
     bal = out["plastic_power"] + out["friction_power"] + out["penalty_power"]
     out["power_balance_error"] = abs(out["roll_power"] - bal) / max(abs(out["roll_power"]), 1e-300)
     out["penalty_share"] = out["penalty_power"] / max(abs(out["roll_power"]), 1e-300)
+    return out
+
+
+def force_balance(form: RollingForm, K: float) -> dict:
+    """Forces on the plate (N/m, x and y) from each part of its boundary, and the closure error.
+
+    Each is the boundary term of (3.6) tested with a constant vector e_x or e_y (its traction is
+    minus the term's integrand): the roll contact (penalty + friction), the penalties on the free
+    tops ((3.2d) in the constrained model, the one-sided (3.2a)/(3.2b)), and on the cut faces
+    ((3.2a), (3.2b), T*). The symmetry line's reaction is the residual of (3.6) in its Dirichlet
+    rows (v_y = 0), summed over its vertices: computed from the volume terms, not from the roll.
+    The parts sum to the residual of the free rows, zero at a converged solve:
+    ``balance_error`` = |sum| / roll force. ``free_top_force_share``: |free-top force| / roll force.
+    """
+    import numpy as np
+    from ngsolve import BND, CF, Integrate, IfPos, x
+
+    mesh, rp = form.mesh, form.rp
+    u, chi = form.problem.velocity, form.chi
+    n, t = form.roll_frame()
+    gam = form.penalties.surface(x, rp.soft_zone)
+    s = form.slip(u)
+    kf = form.friction.coefficient(form.a_f, s * s, m=form.m, K=1.0)
+    ex = CF((1.0, 0.0))
+    roll_term = kf * s * t + gam * (u * n) * n
+    top_term = IfPos(x - rp.axis_x, form.outlet_penalty(u, u), form.inlet_penalty(u, u)) * ex
+    if form.free_surface == "constrained":
+        nf = IfPos(x - rp.axis_x, CF((0.0, 1.0)), __import__("ngsolve").specialcf.normal(2))
+        top_term = top_term + gam * form.free_normal(u) * nf
+    faces = {"in": form.inlet_penalty(u, u) * ex,
+             "out": form.outlet_penalty(u, u) * ex + gam * u[1] * CF((0.0, 1.0))}
+
+    def force(term, region):
+        return [-K * float(Integrate(term[i], mesh, BND, definedon=mesh.Boundaries(region)))
+                for i in range(2)]
+
+    roll = force(chi * roll_term, TOP)
+    tops = force((1 - chi) * top_term, TOP)
+    face = np.add(force(faces["in"], "in"), force(faces["out"], "out"))
+    # symmetry reaction: the residual of (3.6) in the Dirichlet rows v_y = 0, at the vertices
+    # (the constant e_y has coefficient 1 there and 0 on the edge bubbles)
+    problem = form.problem
+    r = problem.gf.vec.CreateVector()
+    problem.a_newton.Apply(problem.gf.vec, r)
+    nv = problem.n_velocity_dofs() // 2
+    rows = np.arange(nv, nv + form.mesh.nv)
+    fixed = ~problem.free_mask[rows]
+    sym_y = K * float(np.sum(r.FV().NumPy()[rows[fixed]]))
+    total = np.add(np.add(roll, tops), np.add(face, [0.0, sym_y]))
+    scale = max(abs(roll[1]), 1e-300)
+    out = {"balance_error": float(np.hypot(*total)) / scale,
+           "free_top_force_share": float(np.hypot(*tops)) / scale, "symmetry_force_y": sym_y}
+    for name, f in (("roll", roll), ("free_top", tops), ("face", face)):
+        out[f"{name}_force_x"], out[f"{name}_force_y"] = float(f[0]), float(f[1])
     return out
 
 

@@ -27,10 +27,11 @@ class TopBoundary:
             if el.mat in TOP_REGIONS:
                 e = el.edges[0].nr
                 a, b = (v.nr for v in el.vertices)
-                edges.append((e, a, b))
+                edges.append((e, a, b, TOP_REGIONS.index(el.mat)))
                 verts.update((a, b))
         arr = np.array(sorted(edges), dtype=int)
         self.edge, self.ea, self.eb = arr[:, 0], arr[:, 1], arr[:, 2]
+        self.region = np.array(TOP_REGIONS)[arr[:, 3]]          # top / arc / exit per edge
         self.verts = np.array(sorted(verts), dtype=int)
         self.vpos = {v: i for i, v in enumerate(self.verts)}   # vertex nr -> row in verts
         pts = np.array([mesh.vertices[i].point for i in range(mesh.nv)])[:, :2]
@@ -106,6 +107,12 @@ class TopBoundary:
             rows = np.nonzero(mmove)[0]
             self.set_midpoints(d, rows, rp.project(xm[rows]))
         return int(self.edge_contact.sum())
+
+    def set_contact_edges(self, edges: np.ndarray) -> None:
+        """Flag the edges ``edges`` (boolean per top edge) and their vertices as the contact."""
+        self.edge_contact = np.asarray(edges, dtype=bool).copy()
+        on = np.concatenate([self.ea[self.edge_contact], self.eb[self.edge_contact]])
+        self.vertex_contact = np.isin(self.verts, on)
 
     def write_indicator(self, chi_vec: np.ndarray) -> None:
         """Set the facet indicator (FacetFESpace order 0: one DOF per edge) to the contact flags."""
