@@ -12,6 +12,11 @@ for Example 2 (half the roll speed, twice the steps), with 2 threads:
     python scripts/agreement.py --meshes C2                    # all four cases, ~2 h
     python scripts/agreement.py --meshes C2 --cases example2 --threads 1
     python scripts/agreement.py --meshes 0.02 --end-time 0.02 --out /tmp/ag     # smoke test
+    python scripts/agreement.py --meshes C2 --cases example1 --free-surface traced,constrained \
+        --a-f estimate,5                   # the roll-force issue's table (Example 1)
+
+Runs go to DIR/<case>/<mesh>/<method> for the case file's own model and friction, and to
+DIR/<case>/<mesh>/<free_surface>_af<a_f>/<method> when --free-surface or --a-f are given.
 """
 from __future__ import annotations
 
@@ -26,7 +31,7 @@ from hotroll.app.examples import example_path
 
 CASES = {"example1": "1", "example2": "2", "example3_m015": "3, m = 0.15",
          "example3_m025": "3, m = 0.25"}
-COLUMNS = ["example", "mesh", "steady_its", "steady_s", "transient_steps", "transient_status",
+COLUMNS = ["example", "mesh", "free_surface", "a_f", "steady_its", "steady_s", "transient_steps", "transient_status",
            "transient_s", "angle_steady", "angle_transient", "d_angle", "force_steady",
            "force_transient", "d_force_pct", "torque_steady", "torque_transient",
            "d_torque_pct", "slip_steady_pct", "slip_transient_pct", "d_slip_points"]
@@ -51,6 +56,7 @@ def row(name: str, label: str, steady: dict, transient: dict) -> dict:
     t = transient if has_output(transient) else {}
     g = lambda d, k: math.nan if d.get(k) is None else d[k]  # noqa: E731
     out = {"example": CASES.get(name, name), "mesh": label,
+           "free_surface": s.get("free_surface"), "a_f": s.get("a_f"),
            "steady_its": s.get("nonlinear_iterations"), "steady_s": g(s, "wall_time_s"),
            "transient_steps": t.get("steps"), "transient_status": transient.get("status"),
            "transient_s": g(t, "wall_time_s")}
@@ -72,6 +78,12 @@ def main(argv: list[str] | None = None) -> int:
                    help="comma-separated Table 2 names and/or sizes h in m (default C2)")
     p.add_argument("--cases", type=list_arg(str), default=list(CASES),
                    help=f"comma-separated example cases (default {','.join(CASES)})")
+    p.add_argument("--free-surface", type=list_arg(str), default=None,
+                   help="comma-separated free-surface models (traced, constrained; default: "
+                        "the case file's)")
+    p.add_argument("--a-f", type=list_arg(str), default=None,
+                   help='comma-separated friction parameters: "estimate" or numbers (default: '
+                        "the case file's)")
     add_common_args(p, "results/agreement")
     args = p.parse_args(argv)
     for name in args.cases:
@@ -81,17 +93,24 @@ def main(argv: list[str] | None = None) -> int:
     over = common_overrides(args)
     rows, failed = [], 0
     title = "Steady solver against the report's scheme run to its steady state"
+    models = [(fs, af) for fs in (args.free_surface or [None]) for af in (args.a_f or [None])]
     for name in args.cases:
-        for mesh in args.meshes:
+        for mesh, (fs, af) in ((m, v) for m in args.meshes for v in models):
             label = mesh_label(mesh)
-            summaries = {}
+            summaries, extra, sub = {}, {}, ""
+            if fs is not None:
+                extra["plate.free_surface"] = fs
+            if af is not None:
+                extra["friction.a_f"] = af if af == "estimate" else float(af)
+            if extra:
+                sub = f"{fs or 'case'}_af{af or 'case'}"
             for method in ("steady", "transient"):
                 try:
                     case = load_case(example_path(name)).with_overrides(
-                        **over, **{"mesh.h_contact": mesh, "solver.method": method})
+                        **over, **extra, **{"mesh.h_contact": mesh, "solver.method": method})
                 except CaseError as e:
                     p.error(str(e))
-                out = args.out / name / label / method
+                out = args.out / name / label / sub / method
                 summaries[method] = run(case, out, f"{name} {label} {method}",
                                         resume=args.resume)
                 failed += not has_output(summaries[method])

@@ -1,23 +1,21 @@
-"""Direct steady state: the Eulerian rolling problem on the fixed steady strip (issue 3).
+"""Direct steady state: the Eulerian rolling problem on the steady strip (docs/theory.md 4b, 4d).
 
-The strip is the steady shape the report's scheme converges to: flat at the entry thickness up
-to the first touching point, the roll arc, flat at the roll gap after it. On it the same form
-(3.6) is solved once, with the same Norton-Hoff law, friction law, penalties (Table 1) and a_f
-rule (3.15) as the transient scheme; the arc is the contact Gamma_C, the flat tops are free
-(v.n = 0 is what makes them streamlines of a steady flow).
+The strip is flat at the entry thickness far upstream, follows the roll arc from the contact
+start to the gap, and leaves it at the gap. On it the same form (3.6) is solved, with the same
+Norton-Hoff law, friction law, penalties (Table 1) and a_f rule (3.15) as the transient scheme.
+
+Free-surface models (``SteadySettings.free_surface``): ``"constrained"`` keeps the flat tops of
+the geometric strip with the report's (3.2d) on them; ``"traced"`` makes the tops
+traction-free and moves them (and the contact start) until they are streamlines of the flow,
+by the kinematic update of ``process/free_surface.py`` on a mesh mapped onto the shape.
 
 Solve: Newton with a line search at the target m, started from a divergence-free slab flow
 through the strip (the kinematic guess) with a_f (3.15) evaluated on it. Once the Newton update
-is small, a_f and the free tops are updated inside the iteration (the tops re-traced as
-streamlines, the exit part accelerated by Aitken's relaxation) until both settle; the fields
-returned belong to the final a_f, shape and contact set. If the direct solve fails, it is redone
-along a continuation in m from 1 (steps of at most a factor 2). The volume integral of (3.15) is
-taken over a plate of the case's length: the steady window plus the rigid upstream rest at the
-entry velocity, so the steady and transient a_f are the same rule on the same plate.
-
-At the fixed point the free tops are streamlines of the computed flow, so the penalty (3.2d)
-carries no traction there: they are free surfaces. The transient scheme approaches that shape only
-slowly (its tops move by the penalty's leak), see docs/theory.md.
+is small, a_f and the free tops are updated inside the iteration until both settle; the fields
+returned belong to the final a_f and shape. If the direct solve fails, it is redone along a
+continuation in m from 1 (steps of at most a factor 2). The volume integral of (3.15) is taken
+over a plate of the case's length: the steady window plus the rigid upstream rest at the entry
+velocity, so the steady and transient a_f are the same rule on the same plate.
 
 Where the converged contact stress turns tensile the strip would leave the roll; that stretch is
 reported (``contact_loss``), not hidden.

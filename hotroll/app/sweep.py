@@ -77,6 +77,6 @@ class Sweep:
         return name, warm
 
     def add(self, case: Case, run) -> None:
-        """Remember a converged Newton solve (a settled or stagnated fixed point)."""
+        """Remember a converged Newton solve (its settled a_f and free surface)."""
         if run.result.stats and run.result.stats[-1].converged:
             self.solved.append((case.name, parameters(case), run.warm_start()))
