@@ -25,7 +25,7 @@ from __future__ import annotations
 import hashlib
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -54,7 +54,8 @@ class SteadySettings:
     contact_tol: float = 1e-5
     m_path: tuple[float, ...] = ()   # continuation in m ending at the target (() : direct)
     stage_tol: float = 1e-2          # Newton tolerance on the intermediate stages
-    fine_margin: float = 0.25        # fine mesh this many contact lengths (+4h) around the arc
+    fine_margin: float = 0.125       # fine mesh this many contact lengths (+4h) around the arc
+    core_factor: float = 4.0         # mesh size on the axis / h (at most half_exit/8)
     free_surface: str = "traced"     # "traced": streamline tops; "constrained": flat, (3.2d)
     surface_tol: float = 1e-2        # shape converged when no traced top moves more than this x h
     max_outer: int = 30              # a_f / free-surface updates at the target m
@@ -132,7 +133,12 @@ class SteadyRun:
         self.upstream = settings.upstream or up
         self.downstream = settings.downstream or down
         self.plate_length = plate_length
-        self.mesh = build_steady_mesh(rp, self.upstream, self.downstream, model.mesh,
+        # the interior carries little of the error: 4h on the axis (at least 8 elements
+        # through the exit half-thickness) halves the DOFs of the transient's 2h for the same
+        # roll force to 4e-5 (M2, docs/theory.md 4b)
+        core = max(1.0, min(settings.core_factor, rp.half_exit / (8.0 * model.h)))
+        spec = replace(model.mesh, core_factor=core)
+        self.mesh = build_steady_mesh(rp, self.upstream, self.downstream, spec,
                                       margin=settings.fine_margin * rp.contact_length
                                       + 4 * model.h)
         reduced = NortonHoff(1.0, mat.m, mat.eps0)
