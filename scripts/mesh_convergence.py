@@ -18,8 +18,12 @@ import argparse
 import math
 import sys
 
+from pathlib import Path
+
 import numpy as np
 from scipy.optimize import brentq
+
+from hotroll.app.config import CaseError, load_case
 
 from _common import (add_common_args, common_overrides, has_output, list_arg, make_case,
                      mesh_arg, mesh_label, print_table, run, write_table)
@@ -77,17 +81,28 @@ def main(argv: list[str] | None = None) -> int:
                    help="comma-separated Table 2 names and/or sizes h in m")
     p.add_argument("--free-surface", type=list_arg(str), default=["traced"])
     p.add_argument("--a-f", type=list_arg(str), default=["5", "estimate"])
+    p.add_argument("--case", type=Path, default=None,
+                   help="case file to study instead of Example 1 (its own mesh is replaced)")
     p.add_argument("--band-from", type=float, default=3.7e-3,
                    help="bands over meshes with h at most this (m; default M1's 3.7e-3)")
     add_common_args(p, "results/mesh_convergence")
     args = p.parse_args(argv)
     over = common_overrides(args)
     rows, summaries, failed = [], [], 0
+
+    def build(**kw):
+        if args.case is None:
+            return make_case(p, **kw)
+        try:
+            return load_case(args.case).with_overrides(**kw)
+        except CaseError as e:
+            p.error(str(e))
+
     for fs in args.free_surface:
         for af in args.a_f:
             series = []
             for mesh in args.meshes:
-                case = make_case(p, **over, **{
+                case = build(**over, **{
                     "mesh.h_contact": mesh, "solver.method": "steady",
                     "plate.free_surface": fs,
                     "friction.a_f": af if af == "estimate" else float(af)})
@@ -110,6 +125,7 @@ def main(argv: list[str] | None = None) -> int:
              "from the three finest converged meshes."]
     write_table(summaries, SUMMARY, args.out / "mesh_convergence_summary",
                 title="Mesh convergence: bands, observed order, extrapolated force", notes=notes)
+    print(f"tables: {args.out / 'mesh_convergence.md'}, {args.out / 'mesh_convergence_summary.md'}")
     print_table(rows, COLUMNS, "Steady solver: mesh convergence (Example 1)")
     print_table(summaries, SUMMARY, "Bands, order, extrapolation")
     return 1 if failed else 0

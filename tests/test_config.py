@@ -66,7 +66,7 @@ def test_table_values():
     ("pass", "roll_angular_velocity", 0, "pass.roll_angular_velocity: must be > 0"),
     ("plate", "length", -4.0, "plate.length: must be > 0"),
     ("mesh", "h_contact", 0.0, "mesh.h_contact: must be"),
-    ("mesh", "h_contact", "Z9", "mesh.h_contact: must be one of C1"),
+    ("mesh", "h_contact", "Z9", "mesh.h_contact: must be \"auto\", one of C1"),
     ("pass", "exit_thickness", 0.5, "pass.exit_thickness: must be smaller than pass.entry_thickness"),
     ("pass", "exit_thickness", 0.6, "pass.exit_thickness: must be smaller"),
     ("material", "m", 0.0, "material.m: must be in (0, 1], got 0.0"),

@@ -13,7 +13,8 @@ import tomllib
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic import (BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator,
+                      model_validator)
 from pydantic.fields import FieldInfo
 
 from ..process.geometry import RollPass
@@ -149,20 +150,29 @@ class FrictionConfig(_Section):
 
 
 class MeshConfig(_Section):
-    h_contact: MeshName | PosFloat = _field(
-        "C2", "mesh size along the contact", "m", 'one of C1, C2, M1, M2, F1, F2 or a number > 0')
+    h_contact: Literal["auto"] | MeshName | PosFloat = _field(
+        "auto", "mesh size along the contact (auto: the coarsest size whose roll force is within "
+        "1 % of the mesh-converged one, docs/theory.md 4e)", "m",
+        '"auto", one of C1, C2, M1, M2, F1, F2 or a number > 0')
     h_far: PosFloat | None = _field(None, "coarse mesh size far from the roll (omit: automatic)",
                                     "m", "> 0 and >= h_contact")
     grading: float = _field(0.3, "mesh grading (size growth rate)", "", "in (0, 1]", gt=0, le=1)
 
+    _auto_h: float = PrivateAttr(default=float("nan"))   # set by Case from the pass geometry
+
     @field_validator("h_contact", mode="before")
     @classmethod
     def _upper_name(cls, v: Any) -> Any:
-        return v.strip().upper() if isinstance(v, str) else v
+        if isinstance(v, str):
+            v = v.strip()
+            return "auto" if v.lower() == "auto" else v.upper()
+        return v
 
     @property
     def h(self) -> float:
-        """Contact mesh size in m (Table 2 names resolved)."""
+        """Contact mesh size in m (Table 2 names and "auto" resolved)."""
+        if self.h_contact == "auto":
+            return self._auto_h
         return MESH_TABLE[self.h_contact] if isinstance(self.h_contact, str) else self.h_contact
 
 
@@ -211,6 +221,10 @@ class Case(_Section):
     @model_validator(mode="after")
     def _check_sizes(self) -> Case:
         lc, problems = self.pass_.contact_length, []
+        if self.mesh.h_contact == "auto":
+            from ..discretisation.mesh import auto_contact_size
+
+            self.mesh._auto_h = auto_contact_size(self.pass_.roll_pass())
         if self.plate.length < 3 * lc:
             problems.append(f"plate.length: must be >= 3 x projected contact length = "
                             f"{3 * lc:.6g} m, got {self.plate.length:g} m")

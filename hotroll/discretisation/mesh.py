@@ -31,6 +31,13 @@ class MeshSpec:
         return self.h_far if self.h_far else min(rp.half_entry / 4.0, 15.0 * self.h)
 
 
+def auto_contact_size(rp: RollPass) -> float:
+    """``h_contact = "auto"``: l_c/12 and at most a sixth of the exit half-thickness, the
+    coarsest size whose steady roll force is within 1 % of the mesh-converged value in the
+    refinement studies of docs/theory.md 4e (Example 1: within 0.2 %)."""
+    return min(rp.contact_length / 12.0, rp.half_exit / 6.0)
+
+
 def plate_geometry(rp: RollPass, length: float):
     """OCC face of the initial plate with named edges: the strip ending at the roll gap."""
     return _strip_geometry(rp, rp.axis_x - length, rp.axis_x)

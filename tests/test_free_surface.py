@@ -1,0 +1,138 @@
+"""The free-surface models (docs/theory.md 4d) and the automatic mesh size (4e).
+
+The traced tops must be streamlines of the computed flow (v.n = 0, checked on the FE field with
+the mesh normal, independently of the tracing code), the contact must start where the entry top
+meets the roll, the kinematic update must do what its formula says on data made by hand, and a
+case without ``h_contact`` must get the automatic size.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from hotroll.algorithms.steady import SteadyRun
+from hotroll.app.runner import build_model, steady_settings
+from hotroll.process.free_surface import StripShape, kinematic_update, roll_height, roll_slope
+from hotroll.process.geometry import RollPass
+
+from test_rolling import _case
+
+
+def _steady(**over) -> SteadyRun:
+    case = _case(**{"solver.method": "steady", "friction.a_f": 3.0, **over})
+    model, _ = build_model(case)
+    return SteadyRun(model, steady_settings(case), case.plate.length)
+
+
+def _rms_normal_velocity(run: SteadyRun) -> float:
+    """RMS of v.n (mesh normal) over the free tops, per unit roll speed."""
+    from ngsolve import BND, Integrate, specialcf
+
+    mesh, u = run.mesh, run.form.problem.velocity
+    free = (1 - run.form.chi)
+    n = specialcf.normal(2)
+    top = mesh.Boundaries("top|arc|exit")
+    vn2 = Integrate(free * (u * n) ** 2, mesh, BND, definedon=top, order=6)
+    length = Integrate(free, mesh, BND, definedon=top)
+    return math.sqrt(vn2 / length) / run.model.rp.u_roll
+
+
+@pytest.fixture(scope="module")
+def traced():
+    run = _steady()
+    run.run()
+    return run
+
+
+def test_traced_tops_are_streamlines(traced):
+    """At the converged shape v.n ~ 0 on the free tops up to discretisation error (measured
+    RMS 4.1e-3 U at h = 0.02, 2.4e-3 U at h = 0.01: the corners where the tops meet the roll);
+    the same flow on the flat tops, before any update, has 1.9e-2 U."""
+    assert traced.result.converged and traced.state.status == "steady"
+    assert traced.result.surface_moves[-1] < 1e-3 * traced.model.h
+    assert _rms_normal_velocity(traced) < 6e-3
+    flat = _steady(**{"solver.max_iterations": 30})
+    flat.s.max_outer = 0            # no surface update: the flat tops of the reference shape
+    flat.run()
+    assert _rms_normal_velocity(flat) > 3 * _rms_normal_velocity(traced)
+
+
+def test_contact_starts_where_the_entry_top_meets_the_roll(traced):
+    """The first contact node lies on the roll at x_c; the entry top sags ahead of the bite
+    (x_c > x_touch) and reaches the roll there continuously; the exit top leaves the roll at
+    the gap."""
+    rp, top, d = traced.model.rp, traced.top, traced.d
+    x_c = traced.shape.x_c
+    assert rp.x_touch < x_c < rp.x_touch + 0.1 * rp.contact_length
+    contact = top.vertex_positions(d, top.verts[top.vertex_contact])
+    first = contact[np.argmin(contact[:, 0])]
+    assert first[0] == pytest.approx(x_c, abs=1e-12)
+    assert abs(rp.signed_distance(first[None])[0]) < 1e-12
+    free = top.vertex_positions(d, top.verts[~top.vertex_contact])
+    before = free[free[:, 0] < x_c]
+    assert np.all(before[:, 1] <= rp.half_entry + 1e-3 * traced.model.h)   # no bulge
+    assert np.all(rp.signed_distance(free) > 0)  # no free node inside the roll
+    assert np.interp(rp.axis_x, traced.shape.exit_x, traced.shape.exit_y) == rp.half_exit
+
+
+def test_flat_shape_is_the_reference_mesh():
+    run = _steady()
+    before = run.d.copy()
+    run.shape = StripShape.flat(run.model.rp)
+    run._set_shape()
+    assert np.allclose(run.d, before, atol=1e-14)
+    assert np.array_equal(run.top.edge_contact, run.top.region == "arc")
+
+
+def test_kinematic_update_by_hand():
+    """Entry nodes with v_y/v_x = -s over the last L before x_c trace to h0 - s L at x_c; the
+    contact start moves by gap / roll slope; the exit top is traced from the gap."""
+    rp = RollPass(0.6, 0.25, 0.2, 1.0)
+    shape = StripShape.flat(rp)
+    x_c, s, L = shape.x_c, 0.01, 0.05
+    xs = np.linspace(x_c - 0.3, x_c, 61)
+    vx = np.full_like(xs, 0.5)
+    vy = np.where(xs > x_c - L, -s * vx, 0.0)
+    vy[-1] = -s * vx[-1]
+    ex = np.linspace(rp.axis_x + 0.01, rp.axis_x + 0.2, 20)
+    x = np.concatenate([xs[:-1], [x_c, 0.9, rp.axis_x], ex])
+    # the exit nodes on the line the trace gives (slope 0 at the gap, 0.01 after it)
+    y_ex = rp.half_exit + 0.5 * 0.01 * (ex[0] - rp.axis_x) + 0.01 * (ex - ex[0])
+    y = np.concatenate([np.full(len(xs) - 1, rp.half_entry), roll_height(rp, [x_c, 0.9]),
+                        [rp.half_exit], y_ex])
+    v = np.stack([np.concatenate([vx, [0.6, 0.6], np.full(len(ex), 0.62)]),
+                  np.concatenate([vy, [-0.1, 0.0], np.full(len(ex), 0.0062)])], axis=1)
+    part = np.concatenate([np.zeros(len(xs) - 1), [1, 1, 1], np.full(len(ex), 2)]).astype(int)
+    new, residual = kinematic_update(rp, shape, np.stack([x, y], 1), v, part, xs[0],
+                                     (rp.x_touch - 0.1, rp.axis_x - 0.1))
+    # trapezoidal rule on the kink at x_c - L is exact to half a node spacing of slope s
+    gap = -s * L
+    assert residual == pytest.approx(abs(gap), rel=0.05)
+    assert new.x_c == pytest.approx(x_c + gap / roll_slope(rp, x_c), rel=1e-3)
+    assert np.interp(new.x_c, new.entry_x, new.entry_y) == pytest.approx(
+        roll_height(rp, new.x_c), abs=1e-12)
+    assert np.allclose(np.interp(ex, new.exit_x, new.exit_y), y_ex, rtol=0, atol=1e-15)
+
+
+def test_automatic_mesh_size(tmp_path):
+    """A case without h_contact gets l_c/12, at most a sixth of the exit half-thickness;
+    Example 1's file keeps the report's C2."""
+    from hotroll.app.config import case_from_dict, load_case
+    from hotroll.app.examples import example_path
+
+    from test_rolling import BASE
+
+    d = {k: dict(v) if isinstance(v, dict) else v for k, v in BASE.items()}
+    d["mesh"] = {}
+    case = case_from_dict(d)
+    rp = case.pass_.roll_pass()
+    assert case.mesh.h_contact == "auto"
+    assert case.mesh.h == pytest.approx(min(rp.contact_length / 12, rp.half_exit / 6))
+    d["pass"] = dict(d["pass"], roll_radius=0.35, entry_thickness=0.025, exit_thickness=0.02)
+    thin = case_from_dict(d)
+    assert thin.mesh.h == pytest.approx(0.01 / 6)            # the thickness governs
+    assert thin.dt == pytest.approx(thin.mesh.h / 6)
+    assert "h_contact = \"auto\"" in thin.to_toml()
+    assert load_case(example_path("example1")).mesh.h_contact == "C2"
