@@ -10,6 +10,7 @@ wall times is printed (hours on C1..F2: not the default).
     python benchmarks/bench_steady.py                       # C1,C2,M1,M2,F1,F2
     python benchmarks/bench_steady.py --meshes C1,C2 --threads 2
     python benchmarks/bench_steady.py --meshes 0.01 --transient   # ratio on a coarse mesh
+    python benchmarks/bench_steady.py --meshes auto,C2,M2 --a-f estimate,5   # issue 14's targets
 """
 from __future__ import annotations
 
@@ -26,7 +27,8 @@ sys.path.insert(0, str(HERE.parent / "scripts"))
 
 from _common import example1, list_arg, mesh_arg, mesh_label, print_table, write_table  # noqa: E402
 
-COLUMNS = ["mesh", "dofs", "newton_iterations", "wall_s", "mesh_s", "factorisation_s",
+COLUMNS = ["mesh", "h", "a_f_rule", "dofs", "newton_iterations", "surface_updates", "wall_s",
+           "mesh_s", "factorisation_s",
            "outside_linear_share", "peak_memory_mb", "warm_iterations", "warm_s",
            "neutral_angle", "roll_force", "forward_slip", "a_f", "converged", "transient_s",
            "ratio"]
@@ -36,7 +38,7 @@ TRANSIENT_KEYS = ("status", "steps", "neutral_angle", "roll_force", "roll_torque
                   "forward_slip", "a_f", "iterations_per_step")
 
 
-def one(mesh, threads: int, transient: bool) -> dict:
+def one(mesh, threads: int, transient: bool, a_f: str = "estimate") -> dict:
     """Run one mesh in this process and return its row."""
     import ngsolve
 
@@ -46,7 +48,8 @@ def one(mesh, threads: int, transient: bool) -> dict:
     from hotroll.post import quantities as Q
 
     ngsolve.SetNumThreads(threads)
-    case = example1(**{"mesh.h_contact": mesh, "solver.method": "steady"})
+    case = example1(**{"mesh.h_contact": mesh, "solver.method": "steady",
+                       "friction.a_f": a_f if a_f == "estimate" else float(a_f)})
     model, _ = build_model(case)
     t0 = time.perf_counter()
     run = SteadyRun(model, steady_settings(case), case.plate.length)
@@ -62,7 +65,8 @@ def one(mesh, threads: int, transient: bool) -> dict:
     t1 = time.perf_counter()
     warm = run.solve(warm=run.warm_start())
     out = {
-        "mesh": mesh_label(mesh), "dofs": run.dofs, "newton_iterations": its,
+        "mesh": mesh_label(mesh), "h": model.h, "a_f_rule": a_f, "dofs": run.dofs,
+        "newton_iterations": its, "surface_updates": len(res.surface_moves),
         "wall_s": wall, "mesh_s": res.mesh_time, "factorisation_s": lin / max(its, 1),
         "outside_linear_share": 1.0 - lin / wall,
         "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,
@@ -88,19 +92,22 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--meshes", type=list_arg(mesh_arg),
                    default=["C1", "C2", "M1", "M2", "F1", "F2"])
     p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--a-f", type=list_arg(str), default=["estimate"],
+                   help='friction parameters: "estimate" and/or numbers (default estimate)')
     p.add_argument("--transient", action="store_true",
                    help="also run the transient scheme to steady state (slow) for the ratio")
     p.add_argument("--one", default=None, help=argparse.SUPPRESS)
     p.add_argument("--report", type=Path, default=HERE / "results" / "bench_steady")
     args = p.parse_args(argv)
     if args.one is not None:
-        print("ROW " + json.dumps(one(mesh_arg(args.one), args.threads, args.transient)))
+        print("ROW " + json.dumps(one(mesh_arg(args.one), args.threads, args.transient,
+                                      args.a_f[0])))
         return 0
     rows = []
     columns = COLUMNS + ([f"transient_{k}" for k in TRANSIENT_KEYS] if args.transient else [])
-    for mesh in args.meshes:
+    for mesh, a_f in ((m, a) for a in args.a_f for m in args.meshes):
         cmd = [sys.executable, __file__, "--one", mesh_label(mesh), "--threads",
-               str(args.threads)] + (["--transient"] if args.transient else [])
+               str(args.threads), "--a-f", a_f] + (["--transient"] if args.transient else [])
         proc = subprocess.run(cmd, capture_output=True, text=True)
         line = [ln for ln in proc.stdout.splitlines() if ln.startswith("ROW ")]
         if proc.returncode or not line:

@@ -28,10 +28,12 @@ def example1(**overrides: Any) -> Case:
 
 
 def mesh_arg(text: str) -> str | float:
-    """A contact mesh given as a Table 2 name (C1..F2, any case) or a size h in m."""
+    """A contact mesh given as a Table 2 name (C1..F2, any case), "auto" or a size h in m."""
     text = text.strip()
     if text.upper() in MESH_TABLE:
         return text.upper()
+    if text.lower() == "auto":
+        return "auto"
     try:
         h = float(text)
     except ValueError:

@@ -89,6 +89,7 @@ def main(argv: list[str] | None = None) -> int:
     args = p.parse_args(argv)
     over = common_overrides(args)
     rows, summaries, failed = [], [], 0
+    name = "Example 1" if args.case is None else str(args.case)
 
     def build(**kw):
         if args.case is None:
@@ -116,7 +117,7 @@ def main(argv: list[str] | None = None) -> int:
                 series.append(row)
                 rows.append(row)
                 write_table(rows, COLUMNS, args.out / "mesh_convergence",
-                            title="Steady solver: mesh convergence (Example 1)")
+                            title=f"Steady solver: mesh convergence ({name})")
             summaries.append(dict(series_summary(series, args.band_from), free_surface=fs,
                                   a_f=af))
     notes = ["SI units: force N/m, torque N m/m per unit width of the upper roll (K = 1), "
@@ -126,7 +127,7 @@ def main(argv: list[str] | None = None) -> int:
     write_table(summaries, SUMMARY, args.out / "mesh_convergence_summary",
                 title="Mesh convergence: bands, observed order, extrapolated force", notes=notes)
     print(f"tables: {args.out / 'mesh_convergence.md'}, {args.out / 'mesh_convergence_summary.md'}")
-    print_table(rows, COLUMNS, "Steady solver: mesh convergence (Example 1)")
+    print_table(rows, COLUMNS, f"Steady solver: mesh convergence ({name})")
     print_table(summaries, SUMMARY, "Bands, order, extrapolation")
     return 1 if failed else 0
 
