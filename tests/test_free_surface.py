@@ -138,3 +138,26 @@ def test_automatic_mesh_size(tmp_path):
     assert thin.dt == pytest.approx(thin.mesh.h / 6)
     assert "h_contact = \"auto\"" in thin.to_toml()
     assert load_case(example_path("example1")).mesh.h_contact == "C2"
+
+
+def test_smoothed_profile_keeps_linear_data_and_integrals():
+    """The plotted contact profile (P1 projection of the P2 nodal values): a linear profile is
+    reproduced exactly, a vertex/midpoint zigzag is removed, and the integral along the arc
+    (the force of the profile) is kept."""
+    from hotroll.post.quantities import smoothed
+
+    t = np.linspace(0.0, 1.0, 41)                       # 20 edges: vertex, midpoint, ...
+    prof = {"x": 0.2 * np.cos(t), "y": 0.2 * np.sin(t)}
+    s = 0.2 * t                                         # arc length
+    linear = 3.0 - 2.0 * s
+    assert np.allclose(smoothed(prof, linear), linear, atol=1e-12)
+    zigzag = linear + np.where(np.arange(41) % 2 == 1, 0.5, 0.0)    # midpoints lifted
+    sm = smoothed(prof, zigzag)
+    vertex = np.arange(0, 41, 2)
+    assert np.ptp(np.diff(sm[vertex])) < 0.1 * np.ptp(np.diff(zigzag))
+
+    def integral(v):       # Simpson on each edge = the integral of the P2 / P1 profile
+        L = np.diff(s[vertex])
+        return float(np.sum(L * (v[0:-1:2] + 4 * v[1::2] + v[2::2]) / 6))
+
+    assert integral(sm) == pytest.approx(integral(zigzag), rel=1e-12)

@@ -143,6 +143,8 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
     prof["normal_stress_corrected"] = (Q.exit_corrected(prof, run.model.h)
                                       if case.solver.exit_pressure_correction
                                       else prof["normal_stress"])
+    prof["normal_stress_smooth"] = Q.smoothed(prof, prof["normal_stress"])
+    prof["shear_stress_smooth"] = Q.smoothed(prof, prof["shear_stress"])
     write_csv(out / "contact.csv", prof)
     write_csv(out / "top.csv", Q.top_profile(run.form, run.top, run.d))
     write_csv(out / "history.csv", hist)

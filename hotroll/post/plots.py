@@ -466,20 +466,31 @@ def _fig_contact(run: _Run, path: Path) -> Path | None:
     _profile_panel(a_vs, x, vs, r"$v_s$ [m/s]", r"relative (slip) velocity $v_s$", "v_slip")
 
     sn, snc = _col(c, "normal_stress"), _col(c, "normal_stress_corrected")
+    sns = _col(c, "normal_stress_smooth")
     if sn is not None or snc is not None:
         if sn is not None:
-            a_sn.plot(x, sn, ".-", ms=3, label="raw")
+            a_sn.plot(x, sn, ".", ms=2.5, color="0.6", label="raw (nodal penalty reaction)")
+        if sns is not None:
+            a_sn.plot(x, sns, "-", lw=1.5, color="C0", label="P1 projection")
         if snc is not None:
-            a_sn.plot(x, snc, "--", lw=1.5, label="exit-corrected")
+            a_sn.plot(x, snc, "--", lw=1.2, color="C1", label="exit-corrected (raw)")
         a_sn.set_ylabel(r"$T_n\cdot n$ [Pa]")
         a_sn.set_title(r"normal contact stress $T_n\cdot n$ [Pa]")
         a_sn.legend(fontsize=8)
     else:
         _na(a_sn, "normal stress not available")
 
-    _profile_panel(a_st, x, _col(c, "shear_stress"), r"$T_\tau\cdot n_\tau$ [Pa]",
-                   r"tangential stress $T_\tau\cdot n_\tau$ [Pa]", "shear stress",
-                   color="tab:green")
+    st, sts = _col(c, "shear_stress"), _col(c, "shear_stress_smooth")
+    if sts is not None:
+        a_st.plot(x, st, ".", ms=2.5, color="0.6", label="raw (friction law at the nodes)")
+        _profile_panel(a_st, x, sts, r"$T_\tau\cdot n_\tau$ [Pa]",
+                       r"tangential stress $T_\tau\cdot n_\tau$ [Pa]", "shear stress",
+                       color="tab:green", label="P1 projection")
+        a_st.legend(fontsize=8)
+    else:
+        _profile_panel(a_st, x, st, r"$T_\tau\cdot n_\tau$ [Pa]",
+                       r"tangential stress $T_\tau\cdot n_\tau$ [Pa]", "shear stress",
+                       color="tab:green")
 
     if vs is not None:
         _zoom_slip(a_zoom, [(run, None)])

@@ -108,6 +108,41 @@ def measure(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: float, h: 
     return row
 
 
+def smoothed(profile: dict, values: np.ndarray) -> np.ndarray:
+    """L2 projection of a P2 contact profile onto continuous P1 along the arc (the plotted
+    profile; the raw nodal values stay in ``contact.csv``).
+
+    The contact nodes alternate vertex, edge midpoint, vertex, ... from entry to exit; on each
+    edge the raw values are the quadratic through its three nodes. The projection removes the
+    vertex/midpoint zigzag of the penalty reaction and keeps every integral against a linear
+    function, so the force and torque of the profile are unchanged. Returns the values at the
+    same nodes (midpoints: the mean of their vertices); the raw values if the nodes do not
+    alternate.
+    """
+    y = np.asarray(values, dtype=float)
+    n = len(y)
+    if n < 3 or n % 2 == 0:
+        return y.copy()
+    xy = np.stack([profile["x"], profile["y"]], -1)
+    seg = np.linalg.norm(np.diff(xy, axis=0), axis=1)
+    L = seg[0::2] + seg[1::2]                       # edge lengths (vertex to vertex)
+    ya, ym, yb = y[0:-1:2], y[1::2], y[2::2]
+    nv = len(L) + 1
+    diag = np.zeros(nv)
+    diag[:-1] += L / 3.0
+    diag[1:] += L / 3.0
+    off = L / 6.0
+    rhs = np.zeros(nv)
+    rhs[:-1] += L * (ya / 6.0 + ym / 3.0)
+    rhs[1:] += L * (ym / 3.0 + yb / 6.0)
+    M = np.diag(diag) + np.diag(off, 1) + np.diag(off, -1)
+    c = np.linalg.solve(M, rhs)
+    out = np.empty(n)
+    out[0::2] = c
+    out[1::2] = 0.5 * (c[:-1] + c[1:])
+    return out
+
+
 def contact_loss(profile: dict, normal_stress: np.ndarray, min_length: float) -> list:
     """Stretches [x_start, x_end] of the contact, at least ``min_length`` long along the arc,
     where the normal stress is tensile: there the strip would leave the roll."""
