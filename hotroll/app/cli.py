@@ -18,8 +18,13 @@ app = typer.Typer(help="Finite-element simulation of hot flat rolling.", no_args
 console = Console()
 err_console = Console(stderr=True)
 
-SUMMARY_KEYS = ["neutral_point", "neutral_angle", "roll_force", "roll_torque", "roll_power",
-                "forward_slip", "a_f", "converged", "steps", "wall_time_s"]
+SUMMARY_KEYS = ["status", "free_surface", "h_contact", "neutral_point", "neutral_angle",
+                "roll_force", "roll_torque", "roll_power", "forward_slip", "a_f", "balance_error",
+                "converged", "steps", "nonlinear_iterations", "wall_time_s"]
+#: Units of what the command line prints (per unit width of the upper roll).
+UNITS = {"h_contact": "m", "neutral_point": "m", "neutral_angle": "rad", "roll_force": "N/m",
+         "roll_torque": "N m/m", "roll_power": "W/m", "forward_slip": "-", "a_f": "m^-m",
+         "balance_error": "-", "wall_time_s": "s", "time": "s", "m": "-"}
 
 PROGRESS_KEYS = ["step", "time", "m", "a_f", "iterations", "roll_force", "neutral_angle",
                  "forward_slip", "message"]
@@ -78,7 +83,8 @@ class _Progress:
             return
         self.last = now
         keys = [k for k in PROGRESS_KEYS if k in info] or list(info)
-        parts = [f"{k}={_fmt(info[k])}" for k in keys if isinstance(info[k], (int, float, str, bool))]
+        parts = [f"{k}={_fmt(info[k])}" + (f" {UNITS[k]}" if k in UNITS and UNITS[k] != "-" else "")
+                 for k in keys if isinstance(info[k], (int, float, str, bool))]
         console.print(Text("  " + "  ".join(parts), style="dim"), soft_wrap=True)
 
 
@@ -100,9 +106,10 @@ def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
     table = Table(title=escape(f"{case.name}: summary"))
     table.add_column("quantity")
     table.add_column("value", justify="right")
+    table.add_column("unit")
     for key in SUMMARY_KEYS:
         if key in summary:
-            table.add_row(key, escape(_fmt(summary[key])))
+            table.add_row(key, escape(_fmt(summary[key])), escape(UNITS.get(key, "")))
     console.print(table)
     return summary
 
