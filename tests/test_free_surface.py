@@ -77,13 +77,22 @@ def test_contact_starts_where_the_entry_top_meets_the_roll(traced):
     assert np.interp(rp.axis_x, traced.shape.exit_x, traced.shape.exit_y) == rp.half_exit
 
 
-def test_flat_shape_is_the_reference_mesh():
-    run = _steady()
-    before = run.d.copy()
-    run.shape = StripShape.flat(run.model.rp)
-    run._set_shape()
-    assert np.allclose(run.d, before, atol=1e-14)
-    assert np.array_equal(run.top.edge_contact, run.top.region == "arc")
+def test_flat_shape_is_the_reference_mesh(traced):
+    """The map of the flat shape is the reference strip (arc midpoints on the roll), after a
+    solve has moved the mesh to a traced shape and back."""
+    rp, solved = traced.model.rp, traced.shape
+    traced.shape = StripShape.flat(rp)
+    traced._set_shape()
+    d_flat = traced.d.copy()
+    traced.shape = solved                    # the module's fixture back to its solved shape
+    traced._set_shape()
+    assert np.allclose(d_flat, traced.d_ref, rtol=0, atol=1e-14)
+    assert not np.allclose(traced.d, traced.d_ref, rtol=0, atol=1e-6)
+    top = traced.top
+    mids = top.midpoint_positions(d_flat, np.nonzero(top.region == "arc")[0])
+    assert np.allclose(rp.signed_distance(mids), 0.0, atol=1e-12)
+    flat = top.midpoint_positions(d_flat, np.nonzero(top.region == "top")[0])
+    assert np.allclose(flat[:, 1], rp.half_entry, atol=1e-14)
 
 
 def test_kinematic_update_by_hand():

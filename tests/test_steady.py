@@ -141,3 +141,22 @@ def test_failed_warm_start_falls_back_to_a_cold_solve(tmp_path):
     assert s["converged"] and not cold["warm_start_failed"]
     for key in ("roll_force", "roll_torque", "forward_slip", "neutral_angle"):
         assert s[key] == pytest.approx(cold[key], rel=1e-4), key
+
+
+def test_warm_start_never_crosses_free_surface_models():
+    """A constrained case does not start from a traced neighbour's (sagged) shape: the sweep
+    skips it, and the run refuses it."""
+    from hotroll.app.sweep import Sweep
+
+    traced = _steady_run()
+    traced.run()
+    sweep = Sweep()
+    sweep.solved.append(("traced", {"m": 0.2}, traced.warm_start()))
+    case = _case(**{"solver.method": "steady", "friction.a_f": 3.0,
+                    "plate.free_surface": "constrained"})
+    model, _ = build_model(case)
+    run = sweep.steady_run(case, model)
+    assert run.mesh_key == traced.mesh_key                 # same mesh, other model
+    assert sweep.nearest(case, run) == (None, None)
+    with pytest.raises(ValueError, match="free tops"):
+        run.solve(warm=traced.warm_start())

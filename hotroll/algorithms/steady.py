@@ -87,6 +87,7 @@ class WarmStart:
     m: float
     u_roll: float
     mesh_key: str
+    free_surface: str = "traced"
 
 
 def mesh_key(mesh) -> str:
@@ -218,7 +219,8 @@ class SteadyRun:
     def warm_start(self) -> WarmStart:
         """This run's solved state, to start a neighbouring case from."""
         return WarmStart(self.solution, self.shape.copy(), self.form.a_f.Get(),
-                         self.form.m.Get(), self.model.rp.u_roll, self.mesh_key)
+                         self.form.m.Get(), self.model.rp.u_roll, self.mesh_key,
+                         self.s.free_surface)
 
     def solve(self, warm: WarmStart | None = None, progress=None) -> SteadyResult:
         """Newton at the target m from the kinematic guess (cold) or from ``warm`` (a neighbour's
@@ -261,6 +263,9 @@ class SteadyRun:
         speed and its (reduced) pressure by the Norton-Hoff rate factor (U/U_warm)^m."""
         if warm.mesh_key != self.mesh_key or warm.solution.shape != vec.shape:
             raise ValueError("warm start: the neighbour was solved on another mesh")
+        if warm.free_surface != self.s.free_surface:
+            raise ValueError(f"warm start: the neighbour has {warm.free_surface!r} free tops, "
+                             f"this case {self.s.free_surface!r}")
         ratio = self.model.rp.u_roll / warm.u_roll
         nv = self.form.problem.n_velocity_dofs()
         vec[:nv] = ratio * warm.solution[:nv]

@@ -191,6 +191,7 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
                                 "a_f", "contact_length")},
         "force_balance": {part: [last.get(f"{part}_force_x", 0.0), last[f"{part}_force_y"]]
                           for part in ("roll", "free_top", "face", "symmetry")},
+        "symmetry_stress_force_y": last["symmetry_stress_force_y"],
         "balance_error": last["balance_error"],
         "free_top_force_share": last["free_top_force_share"],
         "power_balance_error": last["power_balance_error"],

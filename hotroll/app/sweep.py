@@ -67,10 +67,11 @@ class Sweep:
         return run
 
     def nearest(self, case: Case, run):
-        """(name, WarmStart) of the nearest solved case on ``run``'s mesh, or (None, None)."""
+        """(name, WarmStart) of the nearest solved case on ``run``'s mesh with the same
+        free-surface model, or (None, None)."""
         p = parameters(case)
         same = [(distance(p, q), name, w) for name, q, w in self.solved
-                if w.mesh_key == run.mesh_key]
+                if w.mesh_key == run.mesh_key and w.free_surface == run.s.free_surface]
         if not same:
             return None, None
         _, name, warm = min(same, key=lambda t: t[0])

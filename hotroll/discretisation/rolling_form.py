@@ -7,10 +7,11 @@ and stresses are K times the reduced ones; this is how the penalties of Table 1 
 - on the contact Gamma_C (edges flagged by ``chi``): viscoplastic friction (2.29a) on the slip
   v_s = (v - U_roll).t t (2.27), and the bilateral penalty gamma_vC (dv.n)(phi.n) for (2.28a);
   n and t are the roll's normal and tangent at the point, so U_roll.n = 0 exactly;
-- on the free top Gamma_0 (top edges not in contact): gamma_v0 (v.n)(phi.n) (3.2d), n the
-  mesh normal on Gamma_0L and e_y on the flat exit surface Gamma_0R (``free_normal``), and the
-  one-sided inlet penalty (3.2a) for x <= X_roll (Gamma_0L) or outlet penalty (3.2b) for
-  x > X_roll (Gamma_0R);
+- on the free top Gamma_0 (top edges not in contact): the one-sided inlet penalty (3.2a) for
+  x <= X_roll (Gamma_0L) or outlet penalty (3.2b) for x > X_roll (Gamma_0R), and, in the
+  ``"constrained"`` free-surface model only, gamma_v0 (v.n)(phi.n) (3.2d), n the mesh normal on
+  Gamma_0L and e_y on the flat exit surface Gamma_0R (``free_normal``); ``"traced"`` tops are
+  traction-free;
 - on the tail face Gamma_in: (3.2a); on the head face Gamma_out: (3.2b) plus gamma_v0 v_y phi_y,
   the vertical-motion correction T* the report adds on Gamma_out.
 Penalty parameters follow Table 1: gamma_v0 = gamma_vC = 10/h in the soft zone I around the
@@ -52,7 +53,7 @@ class RollingForm:
     """Spaces, parameters and the Newton/Picard forms of (3.6) on one (moving) mesh."""
 
     def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: ViscoplasticFriction,
-                 penalties: PenaltyTable, free_surface: str = "constrained"):
+                 penalties: PenaltyTable, free_surface: str):
         from ngsolve import FacetFESpace, GridFunction, Parameter
 
         self.mesh, self.rp = mesh, rp

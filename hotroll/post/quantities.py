@@ -30,10 +30,11 @@ def contact_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: fl
     xy, vel = top_nodes(form, top, disp, contact_only=True)
     if len(xy) == 0:
         return {k: np.zeros(0) for k in ("x", "y", "angle", "v_slip", "normal_stress",
-                                          "shear_stress")}
+                                          "shear_stress", "vertex")}
+    vertex = np.arange(len(xy)) < int(top.vertex_contact.sum())   # vertices come first
     ang = rp.angle(xy)
     order = np.argsort(-ang)
-    xy, vel, ang = xy[order], vel[order], ang[order]
+    xy, vel, ang, vertex = xy[order], vel[order], ang[order], vertex[order]
     n, t = rp.normal(xy), rp.tangent(xy)
     slip = np.sum(vel * t, -1) - rp.u_roll
     lo, hi = rp.soft_zone
@@ -41,7 +42,8 @@ def contact_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: fl
     a_f = form.a_f.Get()
     shear = np.asarray(form.friction.shear(a_f, slip, K=K))
     return {"x": xy[:, 0], "y": xy[:, 1], "angle": ang, "v_slip": slip,
-            "normal_stress": -K * gam * np.sum(vel * n, -1), "shear_stress": shear}
+            "normal_stress": -K * gam * np.sum(vel * n, -1), "shear_stress": shear,
+            "vertex": vertex.astype(int)}
 
 
 def top_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray) -> dict:
@@ -112,16 +114,20 @@ def smoothed(profile: dict, values: np.ndarray) -> np.ndarray:
     """L2 projection of a P2 contact profile onto continuous P1 along the arc (the plotted
     profile; the raw nodal values stay in ``contact.csv``).
 
-    The contact nodes alternate vertex, edge midpoint, vertex, ... from entry to exit; on each
-    edge the raw values are the quadratic through its three nodes. The projection removes the
-    vertex/midpoint zigzag of the penalty reaction and keeps every integral against a linear
-    function, so the force and torque of the profile are unchanged. Returns the values at the
-    same nodes (midpoints: the mean of their vertices); the raw values if the nodes do not
-    alternate.
+    The contact nodes alternate vertex, edge midpoint, vertex, ... from entry to exit
+    (``profile["vertex"]``); on each edge the raw values are the quadratic through its three
+    nodes. The projection removes the vertex/midpoint zigzag of the penalty reaction and keeps
+    every integral against a function linear in the arc length: the resultant along the arc
+    and the torque of the shear exactly, the roll force up to the turn of the roll normal
+    within an edge. Returns the values at the same nodes (midpoints: the mean of their
+    vertices); the raw values where the nodes do not alternate (a contact vertex without a
+    contact edge, in the report's scheme).
     """
     y = np.asarray(values, dtype=float)
     n = len(y)
-    if n < 3 or n % 2 == 0:
+    pattern = np.arange(n) % 2 == 0
+    if n < 3 or n % 2 == 0 or ("vertex" in profile
+                               and not np.array_equal(np.asarray(profile["vertex"]) > 0, pattern)):
         return y.copy()
     xy = np.stack([profile["x"], profile["y"]], -1)
     seg = np.linalg.norm(np.diff(xy, axis=0), axis=1)
@@ -269,9 +275,20 @@ def force_balance(form: RollingForm, K: float) -> dict:
     rows = np.arange(nv, nv + form.mesh.nv)
     fixed = ~problem.free_mask[rows]
     sym_y = K * float(np.sum(r.FV().NumPy()[rows[fixed]]))
+    # the same reaction from the stress itself: -int sigma_yy dx over the symmetry line. On
+    # y = 0 only the tangential derivative is at hand (a boundary integral sees the surface
+    # gradient); symmetry (u_y = 0, du_x/dy = 0) and incompressibility give eps_yy = -eps_xx,
+    # eps_xy = 0, so sigma_yy = -mu(4/3 eps_xx^2) eps_xx - p: an approximation that converges
+    # with h, independent of the residual
+    from ngsolve import Grad
+
+    exx = Grad(u)[0, 0]
+    mu = form.material.viscosity(4.0 / 3.0 * exx * exx, m=form.m, K=1.0)
+    sigma_yy = -mu * exx - problem.pressure
+    sym_stress = -K * float(Integrate(sigma_yy, mesh, BND, definedon=mesh.Boundaries("sym")))
     total = np.add(np.add(roll, tops), np.add(face, [0.0, sym_y]))
     scale = max(abs(roll[1]), 1e-300)
-    out = {"balance_error": float(np.hypot(*total)) / scale,
+    out = {"balance_error": float(np.hypot(*total)) / scale, "symmetry_stress_force_y": sym_stress,
            "free_top_force_share": float(np.hypot(*tops)) / scale, "symmetry_force_y": sym_y}
     for name, f in (("roll", roll), ("free_top", tops), ("face", face)):
         out[f"{name}_force_x"], out[f"{name}_force_y"] = float(f[0]), float(f[1])
