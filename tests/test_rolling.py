@@ -328,7 +328,8 @@ def test_steady_agrees_with_transient(pair, bounds, request):
     assert s["plastic_power"] == pytest.approx(t["plastic_power"], rel=bounds["plastic"])
 
 
-@pytest.mark.parametrize("fixture", ["steady_slipping", "steady_estimated", "steady_constrained"])
+@pytest.mark.parametrize("fixture", ["steady_slipping", "steady_estimated", "steady_constrained",
+                                     "settled", "settled_constrained"])
 def test_force_balance(fixture, request):
     """The plate's forces close: roll + free tops + faces + symmetry reaction = 0, the last
     from the residual of (3.6) in its Dirichlet rows. That closure is an identity of the
@@ -340,18 +341,26 @@ def test_force_balance(fixture, request):
     s, _, _ = request.getfixturevalue(fixture)
     fb = s["force_balance"]
     roll = fb["roll"]
-    assert -roll[1] == pytest.approx(s["roll_force"], rel=1e-12)
+    force = -roll[1]                       # the last step's (the summary's force is a mean)
+    if s["method"] == "steady":
+        assert force == pytest.approx(s["roll_force"], rel=1e-12)
     assert s["balance_error"] < 1e-4
     total = np.sum([fb[k] for k in ("roll", "free_top", "face", "symmetry")], axis=0)
-    assert np.hypot(*total) < 1e-4 * s["roll_force"]
+    assert np.hypot(*total) < 1e-4 * force
     # the symmetry line's force from the stress on it (-int sigma_yy dx, not from the
-    # residual): measured +0.8 % at h = 0.02, +0.5 % at h = 0.01
+    # residual): measured +0.5..0.8 % (steady), +0.9 % (transient) at h = 0.02
     assert s["symmetry_stress_force_y"] == pytest.approx(fb["symmetry"][1], rel=0.02)
     if s["free_surface"] == "traced":
-        assert abs(roll[0]) < 1e-3 * abs(roll[1])
-        assert fb["free_top"] == [0.0, 0.0]
-        assert fb["symmetry"][1] == pytest.approx(s["roll_force"], rel=1e-3)
-        assert s["symmetry_stress_force_y"] == pytest.approx(s["roll_force"], rel=0.02)
+        assert s["symmetry_stress_force_y"] == pytest.approx(force, rel=0.02)
+        if s["method"] == "steady":
+            assert fb["free_top"] == [0.0, 0.0]
+            assert abs(roll[0]) < 1e-3 * abs(roll[1])
+            assert fb["symmetry"][1] == pytest.approx(force, rel=1e-3)
+        else:
+            # the report's scheme: free top nodes arriving at the roll move faster than it,
+            # and the one-sided inlet penalty (3.2a) on the free top holds them back (measured
+            # 1.2 % of the roll force, horizontal)
+            assert np.hypot(*fb["free_top"]) < 0.02 * force
     else:
         assert 0.2 < s["free_top_force_share"] < 0.6
 
