@@ -51,7 +51,6 @@ class SteadySettings:
     a_f_rtol: float = 1e-2           # fixed point of the a_f rule reached at this change
     upstream: float | None = None    # flat entry length before the touching point (None: auto)
     downstream: float | None = None  # flat exit length after the roll gap (None: auto)
-    contact_tol: float = 1e-5
     m_path: tuple[float, ...] = ()   # continuation in m ending at the target (() : direct)
     stage_tol: float = 1e-2          # Newton tolerance on the intermediate stages
     fine_margin: float = 0.125       # fine mesh this many contact lengths (+4h) around the arc

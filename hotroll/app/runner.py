@@ -48,7 +48,7 @@ def build_model(case: Case):
 
 
 def steady_settings(case: Case):
-    """Settings of the direct steady solver (same a_f rule, tolerance and contact tolerance)."""
+    """Settings of the direct steady solver (same a_f rule, tolerance and free-surface model)."""
     from ..algorithms.steady import SteadySettings
 
     sv = case.solver
@@ -56,9 +56,7 @@ def steady_settings(case: Case):
         tol=sv.tolerance, max_it=max(sv.max_iterations, 30),
         a_f=None if case.friction.a_f == "estimate" else float(case.friction.a_f),
         a_f_max=case.friction.a_f_max, upstream=sv.steady_entry_length,
-        downstream=sv.steady_exit_length, contact_tol=contact_tolerance(case.pass_.roll_pass(),
-                                                                        case.dt),
-        free_surface=case.plate.free_surface)
+        downstream=sv.steady_exit_length, free_surface=case.plate.free_surface)
 
 
 def contact_tolerance(rp, dt: float) -> float:
