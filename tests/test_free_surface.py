@@ -170,3 +170,28 @@ def test_smoothed_profile_keeps_linear_data_and_integrals():
         return float(np.sum(L * (v[0:-1:2] + 4 * v[1::2] + v[2::2]) / 6))
 
     assert integral(sm) == pytest.approx(integral(zigzag), rel=1e-12)
+
+
+def test_hotroll_run_defaults_to_traced_tops_and_the_automatic_mesh(tmp_path):
+    """`hotroll run` on a case that names neither the free-surface model nor the mesh: traced
+    tops, h = min(l_c/12, half_exit/6), a converged steady solve with units in the table."""
+    import json
+
+    from typer.testing import CliRunner
+
+    from hotroll.app.cli import app
+
+    case = tmp_path / "pass.toml"
+    case.write_text(
+        "[pass]\nroll_radius = 0.35\nentry_thickness = 0.025\nexit_thickness = 0.02\n"
+        "roll_angular_velocity = 3.0\n[plate]\nlength = 1.0\n[material]\nK = 2.0e8\n"
+        "m = 0.15\n[friction]\na_f = 5.0\n[output]\nfigures = false\nvtk = false\n")
+    result = CliRunner().invoke(app, ["run", str(case), "--out", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    assert "N/m" in result.output
+    s = json.loads((tmp_path / "out" / "summary.json").read_text())
+    rp = RollPass(0.35, 0.0125, 0.01, 3.0)
+    assert s["free_surface"] == "traced" and s["method"] == "steady" and s["converged"]
+    assert s["h_contact"] == pytest.approx(min(rp.contact_length / 12, rp.half_exit / 6))
+    assert s["mass_flux_error"] < 0.01 and s["balance_error"] < 1e-4
+    assert s["symmetry_stress_force_y"] == pytest.approx(s["roll_force"], rel=0.02)
