@@ -362,6 +362,8 @@ def test_force_balance(fixture, request):
             # 1.2 % of the roll force, horizontal)
             assert np.hypot(*fb["free_top"]) < 0.02 * force
     else:
+        assert s["free_top_force_share"] == pytest.approx(np.hypot(*fb["free_top"]) / force,
+                                                          rel=1e-9)
         assert 0.2 < s["free_top_force_share"] < 0.6
 
 
