@@ -193,7 +193,6 @@ def integrals(form: RollingForm, K: float) -> dict:
     mu = form.material.viscosity(e2, m=m, K=1.0)
     cx, cy = rp.centre
     r = sqrt((x - cx) ** 2 + (y - cy) ** 2)
-    trac = -(kf * s) * t - gam * (u * n) * n          # traction on the plate (reduced)
 
     def bnd(cf, region=top):
         return float(Integrate(cf, mesh, BND, definedon=region))
@@ -215,14 +214,14 @@ def integrals(form: RollingForm, K: float) -> dict:
         "contact_penalty_power": K * contact_pen,
         "outlet_penalty_power": K * outlet_pen,
         "roll_power": K * bnd(chi * (-kf * s) * U),
-        "roll_force": -K * bnd(chi * trac[1]),
-        "horizontal_force": K * bnd(chi * trac[0]),
         "roll_torque": K * bnd(chi * (-kf * s) * r),
         "contact_length": bnd(chi),
         "slip_measure": bnd(chi * IfPos(s * s, (s * s) ** (p / 2), 0.0)),
         "strain_rate_measure": float(Integrate((3.0 * e2 + 1e-300) ** (p / 2), mesh, VOL)),
     }
     out.update(force_balance(form, K))
+    # the roll's force on the plate, pressing down: the roll force is its vertical part
+    out["roll_force"], out["horizontal_force"] = -out["roll_force_y"], out["roll_force_x"]
     out["volume_v_p"], out["backward_length"] = a_f_inputs(form)
     bal = out["plastic_power"] + out["friction_power"] + out["penalty_power"]
     out["power_balance_error"] = abs(out["roll_power"] - bal) / max(abs(out["roll_power"]), 1e-300)
@@ -241,8 +240,7 @@ def force_balance(form: RollingForm, K: float) -> dict:
     The parts sum to the residual of the free rows, zero at a converged solve:
     ``balance_error`` = |sum| / roll force. ``free_top_force_share``: |free-top force| / roll force.
     """
-    import numpy as np
-    from ngsolve import BND, CF, Integrate, IfPos, x
+    from ngsolve import BND, CF, Grad, Integrate, IfPos, specialcf, x
 
     mesh, rp = form.mesh, form.rp
     u, chi = form.problem.velocity, form.chi
@@ -254,7 +252,7 @@ def force_balance(form: RollingForm, K: float) -> dict:
     roll_term = kf * s * t + gam * (u * n) * n
     top_term = IfPos(x - rp.axis_x, form.outlet_penalty(u, u), form.inlet_penalty(u, u)) * ex
     if form.free_surface == "constrained":
-        nf = IfPos(x - rp.axis_x, CF((0.0, 1.0)), __import__("ngsolve").specialcf.normal(2))
+        nf = IfPos(x - rp.axis_x, CF((0.0, 1.0)), specialcf.normal(2))
         top_term = top_term + gam * form.free_normal(u) * nf
     faces = {"in": form.inlet_penalty(u, u) * ex,
              "out": form.outlet_penalty(u, u) * ex + gam * u[1] * CF((0.0, 1.0))}
@@ -280,8 +278,6 @@ def force_balance(form: RollingForm, K: float) -> dict:
     # gradient); symmetry (u_y = 0, du_x/dy = 0) and incompressibility give eps_yy = -eps_xx,
     # eps_xy = 0, so sigma_yy = -mu(4/3 eps_xx^2) eps_xx - p: an approximation that converges
     # with h, independent of the residual
-    from ngsolve import Grad
-
     exx = Grad(u)[0, 0]
     mu = form.material.viscosity(4.0 / 3.0 * exx * exx, m=form.m, K=1.0)
     sigma_yy = -mu * exx - problem.pressure
