@@ -29,7 +29,7 @@ import numpy as np
 
 from ..discretisation.mesh import MeshSpec, build_plate_mesh
 from ..discretisation.rolling_form import PenaltyTable, RollingForm
-from ..physics.friction import ViscoplasticFriction
+from ..physics.friction import _Law as FrictionLaw
 from ..physics.friction_estimate import estimate_a_f
 from ..physics.material import NortonHoff
 from ..post import quantities as Q
@@ -92,8 +92,19 @@ class RollingModel:
     rp: RollPass
     length: float
     material: NortonHoff
-    v_reg: float
+    friction: FrictionLaw     # in reduced units (stresses over K): viscoplastic with K = 1
     mesh: MeshSpec
+    back_tension: float = 0.0   # Pa, mean tensile stress on the entry face
+    front_tension: float = 0.0  # Pa, mean tensile stress on the exit face
+
+    @property
+    def v_reg(self) -> float:
+        return self.friction.v_reg
+
+    @property
+    def reduced_tensions(self) -> tuple[float, float]:
+        """(back, front) tension over K, as the form takes every stress."""
+        return (self.back_tension / self.material.K, self.front_tension / self.material.K)
 
     @property
     def h(self) -> float:
@@ -127,9 +138,9 @@ class TransientRun:
             self.ckpt.mkdir(parents=True, exist_ok=True)
             self.mesh.ngmesh.Save(str(self.ckpt / "mesh.vol"))
         reduced = NortonHoff(1.0, mat.m, mat.eps0)
-        friction = ViscoplasticFriction(1.0, mat.m, model.v_reg)
-        self.form = RollingForm(self.mesh, rp, reduced, friction, PenaltyTable(model.h),
-                                free_surface=settings.free_surface)
+        self.form = RollingForm(self.mesh, rp, reduced, model.friction, PenaltyTable(model.h),
+                                free_surface=settings.free_surface,
+                                tensions=model.reduced_tensions)
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.top = TopBoundary(self.mesh, V.ndof // 2)
@@ -175,8 +186,14 @@ class TransientRun:
         f.m.Set(1.0)
         first = picard(f.problem, self.s.tol, 1)
         f.m.Set(self.model.material.m)
+        f.update_k()
         stats = self._solve()
         stats.iterations += first.iterations
+        for _ in range(10):   # the friction law's k (lagged) to its fixed point
+            if f.k_shear is None or f.update_k(self.top.verts[self.top.vertex_contact]) <= 1e-3:
+                break
+            more = self._solve()
+            stats.iterations += more.iterations
         if self.s.a_f is None:  # iterate a_f <- (3.15)(v) to a fixed point, as the notes do
             for _ in range(10):
                 a_old, a_new = f.a_f.Get(), self._estimate_a_f()
@@ -221,6 +238,7 @@ class TransientRun:
                 else:
                     if s.a_f is None:
                         self.form.a_f.Set(self._estimate_a_f())
+                    self.form.update_k()   # k of the friction law from the last step, like a_f
                     vec = self.form.problem.gf.vec.FV().NumPy()
                     last = vec.copy()
                     try:

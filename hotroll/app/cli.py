@@ -108,7 +108,7 @@ def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
     table.add_column("value", justify="right")
     table.add_column("unit")
     for key in SUMMARY_KEYS:
-        if key in summary:
+        if summary.get(key) is not None:
             table.add_row(key, escape(_fmt(summary[key])), escape(UNITS.get(key, "")))
     console.print(table)
     return summary

@@ -67,6 +67,10 @@ class PassConfig(_Section):
     roll_angular_velocity: float = _field(..., "roll angular velocity omega", "rad/s", "> 0", gt=0)
     roll_axis_x: float = _field(1.0, "x of the roll centre (initial plate head position)", "m",
                                 "a finite number")
+    back_tension: float = _field(0.0, "back tension: mean tensile stress on the entry strip",
+                                 "Pa", ">= 0", ge=0)
+    front_tension: float = _field(0.0, "front tension: mean tensile stress on the exit strip",
+                                  "Pa", ">= 0", ge=0)
 
     @model_validator(mode="after")
     def _check_geometry(self) -> PassConfig:
@@ -136,17 +140,64 @@ class MaterialConfig(_Section):
 
 
 class FrictionConfig(_Section):
-    law: Literal["viscoplastic"] = _field("viscoplastic", "friction law", "", '"viscoplastic"')
-    a_f: Literal["estimate"] | PosFloat = _field(
-        "estimate", "viscoplastic friction coefficient (tau = a_f K |dv|^(m-1) dv)", "m^-m",
-        '"estimate" or a number > 0')
+    law: Literal["viscoplastic", "coulomb", "tresca"] = _field(
+        "viscoplastic", "friction law: viscoplastic (2.29a), Coulomb (mu p, capped at k = "
+        "sigma_ef/sqrt3) or Tresca (factor k)", "", '"viscoplastic", "coulomb" or "tresca"')
+    a_f: Literal["estimate"] | PosFloat | None = _field(
+        None, "(omit: estimate) viscoplastic friction coefficient (tau = a_f K |dv|^(m-1) dv); law = "
+        '"viscoplastic" only', "m^-m", '"estimate" or a number > 0')
+    mu: float | None = _field(None, 'Coulomb friction coefficient; law = "coulomb" only', "",
+                              "in (0, 2]", gt=0, le=2)
+    factor: float | None = _field(None, 'friction factor m_f (tau = m_f k); law = "tresca" '
+                                  "only", "", "in (0, 1]", gt=0, le=1)
     v_reg: PosFloat | None = _field(
-        None, "friction regularisation velocity (omit: 1e-4 x roll surface speed)", "m/s", "> 0")
+        None, "friction regularisation velocity (omit: 1e-4 x roll surface speed for the "
+        "viscoplastic law, 1e-3 x for Coulomb and Tresca)", "m/s", "> 0")
     a_f_max: float = _field(1e6, "upper cap for the estimated a_f", "m^-m", "> 0", gt=0)
 
+    @model_validator(mode="after")
+    def _check_law(self) -> FrictionConfig:
+        need = {"coulomb": "mu", "tresca": "factor"}.get(self.law)
+        problems = []
+        if need and getattr(self, need) is None:
+            problems.append(f"friction.{need}: required for law = \"{self.law}\" (allowed: "
+                            + ("in (0, 2]" if need == "mu" else "in (0, 1]") + ")")
+        for key, law in (("mu", "coulomb"), ("factor", "tresca")):
+            if getattr(self, key) is not None and self.law != law:
+                problems.append(f"friction.{key}: only for law = \"{law}\", the law is "
+                                f"\"{self.law}\"")
+        if self.law == "viscoplastic" and self.a_f is None:
+            self.a_f = "estimate"
+        if self.law != "viscoplastic" and self.a_f is not None:
+            problems.append(f"friction.a_f: only for law = \"viscoplastic\", the law is "
+                            f"\"{self.law}\"")
+        if problems:
+            raise _Problems(problems)
+        return self
+
     def regularisation_velocity(self, u_roll: float) -> float:
-        """v_reg, or 1e-4 x the roll surface speed ``u_roll`` when not given (m/s)."""
-        return self.v_reg if self.v_reg is not None else 1e-4 * u_roll
+        """v_reg (m/s), or its default fraction of the roll surface speed ``u_roll``."""
+        if self.v_reg is not None:
+            return self.v_reg
+        return (1e-4 if self.law == "viscoplastic" else 1e-3) * u_roll
+
+    def law_object(self, u_roll: float, m: float):
+        """The friction law in reduced units (stresses over K), ``physics/friction.py``."""
+        from ..physics.friction import CoulombFriction, TrescaFriction, ViscoplasticFriction
+
+        v = self.regularisation_velocity(u_roll)
+        if self.law == "coulomb":
+            return CoulombFriction(v, mu=self.mu)
+        if self.law == "tresca":
+            return TrescaFriction(v, factor=self.factor)
+        return ViscoplasticFriction(v, K=1.0, m=m)
+
+    @property
+    def a_f_rule(self) -> float | None:
+        """a_f for the solvers: None = estimate (3.15); 0 for the laws without a_f."""
+        if self.law != "viscoplastic":
+            return 0.0
+        return None if self.a_f == "estimate" else float(self.a_f)
 
 
 class MeshConfig(_Section):

@@ -19,7 +19,7 @@ from .output import vertex_fields, write_csv, write_json, write_npz, write_vtk
 
 AVERAGED = ("roll_force", "roll_torque", "roll_power", "forward_slip", "entry_velocity",
             "exit_velocity", "mass_flux_in", "mass_flux_out", "plastic_power", "friction_power",
-            "penalty_power", "outlet_penalty_power", "horizontal_force", "neutral_angle",
+            "penalty_power", "outlet_penalty_power", "horizontal_force", "neutral_angle", "tension_power",
             "contact_length", "a_f", "strain_rate_measure", "slip_measure")
 
 
@@ -36,13 +36,15 @@ def build_model(case: Case):
                     h_far=case.mesh.h_far, grading=case.mesh.grading)
     mat = case.material
     model = RollingModel(rp, case.plate.length, NortonHoff(mat.K, mat.m, mat.eps0),
-                         case.friction.regularisation_velocity(rp.u_roll), spec)
+                         case.friction.law_object(rp.u_roll, mat.m), spec,
+                         back_tension=case.pass_.back_tension,
+                         front_tension=case.pass_.front_tension)
     settings = TransientSettings(
         dt=case.dt, end_time=end_time, nonlinear=sv.nonlinear, tol=sv.tolerance,
         max_it=sv.max_iterations, steady_tol=sv.steady_tolerance, max_steps=sv.max_steps,
         wall_time_limit=sv.wall_time_limit, checkpoint_every=sv.checkpoint_every,
         contact_tol=contact_tolerance(rp, case.dt),
-        a_f=None if case.friction.a_f == "estimate" else float(case.friction.a_f),
+        a_f=case.friction.a_f_rule,
         a_f_max=case.friction.a_f_max, free_surface=case.plate.free_surface)
     return model, settings
 
@@ -54,7 +56,7 @@ def steady_settings(case: Case):
     sv = case.solver
     return SteadySettings(
         tol=sv.tolerance, max_it=max(sv.max_iterations, 30),
-        a_f=None if case.friction.a_f == "estimate" else float(case.friction.a_f),
+        a_f=case.friction.a_f_rule,
         a_f_max=case.friction.a_f_max, upstream=sv.steady_entry_length,
         downstream=sv.steady_exit_length, free_surface=case.plate.free_surface)
 
@@ -150,6 +152,8 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
     if case.output.vtk:
         write_vtk(run, out / "fields.vtu")
     summary = summarise(case, run, prof, wall) | (extra or {})
+    if case.friction.law != "viscoplastic":
+        summary["a_f"] = None            # the law has no a_f
     write_json(out / "summary.json", summary)
     return summary
 
@@ -186,9 +190,9 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
                                 "entry_velocity", "exit_velocity", "mass_flux_in",
                                 "mass_flux_out", "plastic_power", "friction_power",
                                 "penalty_power", "outlet_penalty_power", "horizontal_force",
-                                "a_f", "contact_length")},
+                                "tension_power", "a_f", "contact_length")},
         "force_balance": {part: [last.get(f"{part}_force_x", 0.0), last[f"{part}_force_y"]]
-                          for part in ("roll", "free_top", "face", "symmetry")},
+                          for part in ("roll", "free_top", "face", "tension", "symmetry")},
         "symmetry_stress_force_y": last["symmetry_stress_force_y"],
         "balance_error": last["balance_error"],
         "free_top_force_share": last["free_top_force_share"],
@@ -217,6 +221,9 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "contact_start": [float(prof["x"][0]), float(prof["y"][0])] if len(prof["x"]) else None,
         "contact_end": [float(prof["x"][-1]), float(prof["y"][-1])] if len(prof["x"]) else None,
         "K": case.material.K, "m": case.material.m, "nonlinear": "newton" if steady_solver else run.s.nonlinear,
+        "friction_law": case.friction.law, "friction_mu": case.friction.mu,
+        "friction_factor": case.friction.factor,
+        "back_tension": case.pass_.back_tension, "front_tension": case.pass_.front_tension,
         "averaged_over_steps": len(solved),
         "unconverged_steps_in_window": len(window) - len(solved),
     }

@@ -36,8 +36,12 @@ def parameters(case: Case) -> dict[str, float]:
     rp = case.pass_.roll_pass()
     p = {"m": case.material.m, "u_roll": rp.u_roll, "eps0": case.material.eps0,
          "v_reg": case.friction.regularisation_velocity(rp.u_roll)}
-    if case.friction.a_f != "estimate":
-        p["a_f"] = float(case.friction.a_f)
+    fr = case.friction
+    if fr.law == "viscoplastic" and fr.a_f != "estimate":
+        p["a_f"] = float(fr.a_f)
+    for key, value in (("mu", fr.mu), ("factor", fr.factor)):
+        if value is not None:
+            p[key] = value
     return p
 
 

@@ -4,16 +4,21 @@ Terms (all divided by K: the discrete problem is solved for p/K, so it is identi
 and stresses are K times the reduced ones; this is how the penalties of Table 1 "scale with K"):
 
 - Norton-Hoff volume term (2.21) with the pressure as Lagrange multiplier (2.24);
-- on the contact Gamma_C (edges flagged by ``chi``): viscoplastic friction (2.29a) on the slip
-  v_s = (v - U_roll).t t (2.27), and the bilateral penalty gamma_vC (dv.n)(phi.n) for (2.28a);
-  n and t are the roll's normal and tangent at the point, so U_roll.n = 0 exactly;
+- on the contact Gamma_C (edges flagged by ``chi``): the friction law (viscoplastic (2.29a),
+  Coulomb or Tresca, ``physics/friction.py``) on the slip v_s = (v - U_roll).t t (2.27), and the
+  bilateral penalty gamma_vC (dv.n)(phi.n) for (2.28a); n and t are the roll's normal and
+  tangent at the point, so U_roll.n = 0 exactly. Coulomb's pressure is the penalty reaction
+  gamma_vC (v.n) at the same point (inside Newton); the shear flow stress k = sigma_ef/sqrt3 of
+  the Coulomb cap and of Tresca is a P1 field of the volume strain rate, lagged (``update_k``):
+  a boundary integral sees only the surface gradient;
 - on the free top Gamma_0 (top edges not in contact): the one-sided inlet penalty (3.2a) for
   x <= X_roll (Gamma_0L) or outlet penalty (3.2b) for x > X_roll (Gamma_0R), and, in the
   ``"constrained"`` free-surface model only, gamma_v0 (v.n)(phi.n) (3.2d), n the mesh normal on
   Gamma_0L and e_y on the flat exit surface Gamma_0R (``free_normal``); ``"traced"`` tops are
   traction-free;
 - on the tail face Gamma_in: (3.2a); on the head face Gamma_out: (3.2b) plus gamma_v0 v_y phi_y,
-  the vertical-motion correction T* the report adds on Gamma_out.
+  the vertical-motion correction T* the report adds on Gamma_out; the back and front tensions
+  as the normal traction sigma n on Gamma_in and Gamma_out (reduced by K like the rest).
 Penalty parameters follow Table 1: gamma_v0 = gamma_vC = 10/h in the soft zone I around the
 first touching point, 25/h elsewhere; gamma_in = gamma_out = 2/h^(m+1).
 """
@@ -21,7 +26,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..physics.friction import ViscoplasticFriction
+from ..physics.friction import _Law as FrictionLaw
 from ..physics.material import NortonHoff
 from ..process.geometry import RollPass
 from .forms import NonlinearProblem, norton_hoff_tangent, norton_hoff_volume, one_sided
@@ -52,9 +57,9 @@ class PenaltyTable:
 class RollingForm:
     """Spaces, parameters and the Newton/Picard forms of (3.6) on one (moving) mesh."""
 
-    def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: ViscoplasticFriction,
-                 penalties: PenaltyTable, free_surface: str):
-        from ngsolve import FacetFESpace, GridFunction, Parameter
+    def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: FrictionLaw,
+                 penalties: PenaltyTable, free_surface: str, tensions: tuple = (0.0, 0.0)):
+        from ngsolve import H1, FacetFESpace, GridFunction, Parameter
 
         self.mesh, self.rp = mesh, rp
         self.free_surface = free_surface
@@ -63,6 +68,9 @@ class RollingForm:
         self.m = Parameter(material.m)      # set to 1 for the very first iterate (Section 3.4)
         self.a_f = Parameter(1.0)           # friction parameter, updated by (3.15) every step
         self.chi = GridFunction(FacetFESpace(mesh, order=0))  # 1 on contact edges
+        # back / front tension over K (reduced, like every stress in the form)
+        self.tension_back, self.tension_front = Parameter(tensions[0]), Parameter(tensions[1])
+        self.k_shear = GridFunction(H1(mesh, order=1)) if friction.uses_k else None
         self.problem = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll,
                                         jacobian=self.jacobian)
 
@@ -91,6 +99,42 @@ class RollingForm:
         _, t = self.roll_frame()
         return u * t - self.rp.u_roll
 
+    def pressure(self, u):
+        """Contact pressure, the penalty reaction gamma_vC (u.n) (reduced units)."""
+        from ngsolve import x
+
+        n, _ = self.roll_frame()
+        return self.penalties.surface(x, self.rp.soft_zone) * (u * n)
+
+    def friction_coefficient(self, w):
+        """The friction law's secant coefficient k_f at the velocity w (T_tau = -k_f v_s)."""
+        s = self.slip(w)
+        law = self.friction
+        return law.coefficient(s * s, a_f=self.a_f, m=self.m,
+                               pressure=self.pressure(w) if law.uses_pressure else None,
+                               k=self.k_shear if law.uses_k else None)
+
+    def update_k(self, where=None) -> float:
+        """Shear flow stress k = sigma_ef / sqrt3 (reduced) from the current velocity, as a P1
+        field; returns its largest change over its largest value at the vertices ``where``
+        (the contact's; all by default), 0 when the law needs no k."""
+        import numpy as np
+
+        from .forms import strain_rate
+        from ..physics.material import edot_squared
+
+        if self.k_shear is None:
+            return 0.0
+        vec = self.k_shear.vec.FV().NumPy()
+        old = vec.copy()
+        e2 = edot_squared(strain_rate(self.problem.velocity))
+        self.k_shear.Set(self.material.sigma_ef_reg(e2, m=self.m, K=1.0) / 3.0**0.5)
+        sel = slice(None) if where is None else where
+        if np.size(vec[sel]) == 0:
+            return 0.0
+        scale = max(float(np.max(np.abs(vec[sel]))), 1e-300)
+        return float(np.max(np.abs(vec[sel] - old[sel]))) / scale
+
     def inlet_penalty(self, u, w):
         """(3.2a) per unit test v_x: gamma_in [v_x - |U_roll|]_+, active set taken at w."""
         U = self.rp.u_roll
@@ -118,17 +162,16 @@ class RollingForm:
         return vol * dx + self.boundary(w, w, v).Diff(w, u)
 
     def boundary(self, u, w, v):
-        """Friction (2.29a) and penalty terms (3.2), (3.3) on the boundary, coefficients at w."""
-        from ngsolve import IfPos, ds, x
+        """Friction law, penalty terms (3.2), (3.3) and tensions on the boundary, coefficients at w."""
+        from ngsolve import IfPos, ds, specialcf, x
 
-        m, rp, pen = self.m, self.rp, self.penalties
+        rp, pen = self.rp, self.penalties
         n, t = self.roll_frame()
         gam_s = pen.surface(x, rp.soft_zone)
         chi = self.chi
 
-        s_u, s_w = self.slip(u), self.slip(w)
-        k_f = self.friction.coefficient(self.a_f, s_w * s_w, m=m, K=1.0)
-        contact = k_f * s_u * (v * t) + gam_s * (u * n) * (v * n)
+        k_f = self.friction_coefficient(w)
+        contact = k_f * self.slip(u) * (v * t) + gam_s * (u * n) * (v * n)
 
         inlet = self.inlet_penalty(u, w) * v[0]
         outlet = self.outlet_penalty(u, w) * v[0]
@@ -136,6 +179,7 @@ class RollingForm:
         if self.free_surface == "constrained":
             free = free + gam_s * self.free_normal(u) * self.free_normal(v)
 
+        nh = specialcf.normal(2)
         return ((chi * contact + (1.0 - chi) * free) * ds(TOP)
-                + inlet * ds("in")
-                + (outlet + gam_s * u[1] * v[1]) * ds("out"))
+                + (inlet - self.tension_back * (v * nh)) * ds("in")
+                + (outlet + gam_s * u[1] * v[1] - self.tension_front * (v * nh)) * ds("out"))

@@ -1,31 +1,119 @@
-"""Friction laws on the roll contact.
+"""Friction laws on the roll contact, one interface for the weak form and the post-processing.
 
-Viscoplastic law (2.29a): T_tau = -a_f K |v_s|^(m-1) v_s, regularised at the neutral point as
--a_f K (|v_s|^2 + v_reg^2)^((m-1)/2) v_s, the same way as (2.21) regularises the material law.
+Every law gives the shear traction on the plate as T_tau = -k_f v_s (secant form), v_s the slip
+(2.27), with the coefficient ``k_f = coefficient(slip2, a_f=, m=, pressure=, k=)``. All
+arguments are numbers, numpy arrays or NGSolve CoefficientFunctions; stresses are in the units
+of the caller (the weak form passes them divided by K: reduced units).
+
+- ``ViscoplasticFriction`` (2.29a): |T_tau| = a_f K |v_s|^m;
+- ``CoulombFriction``: |T_tau| = min(mu p, k), p the contact pressure (>= 0), k = sigma_ef/sqrt3
+  the local shear flow stress (sticking where mu p > k);
+- ``TrescaFriction``: |T_tau| = factor k.
+
+All three are regularised at the neutral point the way (2.21) regularises the material law:
+|v_s|^(q-1) v_s -> (|v_s|^2 + v_reg^2)^((q-1)/2) v_s with q = m (viscoplastic) or q = 0
+(Coulomb, Tresca: the shear's magnitude does not depend on the slip speed).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 
-@dataclass(frozen=True)
-class ViscoplasticFriction:
-    """Viscoplastic friction (2.29a). ``a_f`` may be a number or an NGSolve Parameter."""
+def _is_cf(*values) -> bool:
+    try:
+        from ngsolve import CoefficientFunction
+    except ImportError:  # pragma: no cover - ngsolve is a dependency
+        return False
+    return any(isinstance(v, CoefficientFunction) for v in values)
 
-    K: float
-    m: float
+
+def positive_part(a):
+    """max(a, 0) for numbers, arrays and CoefficientFunctions."""
+    if _is_cf(a):
+        from ngsolve import IfPos
+
+        return IfPos(a, a, 0.0)
+    import numpy as np
+
+    return np.maximum(a, 0.0)
+
+
+def minimum(a, b):
+    """min(a, b) for numbers, arrays and CoefficientFunctions."""
+    if _is_cf(a, b):
+        from ngsolve import IfPos
+
+        return IfPos(a - b, b, a)
+    import numpy as np
+
+    return np.minimum(a, b)
+
+
+@dataclass(frozen=True)
+class _Law:
     v_reg: float  # regularisation velocity, m/s
 
-    def coefficient(self, a_f, slip2, m=None, K=None):
-        """Secant coefficient k with T_tau = -k v_s."""
+    name = "law"
+    uses_a_f = False       # the coefficient takes a_f ((3.15) or a number)
+    uses_pressure = False  # the coefficient takes the contact pressure
+    uses_k = False         # the coefficient takes the shear flow stress k
+
+    def limit(self, *, pressure=None, k=None):
+        """Shear stress magnitude of a sliding contact (the rate-independent laws)."""
+        raise NotImplementedError
+
+    def coefficient(self, slip2, *, a_f=None, m=None, pressure=None, k=None):
+        """Secant coefficient k_f with T_tau = -k_f v_s (rate-independent laws)."""
+        return self.limit(pressure=pressure, k=k) * (slip2 + self.v_reg**2) ** -0.5
+
+    def shear(self, slip, **kw):
+        """Shear traction on the plate along the roll tangent, for a scalar slip velocity."""
+        return -self.coefficient(slip * slip, **kw) * slip
+
+    def power_density(self, slip, **kw):
+        """Friction dissipation -T_tau . v_s = k_f v_s^2 >= 0."""
+        return self.coefficient(slip * slip, **kw) * slip * slip
+
+
+@dataclass(frozen=True)
+class ViscoplasticFriction(_Law):
+    """Viscoplastic friction (2.29a): T_tau = -a_f K |v_s|^(m-1) v_s (regularised)."""
+
+    K: float = 1.0   # consistency the law scales with (1 in reduced units)
+    m: float = 0.2   # exponent, the material's strain-rate sensitivity (Section 2.6)
+
+    name = "viscoplastic"
+    uses_a_f = True
+
+    def coefficient(self, slip2, *, a_f=None, m=None, pressure=None, k=None, K=None):
+        """Secant coefficient a_f K (|v_s|^2 + v_reg^2)^((m-1)/2)."""
         m = self.m if m is None else m
         K = self.K if K is None else K
         return a_f * K * (slip2 + self.v_reg**2) ** ((m - 1.0) / 2.0)
 
-    def shear(self, a_f, slip, K=None):
-        """Shear traction on the plate along the roll tangent, for a scalar slip velocity."""
-        return -self.coefficient(a_f, slip * slip, K=K) * slip
 
-    def power_density(self, a_f, slip, K=None):
-        """Friction dissipation -T_tau . v_s = a_f K |v_s|^(m+1) (regularised)."""
-        return self.coefficient(a_f, slip * slip, K=K) * slip * slip
+@dataclass(frozen=True)
+class CoulombFriction(_Law):
+    """Coulomb friction capped by sticking: |T_tau| = min(mu p, k), p = max(pressure, 0)."""
+
+    mu: float = 0.3
+
+    name = "coulomb"
+    uses_pressure = True
+    uses_k = True
+
+    def limit(self, *, pressure=None, k=None):
+        return minimum(self.mu * positive_part(pressure), k)
+
+
+@dataclass(frozen=True)
+class TrescaFriction(_Law):
+    """Friction factor (Tresca, constant shear): |T_tau| = factor k."""
+
+    factor: float = 0.8
+
+    name = "tresca"
+    uses_k = True
+
+    def limit(self, *, pressure=None, k=None):
+        return self.factor * k

@@ -29,6 +29,13 @@ class NortonHoff:
         K = self.K if K is None else K
         return K * 3.0 ** ((self.m + 1.0) / 2.0) * edot**self.m
 
+    def sigma_ef_reg(self, edot2, m=None, K=None):
+        """Effective stress of the regularised law (2.21): 3/2 mu sqrt(eps0^2 + edot^2)
+        = K 3^((m+1)/2) (eps0^2 + edot^2)^(m/2); ``edot2`` the squared strain rate (2.16)."""
+        m = self.m if m is None else m
+        K = self.K if K is None else K
+        return K * 3.0 ** ((m + 1.0) / 2.0) * (self.eps0**2 + edot2) ** (m / 2.0)
+
     def power_density(self, edot, K=None):
         """Plastic dissipation s:eps_dot = K (sqrt3 edot)^(m+1) (potential of Remark 2.4 times p)."""
         K = self.K if K is None else K
@@ -44,7 +51,7 @@ def edot_squared(eps):
         from ngsolve import InnerProduct
 
         return 2.0 / 3.0 * InnerProduct(eps, eps)
-    except (ImportError, TypeError):  # numpy (..., 2, 2)
+    except (ImportError, TypeError, AttributeError):  # numpy (..., 2, 2)
         import numpy as np
 
         return 2.0 / 3.0 * np.einsum("...ij,...ij->...", eps, eps)

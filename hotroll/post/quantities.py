@@ -39,11 +39,27 @@ def contact_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: fl
     slip = np.sum(vel * t, -1) - rp.u_roll
     lo, hi = rp.soft_zone
     gam = np.where((xy[:, 0] - lo) * (hi - xy[:, 0]) > 0, pen.soft, pen.hard) / pen.h
-    a_f = form.a_f.Get()
-    shear = np.asarray(form.friction.shear(a_f, slip, K=K))
-    return {"x": xy[:, 0], "y": xy[:, 1], "angle": ang, "v_slip": slip,
-            "normal_stress": -K * gam * np.sum(vel * n, -1), "shear_stress": shear,
-            "vertex": vertex.astype(int)}
+    pressure = gam * np.sum(vel * n, -1)             # reduced, the penalty reaction
+    k = _nodal_k(form, top, contact_only=True)
+    k = None if k is None else k[order]
+    shear = K * np.asarray(form.friction.shear(slip, a_f=form.a_f.Get(), m=form.m.Get(),
+                                               pressure=pressure, k=k))
+    out = {"x": xy[:, 0], "y": xy[:, 1], "angle": ang, "v_slip": slip,
+           "normal_stress": -K * pressure, "shear_stress": shear, "vertex": vertex.astype(int)}
+    if k is not None:
+        out["shear_flow_stress"] = K * k
+    return out
+
+
+def _nodal_k(form: RollingForm, top: TopBoundary, contact_only: bool):
+    """The friction law's shear flow stress k (reduced, P1) at the top nodes as ``top_nodes``
+    orders them (vertices, then edge midpoints: the mean of the edge's two vertices)."""
+    if form.k_shear is None:
+        return None
+    kv = form.k_shear.vec.FV().NumPy()
+    verts = top.verts[top.vertex_contact] if contact_only else top.verts
+    rows = np.nonzero(top.edge_contact)[0] if contact_only else np.arange(len(top.edge))
+    return np.concatenate([kv[verts], 0.5 * (kv[top.ea[rows]] + kv[top.eb[rows]])])
 
 
 def top_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray) -> dict:
@@ -174,7 +190,7 @@ def contact_loss(profile: dict, normal_stress: np.ndarray, min_length: float) ->
 # --- integrals -------------------------------------------------------------------------------
 def integrals(form: RollingForm, K: float) -> dict:
     """Forces, torque and the power balance of (3.6) tested with v itself (all per unit width)."""
-    from ngsolve import BND, VOL, Integrate, IfPos, InnerProduct, sqrt, x, y
+    from ngsolve import BND, VOL, Integrate, IfPos, InnerProduct, specialcf, sqrt, x, y
 
     from ..discretisation.forms import strain_rate
     from ..physics.material import edot_squared
@@ -185,7 +201,7 @@ def integrals(form: RollingForm, K: float) -> dict:
     chi = form.chi
     n, t = form.roll_frame()
     s = form.slip(u)
-    kf = form.friction.coefficient(form.a_f, s * s, m=m, K=1.0)
+    kf = form.friction_coefficient(u)
     gam = pen.surface(x, rp.soft_zone)
     U = rp.u_roll
     eps = strain_rate(u)
@@ -207,6 +223,7 @@ def integrals(form: RollingForm, K: float) -> dict:
     outlet_pen = bnd((1 - chi) * IfPos(x - rp.axis_x, outlet, 0.0)) + bnd(
         outlet, mesh.Boundaries("out"))
     p = m.Get() + 1.0
+    nh = specialcf.normal(2)
     out = {
         "plastic_power": K * float(Integrate(mu * InnerProduct(eps, eps), mesh, VOL)),
         "friction_power": K * bnd(chi * kf * s * s),
@@ -215,6 +232,9 @@ def integrals(form: RollingForm, K: float) -> dict:
         "outlet_penalty_power": K * outlet_pen,
         "roll_power": K * bnd(chi * (-kf * s) * U),
         "roll_torque": K * bnd(chi * (-kf * s) * r),
+        # power of the tensions' traction sigma n on the plate (back: < 0, front: > 0)
+        "tension_power": K * (bnd(form.tension_back * (u * nh), mesh.Boundaries("in"))
+                              + bnd(form.tension_front * (u * nh), mesh.Boundaries("out"))),
         "contact_length": bnd(chi),
         "slip_measure": bnd(chi * IfPos(s * s, (s * s) ** (p / 2), 0.0)),
         "strain_rate_measure": float(Integrate((3.0 * e2 + 1e-300) ** (p / 2), mesh, VOL)),
@@ -224,7 +244,8 @@ def integrals(form: RollingForm, K: float) -> dict:
     out["roll_force"], out["horizontal_force"] = -out["roll_force_y"], out["roll_force_x"]
     out["volume_v_p"], out["backward_length"] = a_f_inputs(form)
     bal = out["plastic_power"] + out["friction_power"] + out["penalty_power"]
-    out["power_balance_error"] = abs(out["roll_power"] - bal) / max(abs(out["roll_power"]), 1e-300)
+    supplied = out["roll_power"] + out["tension_power"]
+    out["power_balance_error"] = abs(supplied - bal) / max(abs(out["roll_power"]), 1e-300)
     out["penalty_share"] = out["penalty_power"] / max(abs(out["roll_power"]), 1e-300)
     return out
 
@@ -238,7 +259,7 @@ def force_balance(form: RollingForm, K: float) -> dict:
     ((3.2a), (3.2b), T*). The symmetry line's reaction is the residual of (3.6) in its Dirichlet
     rows (v_y = 0), summed over its vertices: computed from the volume terms, not from the roll.
     The parts sum to the residual of the free rows, zero at a converged solve:
-    ``balance_error`` = |sum| / roll force. ``free_top_force_share``: |free-top force| / roll force.
+    ``balance_error`` = |sum| / roll force. ``tension``: the back and front tensions' force. ``free_top_force_share``: |free-top force| / roll force.
     """
     from ngsolve import BND, CF, Grad, Integrate, IfPos, specialcf, x
 
@@ -247,7 +268,7 @@ def force_balance(form: RollingForm, K: float) -> dict:
     n, t = form.roll_frame()
     gam = form.penalties.surface(x, rp.soft_zone)
     s = form.slip(u)
-    kf = form.friction.coefficient(form.a_f, s * s, m=form.m, K=1.0)
+    kf = form.friction_coefficient(u)
     ex = CF((1.0, 0.0))
     roll_term = kf * s * t + gam * (u * n) * n
     top_term = IfPos(x - rp.axis_x, form.outlet_penalty(u, u), form.inlet_penalty(u, u)) * ex
@@ -256,6 +277,7 @@ def force_balance(form: RollingForm, K: float) -> dict:
         top_term = top_term + gam * form.free_normal(u) * nf
     faces = {"in": form.inlet_penalty(u, u) * ex,
              "out": form.outlet_penalty(u, u) * ex + gam * u[1] * CF((0.0, 1.0))}
+    nh = specialcf.normal(2)
 
     def force(term, region):
         return [-K * float(Integrate(term[i], mesh, BND, definedon=mesh.Boundaries(region)))
@@ -264,6 +286,8 @@ def force_balance(form: RollingForm, K: float) -> dict:
     roll = force(chi * roll_term, TOP)
     tops = force((1 - chi) * top_term, TOP)
     face = np.add(force(faces["in"], "in"), force(faces["out"], "out"))
+    # the tensions' traction sigma n on the cut faces (the residual term is -sigma n . v)
+    tension = np.add(force(-form.tension_back * nh, "in"), force(-form.tension_front * nh, "out"))
     # symmetry reaction: the residual of (3.6) in the Dirichlet rows v_y = 0, at the vertices
     # (the constant e_y has coefficient 1 there and 0 on the edge bubbles)
     problem = form.problem
@@ -282,11 +306,11 @@ def force_balance(form: RollingForm, K: float) -> dict:
     mu = form.material.viscosity(4.0 / 3.0 * exx * exx, m=form.m, K=1.0)
     sigma_yy = -mu * exx - problem.pressure
     sym_stress = -K * float(Integrate(sigma_yy, mesh, BND, definedon=mesh.Boundaries("sym")))
-    total = np.add(np.add(roll, tops), np.add(face, [0.0, sym_y]))
+    total = np.add(np.add(roll, tops), np.add(np.add(face, tension), [0.0, sym_y]))
     scale = max(abs(roll[1]), 1e-300)
     out = {"balance_error": float(np.hypot(*total)) / scale, "symmetry_stress_force_y": sym_stress,
            "free_top_force_share": float(np.hypot(*tops)) / scale, "symmetry_force_y": sym_y}
-    for name, f in (("roll", roll), ("free_top", tops), ("face", face)):
+    for name, f in (("roll", roll), ("free_top", tops), ("face", face), ("tension", tension)):
         out[f"{name}_force_x"], out[f"{name}_force_y"] = float(f[0]), float(f[1])
     return out
 
