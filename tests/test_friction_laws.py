@@ -120,10 +120,15 @@ def test_coulomb_shear_is_mu_p_below_the_cap(coulomb):
     assert slide.sum() >= 5
     assert np.abs(contact["shear_stress"][slide]) == pytest.approx(0.3 * p[slide] * reg[slide],
                                                                    rel=1e-3)
-    # where mu p exceeds k the shear is capped at k (sticking friction)
+    # where mu p exceeds k the shear is capped at k (sticking friction); the form takes k at
+    # its quadrature points from the element's strain rate, k here is sigma_ef of the written
+    # P1 strain rate: they differ by up to 13 % node by node where the rate varies steeply
+    # across the surface element, 4 % in the median
     stick = (contact["vertex"] == 1) & (0.3 * p > 1.2 * k)
-    assert stick.sum() >= 1
-    assert np.abs(contact["shear_stress"][stick]) == pytest.approx(k[stick], rel=0.05)
+    assert stick.sum() >= 3
+    ratio = np.abs(contact["shear_stress"][stick]) / k[stick]
+    assert np.median(ratio) == pytest.approx(1.0, abs=0.07)
+    assert np.all(np.abs(ratio - 1.0) < 0.15)
 
 
 def test_coulomb_friction_power_is_mu_p_slip(tmp_path_factory):

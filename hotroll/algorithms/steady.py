@@ -48,7 +48,7 @@ class SteadySettings:
     a_f: float | None = None         # None: (3.15), iterated to its fixed point
     a_f_max: float = 1e6
     a_f_rtol: float = 1e-2           # fixed point of the a_f rule reached at this change
-    k_rtol: float = 1e-3             # ... and of the friction law's shear flow stress k
+    strain_rtol: float = 1e-3        # ... and of the strain field (strain-dependent flow stress)
     upstream: float | None = None    # flat entry length before the touching point (None: auto)
     downstream: float | None = None  # flat exit length after the roll gap (None: auto)
     m_path: tuple[float, ...] = ()   # continuation in m ending at the target (() : direct)
@@ -142,9 +142,10 @@ class SteadyRun:
                                       margin=settings.fine_margin * rp.contact_length
                                       + 4 * model.h)
         reduced = NortonHoff(1.0, mat.m, mat.eps0)
+        self.strain, consistency = model.strain_setup(self.mesh)
         self.form = RollingForm(self.mesh, rp, reduced, model.friction, PenaltyTable(model.h),
                                 free_surface=settings.free_surface,
-                                tensions=model.reduced_tensions)
+                                tensions=model.reduced_tensions, consistency=consistency)
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.d = self.disp.vec.FV().NumPy()
@@ -272,14 +273,14 @@ class SteadyRun:
         self.shape = warm.shape.copy()
         self._set_shape()
         self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else warm.a_f)
-        self.form.update_k()
+        self._update_strain()
 
     def _cold_start(self) -> None:
         """Reference strip shape, kinematic velocity guess and a_f (3.15) from it."""
         self.shape = StripShape.flat(self.model.rp)
         self._set_shape()
         self._kinematic_guess()
-        self.form.update_k()
+        self._update_strain()
         self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else self._estimate_a_f())
 
     def _follow(self, path: list[float], res: SteadyResult, record) -> None:
@@ -304,7 +305,7 @@ class SteadyRun:
             record(SolveStats(iterations=0, converged=False))
             return True
 
-        coupled = s.a_f is None or s.free_surface == "traced" or f.k_shear is not None
+        coupled = s.a_f is None or s.free_surface == "traced" or self.strain is not None
         st = newton(f.problem, s.tol, s.max_it + 3 * s.max_outer,
                     couple=couple if coupled else None, couple_below=s.couple_below)
         res.stats.append(st)
@@ -312,11 +313,10 @@ class SteadyRun:
         record(st)
 
     def _update_coupled(self, res: SteadyResult) -> float:
-        """Update a_f (3.15), the shear flow stress k of the friction law and the free
-        surface; return the largest change in units of its tolerance."""
-        s, f, change = self.s, self.form, 0.0
-        if f.k_shear is not None:
-            change = f.update_k(self.top.verts[self.top.vertex_contact]) / s.k_rtol
+        """Update a_f (3.15), the strain field and the free surface; return the largest change
+        in units of its tolerance."""
+        s, f = self.s, self.form
+        change = self._update_strain() / s.strain_rtol
         if s.a_f is None:
             a_old, a_new = f.a_f.Get(), self._estimate_a_f()
             res.a_f_history.append(a_new)
@@ -327,6 +327,13 @@ class SteadyRun:
             res.surface_moves.append(moved)
             change = max(change, moved / (s.surface_tol * self.model.h))
         return change
+
+    def _update_strain(self) -> float:
+        """Transport the strain along the current flow; its largest relative change (0 when
+        the flow stress does not depend on the strain)."""
+        if self.strain is None:
+            return 0.0
+        return self.strain.transport(self.form.problem.velocity)
 
     def _top_parts(self) -> np.ndarray:
         """Part of every top P2 node (vertices, then edge midpoints, as ``Q.top_nodes``):

@@ -96,10 +96,24 @@ class RollingModel:
     mesh: MeshSpec
     back_tension: float = 0.0   # Pa, mean tensile stress on the entry face
     front_tension: float = 0.0  # Pa, mean tensile stress on the exit face
+    flow_stress: object = None  # strain-dependent flow-stress law (None: material is the law)
+    temperature: float = 1373.15  # K, uniform
+    entry_strain: float = 0.0
 
     @property
     def v_reg(self) -> float:
         return self.friction.v_reg
+
+    def strain_setup(self, mesh):
+        """(StrainField or None, K(strain, T)/K_ref as a CF or 1.0) for a strain-dependent
+        flow stress (``discretisation/strain.py``)."""
+        if self.flow_stress is None:
+            return None, 1.0
+        from ..discretisation.strain import StrainField
+
+        field = StrainField(mesh, self.entry_strain)
+        ratio = self.flow_stress.consistency(field.gf, self.temperature) / self.material.K
+        return field, ratio
 
     @property
     def reduced_tensions(self) -> tuple[float, float]:
@@ -138,9 +152,10 @@ class TransientRun:
             self.ckpt.mkdir(parents=True, exist_ok=True)
             self.mesh.ngmesh.Save(str(self.ckpt / "mesh.vol"))
         reduced = NortonHoff(1.0, mat.m, mat.eps0)
+        self.strain, consistency = model.strain_setup(self.mesh)
         self.form = RollingForm(self.mesh, rp, reduced, model.friction, PenaltyTable(model.h),
                                 free_surface=settings.free_surface,
-                                tensions=model.reduced_tensions)
+                                tensions=model.reduced_tensions, consistency=consistency)
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.top = TopBoundary(self.mesh, V.ndof // 2)
@@ -186,14 +201,8 @@ class TransientRun:
         f.m.Set(1.0)
         first = picard(f.problem, self.s.tol, 1)
         f.m.Set(self.model.material.m)
-        f.update_k()
         stats = self._solve()
         stats.iterations += first.iterations
-        for _ in range(10):   # the friction law's k (lagged) to its fixed point
-            if f.k_shear is None or f.update_k(self.top.verts[self.top.vertex_contact]) <= 1e-3:
-                break
-            more = self._solve()
-            stats.iterations += more.iterations
         if self.s.a_f is None:  # iterate a_f <- (3.15)(v) to a fixed point, as the notes do
             for _ in range(10):
                 a_old, a_new = f.a_f.Get(), self._estimate_a_f()
@@ -218,7 +227,12 @@ class TransientRun:
     # --- steady state ----------------------------------------------------------------------------
     def is_steady(self) -> bool:
         rp = self.model.rp
-        return (self.state.time >= rp.contact_length / rp.u_roll
+        # a strain-dependent flow stress is steady only once material that entered the bite
+        # after the start has left the gap: the contact length at the entry speed (~ U h1/h0)
+        transit = rp.contact_length / rp.u_roll
+        if self.strain is not None:
+            transit *= 1.2 * rp.half_entry / rp.half_exit
+        return (self.state.time >= transit
                 and steady_reached(self.state.history, self.steady_window, self.s.project_every,
                                    self.s.steady_tol, rp.bite_angle))
 
@@ -238,7 +252,6 @@ class TransientRun:
                 else:
                     if s.a_f is None:
                         self.form.a_f.Set(self._estimate_a_f())
-                    self.form.update_k()   # k of the friction law from the last step, like a_f
                     vec = self.form.problem.gf.vec.FV().NumPy()
                     last = vec.copy()
                     try:
@@ -282,6 +295,8 @@ class TransientRun:
     def advance(self) -> None:
         """(3.7) for every P2 node, then contact detection (3.9)."""
         nv_dofs = self.form.fes.components[0].ndof
+        if self.strain is not None:   # the nodes are material points: eps += dt edot
+            self.strain.integrate(self.form.problem.velocity, self.s.dt)
         self.d += self.s.dt * self.form.problem.gf.vec.FV().NumPy()[:nv_dofs]
         self.state.step += 1
         self.state.time += self.s.dt
@@ -329,6 +344,7 @@ class TransientRun:
         tmp = self.ckpt / "state.tmp.npz"
         np.savez(tmp, disp=self.d, sol=self.form.problem.gf.vec.FV().NumPy(),
                  contact=self.top.vertex_contact,
+                 strain=self.strain.values if self.strain is not None else np.zeros(0),
                  a_f=self.form.a_f.Get(), step=st.step, time=st.time,
                  meta=json.dumps({"fingerprint": self.fingerprint, "status": st.status,
                                   "history": st.history, "settings": asdict(self.s)}))
@@ -356,6 +372,8 @@ class TransientRun:
             self.form.a_f.Set(float(z["a_f"]))
             if "contact" in z.files:      # the bilateral contact set carries over
                 self.top.vertex_contact[:] = z["contact"]
+            if self.strain is not None and "strain" in z.files and z["strain"].size:
+                self.strain.values[:] = z["strain"]
             meta = json.loads(str(z["meta"]))
             self.state = TransientState(int(z["step"]), float(z["time"]), meta["history"],
                                         "running")

@@ -134,6 +134,37 @@ def run(
 
 
 @app.command()
+def compare(
+    case_file: Annotated[Path, typer.Argument(help="Case description (TOML).")],
+    out: OutOpt,
+    mesh: MeshOpt = None,
+    method: MethodOpt = None,
+) -> None:
+    """Run the FE model and slab theory (Orowan, Sims, Ford-Alexander) on one case; write
+    OUT/compare.{md,csv,json,png} side by side (FE run in OUT/fe)."""
+    from hotroll.app.compare import run_compare
+
+    extra = {"output.figures": False}
+    if method is not None:
+        extra["solver.method"] = method
+    case = _load(case_file, _overrides(mesh, None, None, **extra))
+    console.print(Text(f"comparing {case.name} -> {out}", style="bold"))
+    result = run_compare(case, out, progress=_Progress())
+    table = Table(title=escape(f"{case.name}: FE and slab theory"))
+    for col in ("quantity", "unit", "FE", "slab (Orowan)", "Sims", "Ford-Alexander", "FE/slab"):
+        table.add_column(col, justify="left" if col in ("quantity", "unit") else "right")
+    for row in result["rows"]:
+        name = str(row["quantity"]).rsplit(" [", 1)[0]
+        vals = [f"{row[c]:.4g}" if isinstance(row.get(c), float) else "-"
+                for c in ("FE", "slab (Orowan)", "Sims", "Ford-Alexander", "FE/slab")]
+        table.add_row(escape(name), escape(str(row["unit"])), *vals)
+    console.print(table)
+    if result.get("slab_error"):
+        console.print(Text(f"slab theory: {result['slab_error']}", style="yellow"))
+    console.print(f"table: {out / 'compare.md'}, figure: {out / 'compare.png'}")
+
+
+@app.command()
 def example(
     number: Annotated[str, typer.Argument(help="Example number of the report: 1, 2 or 3.")],
     out: OutOpt,
@@ -159,7 +190,7 @@ def example(
     runs, sweep = {}, Sweep()
     for case in cases:
         _run(case, out / case.name, resume, sweep)
-        runs[f"m = {case.material.m:g}"] = out / case.name
+        runs[f"m = {case.material.rate_exponent(case.plate.temperature):g}"] = out / case.name
     try:
         from hotroll.post.plots import plot_compare
     except ImportError as e:

@@ -128,15 +128,87 @@ class PassConfig(_Section):
 class PlateConfig(_Section):
     length: float = _field(
         ..., "initial plate length, at least 3 x the projected contact length", "m", "> 0", gt=0)
+    temperature: float = _field(1373.15, "plate temperature, uniform (flow stress)", "K", "> 0",
+                                gt=0)
+    entry_strain: float = _field(0.0, "equivalent plastic strain the plate enters with", "",
+                                 ">= 0", ge=0)
     free_surface: Literal["traced", "constrained"] = _field(
         "traced", "free tops before and after the bite: traction-free streamlines (traced) or "
         "held flat by the penalty (3.2d) (constrained)", "", '"traced" or "constrained"')
 
 
 class MaterialConfig(_Section):
-    K: float = _field(..., "Norton-Hoff consistency K", "Pa s^m", "> 0", gt=0)
-    m: float = _field(..., "strain-rate sensitivity m", "", "in (0, 1]", gt=0, le=1)
+    law: Literal["norton-hoff", "hensel-spittel"] = _field(
+        "norton-hoff", "flow-stress law: Norton-Hoff (K, m) or Hensel-Spittel (A, m1..m9, or a "
+        "grade)", "", '"norton-hoff" or "hensel-spittel"')
+    grade: str | None = _field(None, "Hensel-Spittel parameter set by name (hotroll grades)",
+                               "", "a name from physics/grades.py")
+    K: float | None = _field(None, "Norton-Hoff consistency K", "Pa s^m", "> 0", gt=0)
+    m: float | None = _field(None, "strain-rate sensitivity m", "", "in (0, 1]", gt=0, le=1)
+    A: float | None = _field(None, "Hensel-Spittel A", "Pa", "> 0", gt=0)
+    m1: float | None = _field(None, "Hensel-Spittel m1 (temperature, e^(m1 T))", "1/degC",
+                       "a finite number (omit: 0)")
+    m2: float | None = _field(None, "Hensel-Spittel m2 (strain, eps^m2)", "", "a finite number (omit: 0)")
+    m3: float | None = _field(None, "Hensel-Spittel m3 (rate, edot^m3)", "", "a finite number (omit: 0)")
+    m4: float | None = _field(None, "Hensel-Spittel m4 (e^(m4/eps))", "", "a finite number (omit: 0)")
+    m5: float | None = _field(None, "Hensel-Spittel m5 ((1+eps)^(m5 T))", "1/degC", "a finite number (omit: 0)")
+    m7: float | None = _field(None, "Hensel-Spittel m7 (e^(m7 eps))", "", "a finite number (omit: 0)")
+    m8: float | None = _field(None, "Hensel-Spittel m8 (edot^(m8 T))", "1/degC", "a finite number (omit: 0)")
+    m9: float | None = _field(None, "Hensel-Spittel m9 (T^m9)", "", "a finite number (omit: 0)")
     eps0: float = _field(1e-4, "strain-rate regularisation eps0", "1/s", "> 0", gt=0)
+
+    _HS = ("A", "m1", "m2", "m3", "m4", "m5", "m7", "m8", "m9")
+
+    @model_validator(mode="after")
+    def _check_law(self) -> MaterialConfig:
+        problems = []
+        if self.law == "norton-hoff":
+            for key in ("K", "m"):
+                if getattr(self, key) is None:
+                    problems.append(f"material.{key}: missing required key for law = "
+                                    f"\"norton-hoff\" ({_fields(type(self))[key].description})")
+            extra = [k for k in self._HS + ("grade",) if getattr(self, k) is not None]
+            problems += [f"material.{k}: only for law = \"hensel-spittel\"" for k in extra]
+        else:
+            extra = [k for k in ("K", "m") if getattr(self, k) is not None]
+            problems += [f"material.{k}: only for law = \"norton-hoff\" (Hensel-Spittel: A, "
+                         f"m1..m9 or grade)" for k in extra]
+            given = [k for k in self._HS if getattr(self, k) is not None]
+            if self.grade is not None:
+                from ..physics.grades import list_grades
+
+                try:
+                    self._grade()
+                except (KeyError, ValueError):
+                    problems.append(f"material.grade: unknown grade {self.grade!r} (allowed: "
+                                    f"{', '.join(list_grades())})")
+                problems += [f"material.{k}: not with material.grade (the grade sets it)"
+                             for k in given]
+            elif self.A is None:
+                problems.append("material.A: missing required key for law = \"hensel-spittel\""
+                                " without a grade (Hensel-Spittel A [Pa]; allowed: > 0)")
+        if problems:
+            raise _Problems(problems)
+        return self
+
+    def _grade(self):
+        from ..physics.grades import get_grade
+
+        return get_grade(self.grade)
+
+    def flow_stress(self):
+        """The flow-stress law object (``physics/flow_stress.py``), SI units, T in K."""
+        from ..physics.flow_stress import HenselSpittel, NortonHoffStress
+
+        if self.law == "norton-hoff":
+            return NortonHoffStress(self.K, self.m, self.eps0)
+        if self.grade is not None:
+            return self._grade().law(eps0=self.eps0)
+        return HenselSpittel(**{k: getattr(self, k) or 0.0 for k in self._HS}, eps0=self.eps0)
+
+    def rate_exponent(self, temperature: float) -> float:
+        """m of the law at the plate temperature (K)."""
+        return float(self.flow_stress().rate_exponent(temperature))
 
 
 class FrictionConfig(_Section):

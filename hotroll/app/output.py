@@ -61,7 +61,8 @@ def write_npz(path: Path, **arrays) -> None:
 
 
 def vertex_fields(run) -> dict:
-    """Deformed vertices, triangles and vertex values of v, p, edot, sigma_ef (SI units)."""
+    """Deformed vertices, triangles and vertex values of v, p, edot, strain and sigma_ef (the
+    flow stress at that strain and rate; SI units)."""
     import ngsolve
 
     from ..discretisation.forms import strain_rate
@@ -79,16 +80,22 @@ def vertex_fields(run) -> dict:
     g.Set(ngsolve.sqrt(edot_squared(strain_rate(form.problem.velocity)) + 1e-300))
     edot = np.maximum(g.vec.FV().NumPy()[:nv].copy(), 0.0)
     rows = np.nonzero(run.top.edge_contact)[0]
+    model, field = run.model, getattr(run, "strain", None)
+    strain = (field.values[:nv].copy() if field is not None
+              else np.full(nv, model.entry_strain))
+    sigma = (model.flow_stress.sigma(strain, edot, model.temperature)
+             if model.flow_stress is not None else model.material.sigma_ef(edot))
     return {
         "points": pts, "triangles": tris, "v": vel, "pressure": pressure, "edot": edot,
-        "sigma_ef": np.asarray(run.model.material.sigma_ef(edot)),
+        "strain": strain, "sigma_ef": np.asarray(sigma),
         "contact_edges": np.stack([run.top.ea[rows], run.top.eb[rows]], -1),
         "roll_centre": np.array(run.model.rp.centre), "roll_radius": run.model.rp.radius,
     }
 
 
 def write_vtk(run, path: Path) -> Path:
-    """ParaView file (.vtu) of velocity, pressure, strain rate and sigma_ef on the deformed plate."""
+    """ParaView file (.vtu) of velocity, pressure, strain rate, sigma_ef (and the strain) on the
+    deformed plate."""
     import ngsolve
 
     from ..discretisation.forms import strain_rate
@@ -97,9 +104,13 @@ def write_vtk(run, path: Path) -> Path:
     form, K = run.form, run.model.material.K
     edot = ngsolve.sqrt(edot_squared(strain_rate(form.problem.velocity)) + 1e-300)
     m = run.model.material.m
-    vtk = ngsolve.VTKOutput(run.mesh, coefs=[form.problem.velocity, K * form.problem.pressure,
-                                             edot, K * 3.0 ** ((m + 1) / 2) * edot**m],
-                            names=["velocity", "pressure", "edot", "sigma_ef"],
+    coefs = [form.problem.velocity, K * form.problem.pressure, edot,
+             K * form.consistency * 3.0 ** ((m + 1) / 2) * edot**m]
+    names = ["velocity", "pressure", "edot", "sigma_ef"]
+    if getattr(run, "strain", None) is not None:
+        coefs.append(run.strain.gf)
+        names.append("strain")
+    vtk = ngsolve.VTKOutput(run.mesh, coefs=coefs, names=names,
                             filename=str(Path(path).with_suffix("")), subdivision=1)
     vtk.Do()
     return Path(path).with_suffix(".vtu")

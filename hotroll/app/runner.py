@@ -23,22 +23,72 @@ AVERAGED = ("roll_force", "roll_torque", "roll_power", "forward_slip", "entry_ve
             "contact_length", "a_f", "strain_rate_measure", "slip_measure")
 
 
+def reference_material(case: Case):
+    """(NortonHoff(K_ref, m, eps0), flow-stress law): the Norton-Hoff law that coincides with
+    the case's flow-stress law at the plate temperature and entry strain (exactly the law for
+    Norton-Hoff; for Hensel-Spittel m = m3 + m8 T and K_ref = K(entry strain, T), the strain
+    dependence carried by the field K(strain)/K_ref, ``discretisation/rolling_form.py``)."""
+    from ..physics.material import NortonHoff
+
+    flow, T = case.material.flow_stress(), case.plate.temperature
+    m = float(flow.rate_exponent(T))
+    if not 0.0 < m <= 1.0:
+        from .config import CaseError
+
+        raise CaseError(f"plate.temperature: the flow-stress law's rate exponent is {m:.4g} at "
+                        f"{T:g} K; it must be in (0, 1] (allowed temperatures for this law: "
+                        f"{getattr(flow, 'admissible_temperature_range', lambda: '?')()} K)")
+    K_ref = float(flow.consistency(case.plate.entry_strain, T))
+    return NortonHoff(K_ref, m, case.material.eps0), flow
+
+
+def strain_dependent(flow) -> bool:
+    """Whether the flow stress depends on the strain (a strain field is then carried)."""
+    return any(getattr(flow, k, 0.0) != 0.0 for k in ("m2", "m4", "m5", "m6", "m7"))
+
+
+def exit_strain(case: Case, run) -> dict:
+    """Mean strain of the exit strip beside the homogeneous strain entry + 2/sqrt3 ln(h0/h1)
+    of plane-strain compression: steady strip, x in X_roll + [0.25, 0.75] D with D = max(l_c,
+    2 h1) (the downstream length, where it is rigid); report's scheme, the material past
+    X_roll + 2h that was ahead of the bite at the start (it has crossed the whole arc)."""
+    rp, pa = case.pass_.roll_pass(), case.pass_
+    homog = case.plate.entry_strain + 2.0 / math.sqrt(3.0) * math.log(
+        pa.entry_thickness / pa.exit_thickness)
+    field = getattr(run, "strain", None)
+    if field is None:
+        return {"exit_strain": None, "homogeneous_exit_strain": homog}
+    D = max(rp.contact_length, 4.0 * rp.half_exit)
+    if hasattr(run, "advance"):
+        # the report's scheme: the material past the gap that was ahead of the bite at the
+        # start (it has crossed the whole arc; the head was in the gap from t = 0)
+        nv = run.mesh.nv
+        x_now = run.top.X0[:, 0] + run.d[:nv]
+        mask = (x_now > rp.axis_x + 2.0 * run.model.h) & (run.top.X0[:, 0] < rp.x_touch)
+        value = field.mean_where(mask) if mask.any() else float("nan")
+    else:
+        value = field.mean_between(rp.axis_x + 0.25 * D, rp.axis_x + 0.75 * D)
+    return {"exit_strain": value, "homogeneous_exit_strain": homog}
+
+
 def build_model(case: Case):
     """Translate the case description into the solver's model and settings."""
     from ..algorithms.transient import RollingModel, TransientSettings
     from ..discretisation.mesh import MeshSpec
-    from ..physics.material import NortonHoff
     sv = case.solver
     rp = case.pass_.roll_pass()
     h = case.mesh.h
     end_time = sv.end_time or default_end_time(rp)
     spec = MeshSpec(h=h, fine_length=rp.contact_length + rp.u_roll * end_time + 6 * h,
                     h_far=case.mesh.h_far, grading=case.mesh.grading)
-    mat = case.material
-    model = RollingModel(rp, case.plate.length, NortonHoff(mat.K, mat.m, mat.eps0),
-                         case.friction.law_object(rp.u_roll, mat.m), spec,
+    material, flow = reference_material(case)
+    model = RollingModel(rp, case.plate.length, material,
+                         case.friction.law_object(rp.u_roll, material.m), spec,
                          back_tension=case.pass_.back_tension,
-                         front_tension=case.pass_.front_tension)
+                         front_tension=case.pass_.front_tension,
+                         flow_stress=flow if strain_dependent(flow) else None,
+                         temperature=case.plate.temperature,
+                         entry_strain=case.plate.entry_strain)
     settings = TransientSettings(
         dt=case.dt, end_time=end_time, nonlinear=sv.nonlinear, tol=sv.tolerance,
         max_it=sv.max_iterations, steady_tol=sv.steady_tolerance, max_steps=sv.max_steps,
@@ -138,7 +188,7 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
 def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = None) -> dict:
     from ..post import quantities as Q
 
-    K, hist = case.material.K, run.state.history
+    K, hist = run.model.material.K, run.state.history
     prof = Q.contact_profile(run.form, run.top, run.d, K)
     prof["normal_stress_corrected"] = (Q.exit_corrected(prof, run.model.h)
                                       if case.solver.exit_pressure_correction
@@ -220,7 +270,8 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "roll_centre": [cx, cy], "roll_radius": rp.radius, "roll_surface_speed": rp.u_roll,
         "contact_start": [float(prof["x"][0]), float(prof["y"][0])] if len(prof["x"]) else None,
         "contact_end": [float(prof["x"][-1]), float(prof["y"][-1])] if len(prof["x"]) else None,
-        "K": case.material.K, "m": case.material.m, "nonlinear": "newton" if steady_solver else run.s.nonlinear,
+        "K": run.model.material.K, "m": run.model.material.m, "nonlinear": "newton" if steady_solver else run.s.nonlinear,
+        **exit_strain(case, run),
         "friction_law": case.friction.law, "friction_mu": case.friction.mu,
         "friction_factor": case.friction.factor,
         "back_tension": case.pass_.back_tension, "front_tension": case.pass_.front_tension,

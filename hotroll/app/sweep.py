@@ -34,7 +34,7 @@ def form_key(case: Case) -> str:
 def parameters(case: Case) -> dict[str, float]:
     """The parameters whose distance ranks the solved neighbours."""
     rp = case.pass_.roll_pass()
-    p = {"m": case.material.m, "u_roll": rp.u_roll, "eps0": case.material.eps0,
+    p = {"m": case.material.rate_exponent(case.plate.temperature), "u_roll": rp.u_roll, "eps0": case.material.eps0,
          "v_reg": case.friction.regularisation_velocity(rp.u_roll)}
     fr = case.friction
     if fr.law == "viscoplastic" and fr.a_f != "estimate":

@@ -8,9 +8,9 @@ and stresses are K times the reduced ones; this is how the penalties of Table 1 
   Coulomb or Tresca, ``physics/friction.py``) on the slip v_s = (v - U_roll).t t (2.27), and the
   bilateral penalty gamma_vC (dv.n)(phi.n) for (2.28a); n and t are the roll's normal and
   tangent at the point, so U_roll.n = 0 exactly. Coulomb's pressure is the penalty reaction
-  gamma_vC (v.n) at the same point (inside Newton); the shear flow stress k = sigma_ef/sqrt3 of
-  the Coulomb cap and of Tresca is a P1 field of the volume strain rate, lagged (``update_k``):
-  a boundary integral sees only the surface gradient;
+  gamma_vC (v.n) at the same point; the shear flow stress k = sigma_ef/sqrt3 of the Coulomb cap
+  and of Tresca is that of the adjacent element's strain rate (element-boundary integral: a
+  boundary integral sees only the surface gradient); both inside Newton;
 - on the free top Gamma_0 (top edges not in contact): the one-sided inlet penalty (3.2a) for
   x <= X_roll (Gamma_0L) or outlet penalty (3.2b) for x > X_roll (Gamma_0R), and, in the
   ``"constrained"`` free-surface model only, gamma_v0 (v.n)(phi.n) (3.2d), n the mesh normal on
@@ -54,23 +54,43 @@ class PenaltyTable:
         return self.inout / self.h ** (m + 1.0)
 
 
+def _elements_on(mesh, regions: str):
+    """BitArray of the volume elements with an edge on the boundary ``regions``."""
+    import re
+
+    from ngsolve import BND, BitArray
+
+    pattern = re.compile(f"^({regions})$")
+    edges = {el.edges[0].nr for el in mesh.Elements(BND) if pattern.match(el.mat)}
+    ba = BitArray(mesh.ne)
+    ba.Clear()
+    for el in mesh.Elements():
+        if any(e.nr in edges for e in el.edges):
+            ba.Set(el.nr)
+    return ba
+
+
 class RollingForm:
     """Spaces, parameters and the Newton/Picard forms of (3.6) on one (moving) mesh."""
 
     def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: FrictionLaw,
-                 penalties: PenaltyTable, free_surface: str, tensions: tuple = (0.0, 0.0)):
-        from ngsolve import H1, FacetFESpace, GridFunction, Parameter
+                 penalties: PenaltyTable, free_surface: str, tensions: tuple = (0.0, 0.0),
+                 consistency=1.0):
+        from ngsolve import FacetFESpace, GridFunction, Parameter
 
         self.mesh, self.rp = mesh, rp
         self.free_surface = free_surface
         self.material, self.friction, self.penalties = material, friction, penalties
+        # K(strain, T) / K_ref of a strain-dependent flow stress (a CF of the strain field,
+        # discretisation/strain.py), 1 for Norton-Hoff
+        self.consistency = consistency
         self.fes = taylor_hood(mesh, dirichlety="sym")
         self.m = Parameter(material.m)      # set to 1 for the very first iterate (Section 3.4)
         self.a_f = Parameter(1.0)           # friction parameter, updated by (3.15) every step
         self.chi = GridFunction(FacetFESpace(mesh, order=0))  # 1 on contact edges
         # back / front tension over K (reduced, like every stress in the form)
         self.tension_back, self.tension_front = Parameter(tensions[0]), Parameter(tensions[1])
-        self.k_shear = GridFunction(H1(mesh, order=1)) if friction.uses_k else None
+        self.top_elements = _elements_on(mesh, TOP) if friction.uses_k else None
         self.problem = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll,
                                         jacobian=self.jacobian)
 
@@ -106,34 +126,38 @@ class RollingForm:
         n, _ = self.roll_frame()
         return self.penalties.surface(x, self.rp.soft_zone) * (u * n)
 
+    def shear_flow_stress(self, w):
+        """k = sigma_ef / sqrt3 of the strain rate of w (reduced; regularised (2.21)). Needs
+        the volume gradient: valid in volume and element-boundary integrals only."""
+        from .forms import strain_rate
+        from ..physics.material import edot_squared
+
+        e2 = edot_squared(strain_rate(w))
+        return self.material.sigma_ef_reg(e2, m=self.m, K=self.consistency) / 3.0**0.5
+
     def friction_coefficient(self, w):
         """The friction law's secant coefficient k_f at the velocity w (T_tau = -k_f v_s)."""
         s = self.slip(w)
         law = self.friction
         return law.coefficient(s * s, a_f=self.a_f, m=self.m,
                                pressure=self.pressure(w) if law.uses_pressure else None,
-                               k=self.k_shear if law.uses_k else None)
+                               k=self.shear_flow_stress(w) if law.uses_k else None)
 
-    def update_k(self, where=None) -> float:
-        """Shear flow stress k = sigma_ef / sqrt3 (reduced) from the current velocity, as a P1
-        field; returns its largest change over its largest value at the vertices ``where``
-        (the contact's; all by default), 0 when the law needs no k."""
-        import numpy as np
+    def friction_measure(self):
+        """Where the friction term is integrated: the top boundary, or, for a law with k (which
+        needs the volume gradient: a boundary integral sees only the surface gradient), the
+        boundaries of the elements along the top, the contact picked by chi."""
+        from ngsolve import ds, dx
 
-        from .forms import strain_rate
-        from ..physics.material import edot_squared
+        if self.top_elements is None:
+            return ds(TOP)
+        return dx(element_boundary=True, definedonelements=self.top_elements)
 
-        if self.k_shear is None:
-            return 0.0
-        vec = self.k_shear.vec.FV().NumPy()
-        old = vec.copy()
-        e2 = edot_squared(strain_rate(self.problem.velocity))
-        self.k_shear.Set(self.material.sigma_ef_reg(e2, m=self.m, K=1.0) / 3.0**0.5)
-        sel = slice(None) if where is None else where
-        if np.size(vec[sel]) == 0:
-            return 0.0
-        scale = max(float(np.max(np.abs(vec[sel]))), 1e-300)
-        return float(np.max(np.abs(vec[sel] - old[sel]))) / scale
+    def integrate_friction(self, cf) -> float:
+        """Integral of ``cf`` (with chi in it) over the contact, on ``friction_measure``."""
+        from ngsolve import Integrate
+
+        return float(Integrate(cf * self.friction_measure(), self.mesh))
 
     def inlet_penalty(self, u, w):
         """(3.2a) per unit test v_x: gamma_in [v_x - |U_roll|]_+, active set taken at w."""
@@ -150,7 +174,7 @@ class RollingForm:
         """The residual form (3.6), coefficients at w (w = u: Newton; the last iterate: Picard)."""
         from ngsolve import dx
 
-        vol = norton_hoff_volume(self.material, self.m, u, p, w, v, q, K=1.0)
+        vol = norton_hoff_volume(self.material, self.m, u, p, w, v, q, K=self.consistency)
         return vol * dx + self.boundary(u, w, v)
 
     def jacobian(self, w, u, p, v, q):
@@ -158,7 +182,7 @@ class RollingForm:
         differentiated symbolically (w is the iterate's GridFunction component)."""
         from ngsolve import dx
 
-        vol = norton_hoff_tangent(self.material, self.m, w, u, p, v, q, K=1.0)
+        vol = norton_hoff_tangent(self.material, self.m, w, u, p, v, q, K=self.consistency)
         return vol * dx + self.boundary(w, w, v).Diff(w, u)
 
     def boundary(self, u, w, v):
@@ -170,8 +194,8 @@ class RollingForm:
         gam_s = pen.surface(x, rp.soft_zone)
         chi = self.chi
 
-        k_f = self.friction_coefficient(w)
-        contact = k_f * self.slip(u) * (v * t) + gam_s * (u * n) * (v * n)
+        friction = chi * self.friction_coefficient(w) * self.slip(u) * (v * t)
+        contact = gam_s * (u * n) * (v * n)
 
         inlet = self.inlet_penalty(u, w) * v[0]
         outlet = self.outlet_penalty(u, w) * v[0]
@@ -180,6 +204,7 @@ class RollingForm:
             free = free + gam_s * self.free_normal(u) * self.free_normal(v)
 
         nh = specialcf.normal(2)
-        return ((chi * contact + (1.0 - chi) * free) * ds(TOP)
+        return (friction * self.friction_measure()
+                + (chi * contact + (1.0 - chi) * free) * ds(TOP)
                 + (inlet - self.tension_back * (v * nh)) * ds("in")
                 + (outlet + gam_s * u[1] * v[1] - self.tension_front * (v * nh)) * ds("out"))

@@ -52,11 +52,16 @@ def contact_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: fl
 
 
 def _nodal_k(form: RollingForm, top: TopBoundary, contact_only: bool):
-    """The friction law's shear flow stress k (reduced, P1) at the top nodes as ``top_nodes``
-    orders them (vertices, then edge midpoints: the mean of the edge's two vertices)."""
-    if form.k_shear is None:
+    """The friction law's shear flow stress k (reduced) at the top nodes as ``top_nodes`` orders
+    them, from its P1 projection (vertices, then edge midpoints: the mean of the two vertices);
+    the form evaluates k at its quadrature points."""
+    if not form.friction.uses_k:
         return None
-    kv = form.k_shear.vec.FV().NumPy()
+    from ngsolve import H1, GridFunction
+
+    k = GridFunction(H1(form.mesh, order=1))
+    k.Set(form.shear_flow_stress(form.problem.velocity))
+    kv = k.vec.FV().NumPy()
     verts = top.verts[top.vertex_contact] if contact_only else top.verts
     rows = np.nonzero(top.edge_contact)[0] if contact_only else np.arange(len(top.edge))
     return np.concatenate([kv[verts], 0.5 * (kv[top.ea[rows]] + kv[top.eb[rows]])])
@@ -206,7 +211,7 @@ def integrals(form: RollingForm, K: float) -> dict:
     U = rp.u_roll
     eps = strain_rate(u)
     e2 = edot_squared(eps)
-    mu = form.material.viscosity(e2, m=m, K=1.0)
+    mu = form.material.viscosity(e2, m=m, K=form.consistency)
     cx, cy = rp.centre
     r = sqrt((x - cx) ** 2 + (y - cy) ** 2)
 
@@ -226,12 +231,12 @@ def integrals(form: RollingForm, K: float) -> dict:
     nh = specialcf.normal(2)
     out = {
         "plastic_power": K * float(Integrate(mu * InnerProduct(eps, eps), mesh, VOL)),
-        "friction_power": K * bnd(chi * kf * s * s),
+        "friction_power": K * form.integrate_friction(chi * kf * s * s),
         "penalty_power": K * (free_pen + face_pen + contact_pen),
         "contact_penalty_power": K * contact_pen,
         "outlet_penalty_power": K * outlet_pen,
-        "roll_power": K * bnd(chi * (-kf * s) * U),
-        "roll_torque": K * bnd(chi * (-kf * s) * r),
+        "roll_power": K * form.integrate_friction(chi * (-kf * s) * U),
+        "roll_torque": K * form.integrate_friction(chi * (-kf * s) * r),
         # power of the tensions' traction sigma n on the plate (back: < 0, front: > 0)
         "tension_power": K * (bnd(form.tension_back * (u * nh), mesh.Boundaries("in"))
                               + bnd(form.tension_front * (u * nh), mesh.Boundaries("out"))),
@@ -270,7 +275,7 @@ def force_balance(form: RollingForm, K: float) -> dict:
     s = form.slip(u)
     kf = form.friction_coefficient(u)
     ex = CF((1.0, 0.0))
-    roll_term = kf * s * t + gam * (u * n) * n
+    friction_term = kf * s * t
     top_term = IfPos(x - rp.axis_x, form.outlet_penalty(u, u), form.inlet_penalty(u, u)) * ex
     if form.free_surface == "constrained":
         nf = IfPos(x - rp.axis_x, CF((0.0, 1.0)), specialcf.normal(2))
@@ -283,7 +288,8 @@ def force_balance(form: RollingForm, K: float) -> dict:
         return [-K * float(Integrate(term[i], mesh, BND, definedon=mesh.Boundaries(region)))
                 for i in range(2)]
 
-    roll = force(chi * roll_term, TOP)
+    roll = np.add(force(chi * gam * (u * n) * n, TOP),
+                  [-K * form.integrate_friction(chi * friction_term[i]) for i in range(2)])
     tops = force((1 - chi) * top_term, TOP)
     face = np.add(force(faces["in"], "in"), force(faces["out"], "out"))
     # the tensions' traction sigma n on the cut faces (the residual term is -sigma n . v)
@@ -303,7 +309,7 @@ def force_balance(form: RollingForm, K: float) -> dict:
     # eps_xy = 0, so sigma_yy = -mu(4/3 eps_xx^2) eps_xx - p: an approximation that converges
     # with h, independent of the residual
     exx = Grad(u)[0, 0]
-    mu = form.material.viscosity(4.0 / 3.0 * exx * exx, m=form.m, K=1.0)
+    mu = form.material.viscosity(4.0 / 3.0 * exx * exx, m=form.m, K=form.consistency)
     sigma_yy = -mu * exx - problem.pressure
     sym_stress = -K * float(Integrate(sigma_yy, mesh, BND, definedon=mesh.Boundaries("sym")))
     total = np.add(np.add(roll, tops), np.add(np.add(face, tension), [0.0, sym_y]))
