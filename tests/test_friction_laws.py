@@ -214,3 +214,23 @@ def test_negative_tension_is_refused():
     with pytest.raises(CaseError) as e:
         _case(**{"pass.back_tension": -1.0})
     assert "pass.back_tension" in str(e.value) and ">= 0" in str(e.value)
+
+
+def test_coulomb_in_the_reports_scheme_agrees_with_steady(tmp_path_factory, coulomb):
+    """The report's scheme with Coulomb friction run to its steady state on the same mesh
+    (h = 0.02, Example 1's geometry; measured: force +0.7 %, torque -0.2 %, slip -0.2 points)."""
+    tr, _, _ = _run(tmp_path_factory, "coulomb_transient",
+                    **{"solver.method": "transient", "solver.end_time": 3.0})
+    st = coulomb[0]
+    assert tr["status"] == "steady" and tr["converged"]
+    assert tr["roll_force"] == pytest.approx(st["roll_force"], rel=0.02)
+    assert tr["roll_torque"] == pytest.approx(st["roll_torque"], rel=0.03)
+    assert abs(tr["forward_slip"] - st["forward_slip"]) < 0.005
+    assert tr["power_balance_error"] < 1e-2
+
+
+def test_width_gives_whole_strip_figures(tmp_path_factory, coulomb):
+    s, _, _ = _run(tmp_path_factory, "width", **{"pass.width": 1.5})
+    assert s["roll_force_total"] == pytest.approx(1.5 * coulomb[0]["roll_force"], rel=1e-9)
+    assert s["mill_power"] == pytest.approx(2 * 1.5 * coulomb[0]["roll_power"], rel=1e-9)
+    assert s["units"]["roll_force_total"] == "N" and s["units"]["roll_force"] == "N/m"

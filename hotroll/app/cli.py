@@ -19,7 +19,9 @@ console = Console()
 err_console = Console(stderr=True)
 
 SUMMARY_KEYS = ["status", "free_surface", "h_contact", "neutral_point", "neutral_angle",
-                "roll_force", "roll_torque", "roll_power", "forward_slip", "a_f", "balance_error",
+                "roll_force", "roll_torque", "roll_power", "forward_slip", "mean_pressure",
+                "mean_flow_stress", "mean_strain_rate", "exit_strain", "roll_force_total",
+                "roll_torque_total", "mill_power", "a_f", "balance_error",
                 "converged", "steps", "nonlinear_iterations", "wall_time_s"]
 #: Units of what the command line prints (per unit width of the upper roll).
 UNITS = {"h_contact": "m", "neutral_point": "m", "neutral_angle": "rad", "roll_force": "N/m",
@@ -107,9 +109,13 @@ def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
     table.add_column("quantity")
     table.add_column("value", justify="right")
     table.add_column("unit")
+    from hotroll.post.engineering import display
+
     for key in SUMMARY_KEYS:
         if summary.get(key) is not None:
-            table.add_row(key, escape(_fmt(summary[key])), escape(UNITS.get(key, "")))
+            text, unit = display(key, summary[key])
+            table.add_row(key, escape(text if text is not None else _fmt(summary[key])),
+                          escape(unit or UNITS.get(key, "")))
     console.print(table)
     return summary
 
@@ -135,7 +141,8 @@ def run(
 
 @app.command()
 def compare(
-    case_file: Annotated[Path, typer.Argument(help="Case description (TOML).")],
+    case_file: Annotated[Path, typer.Argument(
+        help="Case description (TOML) or the name of a bundled example.")],
     out: OutOpt,
     mesh: MeshOpt = None,
     method: MethodOpt = None,
@@ -144,6 +151,8 @@ def compare(
     OUT/compare.{md,csv,json,png} side by side (FE run in OUT/fe)."""
     from hotroll.app.compare import run_compare
 
+    if not case_file.exists() and len(EXAMPLES.get(str(case_file), [])) == 1:
+        case_file = example_path(EXAMPLES[str(case_file)][0])     # a bundled example by name
     extra = {"output.figures": False}
     if method is not None:
         extra["solver.method"] = method
@@ -166,7 +175,9 @@ def compare(
 
 @app.command()
 def example(
-    number: Annotated[str, typer.Argument(help="Example number of the report: 1, 2 or 3.")],
+    number: Annotated[str, typer.Argument(
+        help="Report example 1, 2 or 3, or a realistic pass: hot_strip_finishing, roughing_slab, "
+             "hot_aluminium, tension_pass.")],
     out: OutOpt,
     mesh: MeshOpt = None,
     end_time: EndOpt = None,
@@ -176,9 +187,10 @@ def example(
     ] = "steady",
     resume: ResumeOpt = True,
 ) -> None:
-    """Run a report example (3 runs m = 0.15, 0.2, 0.25 and compares them)."""
+    """Run an example by name: the report's 1, 2, 3 (3 runs m = 0.15, 0.2, 0.25 and compares
+    them) or one of the realistic passes."""
     if number not in EXAMPLES:
-        raise _fail(f"example: unknown number {number!r} (allowed: {', '.join(EXAMPLES)})")
+        raise _fail(f"example: unknown example {number!r} (allowed: {', '.join(EXAMPLES)})")
     extra = {"solver.method": method}
     over = _overrides(mesh, end_time, nonlinear, **extra)
     cases = [_load(example_path(name), over) for name in EXAMPLES[number]]  # validate all first

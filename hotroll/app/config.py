@@ -71,6 +71,8 @@ class PassConfig(_Section):
                                  "Pa", ">= 0", ge=0)
     front_tension: float = _field(0.0, "front tension: mean tensile stress on the exit strip",
                                   "Pa", ">= 0", ge=0)
+    width: PosFloat | None = _field(None, "strip width (omit: results per unit width only)", "m",
+                                    "> 0")
 
     @model_validator(mode="after")
     def _check_geometry(self) -> PassConfig:

@@ -204,6 +204,15 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
     summary = summarise(case, run, prof, wall) | (extra or {})
     if case.friction.law != "viscoplastic":
         summary["a_f"] = None            # the law has no a_f
+    from ..post.engineering import UNITS, gap_means, width_totals
+
+    x_start = float(prof["x"][0]) if len(prof["x"]) else run.model.rp.x_touch
+    summary.update(gap_means(run.form, run.model.rp, x_start, K))
+    summary["mean_pressure"] = (summary["roll_force"] / summary["contact_length"]
+                                if summary.get("contact_length") else None)
+    summary.update(width_totals(summary, case.pass_.width))
+    summary["temperature"] = case.plate.temperature
+    summary["units"] = {k: u for k, u in UNITS.items() if k in summary}
     write_json(out / "summary.json", summary)
     return summary
 
