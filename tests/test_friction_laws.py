@@ -83,9 +83,12 @@ def test_laws_on_numbers():
     v_reg = 1e-6
     slip = np.array([-0.3, -0.01, 0.02, 0.5])
     p, k = np.array([1.0, 4.0, 2.0, -1.0]), np.array([0.9, 0.9, 0.9, 0.9])
-    # Coulomb: min(mu p, k) against the slip, no shear where the pressure is tensile
+    # Coulomb: min(mu p, k) against the slip, no shear where the pressure is tensile (the kinks
+    # rounded over 1 % of k: 1e-4 here)
     tau = CoulombFriction(v_reg, mu=0.3).shear(slip, pressure=p, k=k)
-    assert tau == pytest.approx([0.3, 0.9, -0.6, 0.0], rel=1e-6, abs=1e-12)
+    assert tau == pytest.approx([0.3, 0.9, -0.6, 0.0], rel=2e-4, abs=1e-4)
+    sharp = CoulombFriction(v_reg, mu=0.3, rounding=1e-9).shear(slip, pressure=p, k=k)
+    assert sharp == pytest.approx([0.3, 0.9, -0.6, 0.0], rel=1e-6, abs=1e-9)
     tau = TrescaFriction(v_reg, factor=0.8).shear(slip, k=k)
     assert tau == pytest.approx(-0.72 * np.sign(slip), rel=1e-6)
     # viscoplastic (2.29a): a_f K |v_s|^m against the slip
@@ -116,10 +119,11 @@ def test_coulomb_shear_is_mu_p_below_the_cap(coulomb):
     p, slip = -contact["normal_stress"], contact["v_slip"]
     k = _k_from_fields(contact, fields)
     reg = np.abs(slip) / np.hypot(slip, 1e-3 * summary["roll_surface_speed"])  # (2.29a)-like
-    slide = (0.3 * p < 0.8 * k) & (p > 0) & (reg > 0.98)
+    # away from the law's rounded kinks (p = 0 and mu p = k, rounded over 1 % of k)
+    slide = (0.3 * p < 0.8 * k) & (p > 0.5 * k) & (reg > 0.98)
     assert slide.sum() >= 5
     assert np.abs(contact["shear_stress"][slide]) == pytest.approx(0.3 * p[slide] * reg[slide],
-                                                                   rel=1e-3)
+                                                                   rel=2e-3)
     # where mu p exceeds k the shear is capped at k (sticking friction); the form takes k at
     # its quadrature points from the element's strain rate, k here is sigma_ef of the written
     # P1 strain rate: they differ by up to 13 % node by node where the rate varies steeply

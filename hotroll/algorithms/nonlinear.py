@@ -157,7 +157,9 @@ def newton(
             alpha *= 0.5
         stats.iterations = it
         stats.residual = r1
-        stats.update = alpha * ws.max_velocity(ws.du) / scale
+        # the Newton direction, not the damped step: a step cut by the line search is small
+        # without the iterate being converged
+        stats.update = ws.max_velocity(ws.du) / scale
         residual_ready = True
         if couple is not None and stats.update <= couple_below:
             if couple():

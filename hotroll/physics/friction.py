@@ -27,26 +27,24 @@ def _is_cf(*values) -> bool:
     return any(isinstance(v, CoefficientFunction) for v in values)
 
 
-def positive_part(a):
-    """max(a, 0) for numbers, arrays and CoefficientFunctions."""
+def _sqrt(a):
     if _is_cf(a):
-        from ngsolve import IfPos
+        from ngsolve import sqrt
 
-        return IfPos(a, a, 0.0)
+        return sqrt(a)
     import numpy as np
 
-    return np.maximum(a, 0.0)
+    return np.sqrt(a)
 
 
-def minimum(a, b):
-    """min(a, b) for numbers, arrays and CoefficientFunctions."""
-    if _is_cf(a, b):
-        from ngsolve import IfPos
+def smooth_positive_part(a, delta):
+    """max(a, 0) rounded over |a| < delta: (a + sqrt(a^2 + delta^2)) / 2 (error <= delta/2)."""
+    return 0.5 * (a + _sqrt(a * a + delta * delta))
 
-        return IfPos(a - b, b, a)
-    import numpy as np
 
-    return np.minimum(a, b)
+def smooth_minimum(a, b, delta):
+    """min(a, b) rounded over |a - b| < delta: (a + b - sqrt((a - b)^2 + delta^2)) / 2."""
+    return 0.5 * (a + b - _sqrt((a - b) ** 2 + delta * delta))
 
 
 @dataclass(frozen=True)
@@ -94,16 +92,22 @@ class ViscoplasticFriction(_Law):
 
 @dataclass(frozen=True)
 class CoulombFriction(_Law):
-    """Coulomb friction capped by sticking: |T_tau| = min(mu p, k), p = max(pressure, 0)."""
+    """Coulomb friction capped by sticking: |T_tau| = min(mu p, k), p = max(pressure, 0).
+
+    The two kinks (p = 0, mu p = k) are rounded over ``rounding`` x k (error <= 0.5 % of k at
+    the kink, none away from it), so that Newton converges to its tolerance instead of
+    oscillating between the two sides at a quadrature point (docs/theory.md 1b)."""
 
     mu: float = 0.3
+    rounding: float = 0.01
 
     name = "coulomb"
     uses_pressure = True
     uses_k = True
 
     def limit(self, *, pressure=None, k=None):
-        return minimum(self.mu * positive_part(pressure), k)
+        d = self.rounding * k
+        return smooth_minimum(self.mu * smooth_positive_part(pressure, d / self.mu), k, d)
 
 
 @dataclass(frozen=True)
