@@ -48,10 +48,11 @@ def _clip_limits(ax, curves, raw, pad=0.12):
 
 
 def plot_compare_profiles(contact: dict | None, slab, summary: dict, out_png: Path, *,
-                          title: str = "") -> Path:
+                          title: str = "", fe_only: bool = False) -> Path:
     """Two panels (pressure, shear) against the roll angle; FE smoothed line, FE raw dots,
     slab line, neutral angles as vertical lines. ``contact``: columns of contact.csv
-    (or None); ``slab``: a :class:`hotroll.theory.SlabResult` or None."""
+    (or None); ``slab``: a :class:`hotroll.theory.SlabResult` or None (``fe_only``: the FE
+    profiles alone, the run's own figure ``fig_contact_angle.png``)."""
     fig, (ap, at) = plt.subplots(2, 1, figsize=(8.5, 8), sharex=True, layout="constrained")
     pcurves, tcurves, praw, traw = [], [], None, None
     if contact is not None and len(contact.get("angle", [])):
@@ -74,7 +75,7 @@ def plot_compare_profiles(contact: dict | None, slab, summary: dict, out_png: Pa
         at.plot(deg, sign * slab.shear * 1e-6, "--", color="C3", lw=1.8, label="slab (Orowan)")
         pcurves.append(slab.pressure * 1e-6)
         tcurves.append(sign * slab.shear * 1e-6)
-    else:
+    elif not fe_only:
         ap.text(0.5, 0.95, "slab theory not solved (see compare.md)", transform=ap.transAxes,
                 ha="center", va="top", color="C3")
     for ax in (ap, at):

@@ -594,11 +594,23 @@ def _fig_history(run: _Run, path: Path) -> Path | None:
 # public API
 # ---------------------------------------------------------------------------
 
+def _fig_contact_angle(run: _Run, path: Path) -> Path | None:
+    """Pressure and shear (MPa) over the roll angle: P1 projection, raw nodal values as dots,
+    the axes fitted to the projection (off-scale raw values marked at the edge)."""
+    from .compare_plot import plot_compare_profiles
+
+    if run.contact is None or _col(run.contact, "angle") is None:
+        return None
+    return plot_compare_profiles(run.contact, None, run.summary, path, fe_only=True,
+                                 title=_title(run, "contact pressure and shear"))
+
+
 _FIGURES: tuple[tuple[str, Callable[[_Run, Path], Path | None]], ...] = (
     ("fig_mesh.png", _fig_mesh),
     ("fig_sigma_ef.png", _fig_sigma_ef),
     ("fig_velocity.png", _fig_velocity),
     ("fig_contact.png", _fig_contact),
+    ("fig_contact_angle.png", _fig_contact_angle),
     ("fig_top.png", _fig_top),
     ("fig_history.png", _fig_history),
 )
