@@ -317,3 +317,96 @@ def test_friction_laws_and_closed_forms_reject_bad_input():
         sims(0.3, 0.01, 0.008, 0.0)
     with pytest.raises(ValueError, match=r"\bh1\b"):
         ford_alexander(0.3, 0.01, 0.01, 100e6)
+
+
+# ----------------------------------------------------------------------------- rate-dependent ends
+def norton_hoff(K=1e8, m=0.15):
+    """Norton-Hoff uniaxial flow stress K 3^((m+1)/2) edot^m (Pa): exactly 0 at edot = 0."""
+    return lambda strain, rate, T: K * 3.0 ** ((m + 1.0) / 2.0) * rate ** m
+
+
+@pytest.mark.parametrize("geometry", ["arc", "small_angle"])
+def test_end_yield_condition_uses_mean_strain_rate(geometry):
+    """Without tension the end pressures are 2k at the mean rate edot_mean = (2/sqrt3) ln(h0/h1) /
+    t_c, t_c = int_0^L dx / v the residence time with v = v1 h1 / h (evaluated here by
+    quadrature; x = R sin phi or R phi), not 0 (the local rate at the exit).  Inside the arc the
+    local rate is kept: 2k there equals the law at the reported local rate."""
+    R, h0, h1, U, K, m = 0.3, 0.010, 0.008, 2.0, 1e8, 0.15
+    r = solve_pass(R, h0, h1, U, Coulomb(0.3), norton_hoff(K, m), T_HOT, geometry=geometry)
+    v1, small = r.exit_speed, geometry == "small_angle"
+    alpha = math.sqrt((h0 - h1) / R) if small else math.acos(1 - (h0 - h1) / (2 * R))
+    h = (lambda f: h1 + R * f * f) if small else (lambda f: h1 + 2 * R * (1 - math.cos(f)))
+    dxdf = (lambda f: R) if small else (lambda f: R * math.cos(f))
+    t_c = quad(lambda f: h(f) / (v1 * h1) * dxdf(f), 0, alpha, epsabs=0, epsrel=1e-13)[0]
+    rate = 2 / SQ3 * math.log(h0 / h1) / t_c
+    two_k_mean = 2 / SQ3 * K * 3.0 ** ((m + 1) / 2) * rate ** m
+    assert r.mean_strain_rate == pytest.approx(rate, rel=1e-10)
+    assert r.strain_rate[0] == 0.0  # the local rate at the exit, still reported as such
+    assert r.pressure[0] == pytest.approx(two_k_mean, rel=1e-10)
+    assert r.pressure[-1] == pytest.approx(two_k_mean, rel=1e-10)
+    assert r.plane_strain_flow_stress[0] == pytest.approx(two_k_mean, rel=1e-10)
+    inner = slice(1, -1)
+    np.testing.assert_allclose(r.plane_strain_flow_stress[inner],
+                               2 / SQ3 * K * 3.0 ** ((m + 1) / 2) * r.strain_rate[inner] ** m,
+                               rtol=1e-12)
+    # the classical estimate (2/sqrt3) (U/L) ln(h0/h1) is the same rate to within 15 % here
+    assert rate == pytest.approx(2 / SQ3 * U / r.contact_length * math.log(h0 / h1), rel=0.15)
+
+
+def test_rate_dependent_law_accepts_tensions():
+    """The bundled tension_pass example (S355J2 Hensel-Spittel, rate exponent m8 T_C = 0.127 at
+    1000 C, 8 -> 6 mm, R 0.35 m, 5 m/s, mu 0.3): front tension used to be refused (local rate 0
+    at the exit, so 2k = 0 there).  With tensions of 10 % of the end 2k: back tension moves the
+    neutral point to the exit and lowers the forward slip, front tension the opposite, both
+    lower the force; the end pressures are 2k_end - sigma; a tension above w 2k_end is refused."""
+    from hotroll.physics.grades import get_grade
+
+    law = get_grade("S355J2").law().sigma
+    args = (0.35, 0.008, 0.006, 5.0, Coulomb(0.3), law, 1273.15)
+    r0 = solve_pass(*args)
+    tk_exit, tk_entry = r0.plane_strain_flow_stress[0], r0.plane_strain_flow_stress[-1]
+    assert tk_exit > 150e6 and tk_entry > 80e6
+    sb, sf = 0.1 * tk_entry, 0.1 * tk_exit
+    rb = solve_pass(*args, back_tension=sb)
+    rf = solve_pass(*args, front_tension=sf)
+    rbf = solve_pass(*args, back_tension=sb, front_tension=sf)
+    assert rb.neutral_angle < r0.neutral_angle < rf.neutral_angle
+    assert rb.forward_slip < r0.forward_slip < rf.forward_slip
+    assert rb.force < r0.force and rf.force < r0.force and rbf.force < min(rb.force, rf.force)
+    assert rf.pressure[0] == pytest.approx(rf.plane_strain_flow_stress[0] - sf, rel=1e-12)
+    assert rb.pressure[-1] == pytest.approx(rb.plane_strain_flow_stress[-1] - sb, rel=1e-12)
+    # the end 2k depends on the slip only through the mean rate (a few 1e-3 here)
+    assert rf.plane_strain_flow_stress[0] == pytest.approx(tk_exit, rel=0.01)
+    with pytest.raises(ValueError, match=r"\bfront_tension\b.*mean strain rate"):
+        solve_pass(*args, front_tension=1.01 * tk_exit)
+
+
+@pytest.mark.parametrize("name,args,kw,expected", [
+    ("const_arc_tens",
+     (0.2, 0.006, 0.0048, 0.5, Coulomb(0.1), constant_flow_stress(650e6), 293.0),
+     dict(back_tension=60e6, front_tension=40e6),
+     (11775628.534280363, 105757.98871259295, 0.020710168908834845, 0.017652376711495332,
+      857623153.6266527, 710555349.9465135, 690555349.9465135, 750555349.9465135,
+      750555349.9465135)),
+    ("hard_arc_tens",
+     (0.3, 0.01, 0.008, 1.0, Coulomb(0.3), lambda e, r, T: 80e6 * (0.05 + e) ** 0.25, 1200.0),
+     dict(entry_strain=0.1, back_tension=8e6, front_tension=12e6),
+     (2169474.550637434, 22792.126885002875, 0.03410223953252644, 0.0430000973007485,
+      132044286.09120387, 61813354.063228875, 49488657.91409368, 73813354.06322888,
+      57488657.914093696)),
+    ("hard_small_tresca",
+     (0.3, 0.01, 0.008, 1.0, Tresca(0.7), lambda e, r, T: 80e6 * (0.05 + e) ** 0.25, 1200.0),
+     dict(geometry="small_angle", front_tension=10e6),
+     (2082577.441124634, 12239.602058261678, 0.034535492626494343, 0.04472625941079911,
+      119319014.30056018, 58798428.53111312, 43681933.80334507, 68798428.53111312,
+      43681933.80334507)),
+])
+def test_rate_independent_results_unchanged_by_end_rate(name, args, kw, expected):
+    """Rate-independent laws (constant; strain hardening) with tensions: force, torque, neutral
+    angle, slip, peak and end pressures and end 2k are bit-identical to the values recorded
+    before the end yield condition was moved to the mean strain rate."""
+    r = solve_pass(*args, **kw)
+    got = (r.force, r.torque, r.neutral_angle, r.forward_slip, r.peak_pressure,
+           float(r.pressure[0]), float(r.pressure[-1]), float(r.plane_strain_flow_stress[0]),
+           float(r.plane_strain_flow_stress[-1]))
+    assert got == expected

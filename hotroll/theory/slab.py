@@ -18,8 +18,34 @@ Equations (von Karman 1925 slab balance in Orowan's 1943 angular form, homogeneo
   compression; w = pi/4 is Orowan's inhomogeneity factor for sticking friction used by
   Sims (1954) -- offered only to reproduce Sims' closed form;
 * boundary values q = -back_tension at the entry and q = -front_tension at the exit, i.e.
-  p = w 2k - sigma_b and p = w 2k - sigma_f: the entry branch is integrated from alpha to 0,
-  the exit branch from 0 to alpha, the neutral angle phi_n is where the two q h cross.
+  p = w 2k_end - sigma_b and p = w 2k_end - sigma_f: the entry branch is integrated from alpha
+  to 0, the exit branch from 0 to alpha, the neutral angle phi_n is where the two q h cross.
+
+Flow stress and strain rate.  Inside the arc 2k is the flow stress at the local homogeneous
+strain rate 2/sqrt3 v |dh/dx| / h (v = v1 h1 / h).  That rate is exactly 0 at the exit
+(dh/dx = 0 there), so for a rate-dependent law (Norton-Hoff K edot^m, Hensel-Spittel
+edot^(m3 + m8 T)) the local 2k vanishes at the exit: the exit yield condition would give p = 0
+and refuse any front tension.  The yield condition AT THE TWO ENDS (the boundary pressures
+p = w 2k_end - sigma_b / - sigma_f and the tension admissibility check sigma < w 2k_end) is
+therefore evaluated, at the end's own strain and temperature, at the pass's mean equivalent
+strain rate
+
+    edot_mean = (2/sqrt3) ln(h0/h1) / t_c,    t_c = int_0^L dx / v = int_0^L h dx / (v1 h1),
+
+the pass strain divided by the slab's own residence time in the gap (the time mean of the local
+rate along the strip's path; closed-form t_c for both geometries).  It is the classical mean
+strain rate of hot-rolling flow-stress models, strain / contact time with t_c ~ L/U, i.e.
+(U/L) ln(h0/h1) (e.g. PyRolL, pyroll-project/pyroll-core, roll_pass hook ``strain_rate`` =
+velocity / contact_length * strain_change), computed with the slab's own kinematics: it reduces
+to the classical value when v = U and h = h1 along the arc, and it scales with v1 exactly like
+the local rate (the iterated slip acts on both alike).  The local rate is kept everywhere
+inside the arc, so the ODE, force, torque, neutral point and slip are those of the local-rate
+model; only the two end samples of the pressure / 2k profiles carry 2k_end, so a plotted
+profile jumps there (tension_pass example: exit 2k_end 207 MPa, local 2k 119 MPa one profile
+step inside).  For a power-law rate the local 2k ~ phi^m drops to 0 in a thin layer at the
+exit, where under front tension p = q + w 2k < 0 over a fraction ~ (sigma_f / 2k)^(1/m) of
+the arc (~1e-8 for m = 0.13, sigma_f = 0.1 2k: negligible).  For a rate-independent law
+2k_end equals the local 2k and every result is unchanged.
 
 Geometry ``"arc"`` (default): h = h1 + 2R (1 - cos phi), alpha = arccos(1 - dh / 2R), exact
 sin/cos above, force F = R int (p cos phi - s tau sin phi) dphi (vertical projection of pressure
@@ -30,8 +56,8 @@ Torque per roll T = R^2 int (-s) tau dphi (the pressure passes through the roll 
 the shear has a moment; exact for a rigid circular roll).  Forward slip (Ford's form): at the
 neutral point the strip moves with the roll surface's horizontal speed U cos phi_n, so mass flux
 v1 h1 = U cos(phi_n) h_n gives  f = (v1 - U) / U = h_n cos(phi_n) / h1 - 1.
-Strain rate uses v = v1 h1 / h with v1 = U (1 + f), f iterated to convergence (``iterate_slip``;
-otherwise the no-slip estimate v1 = U).
+Strain rates (local and mean) use v = v1 h1 / h with v1 = U (1 + f), f iterated to convergence
+(``iterate_slip``; otherwise the no-slip estimate v1 = U).
 """
 
 from __future__ import annotations
@@ -145,8 +171,9 @@ class SlabResult:
     thickness: np.ndarray
     strain: np.ndarray
     strain_rate: np.ndarray
-    plane_strain_flow_stress: np.ndarray  # 2k
+    plane_strain_flow_stress: np.ndarray  # 2k (local rate; the two end samples at mean_strain_rate)
     slip_iterations: int
+    mean_strain_rate: float   # 1/s, (2/sqrt3) ln(h0/h1) / t_c: the rate of the end 2k
 
 
 # ----------------------------------------------------------------------------- solver
@@ -160,7 +187,15 @@ class _Pass:
         self.T, self.e0, self.w, self.small = temperature, entry_strain, yield_offset, small_angle
         self.v1 = v1
         dh = h0 - h1
-        self.alpha = math.sqrt(dh / R) if small_angle else math.acos(1.0 - dh / (2.0 * R))
+        self.alpha = a = math.sqrt(dh / R) if small_angle else math.acos(1.0 - dh / (2.0 * R))
+        # int_0^L h dx (x = R phi, resp. R sin phi) in closed form; residence time
+        # t_c = area / (v1 h1)
+        if small_angle:
+            area = R * (h1 * a + R * a ** 3 / 3.0)
+        else:
+            area = R * (h1 * math.sin(a)
+                        + 2.0 * R * (math.sin(a) - 0.5 * a - 0.25 * math.sin(2.0 * a)))
+        self.mean_rate = 2.0 / SQRT3 * math.log(h0 / h1) * v1 * h1 / area
 
     def h(self, phi):
         if self.small:
@@ -170,18 +205,26 @@ class _Pass:
     def sin_cos(self, phi):
         return (phi, 1.0) if self.small else (math.sin(phi), math.cos(phi))
 
-    def state(self, phi):
-        """(h, strain, strain rate, 2k) at phi."""
-        h = self.h(phi)
-        strain = self.e0 + 2.0 / SQRT3 * math.log(self.h0 / h)
-        dhdx = 2.0 * phi if self.small else 2.0 * math.tan(phi)  # |dh/dx| along the arc
-        rate = 2.0 / SQRT3 * (self.v1 * self.h1 / h) * dhdx / h
+    def two_k(self, strain, rate):
         sf = float(self.flow_stress(strain, rate, self.T))
         if not math.isfinite(sf) or sf < 0.0:
             raise ValueError(f"flow_stress returned {sf!r} at strain {strain:g}, "
                              f"strain rate {rate:g}, temperature {self.T:g}; "
                              "it must be finite and >= 0")
-        return h, strain, rate, 2.0 * sf / SQRT3
+        return 2.0 * sf / SQRT3
+
+    def state(self, phi):
+        """(h, strain, local strain rate, 2k at the local rate) at phi."""
+        h = self.h(phi)
+        strain = self.e0 + 2.0 / SQRT3 * math.log(self.h0 / h)
+        dhdx = 2.0 * phi if self.small else 2.0 * math.tan(phi)  # |dh/dx| along the arc
+        rate = 2.0 / SQRT3 * (self.v1 * self.h1 / h) * dhdx / h
+        return h, strain, rate, self.two_k(strain, rate)
+
+    def end_two_k(self, phi):
+        """2k for the yield condition at an end of the arc (phi = 0 or alpha): the end's strain,
+        the pass's mean strain rate (see the module docstring)."""
+        return self.two_k(self.state(phi)[1], self.mean_rate)
 
     def local(self, phi, H):
         """Pressure, shear and 2k from the branch state H = q h."""
@@ -271,10 +314,11 @@ def solve_pass(roll_radius: float, h0: float, h1: float, roll_speed: float, fric
         ps = _Pass(R, h0, h1, friction, flow_stress, T, e0, w, small, U * (1.0 + slip))
         if iterations == 1:  # tension must leave a positive pressure at each end
             for name, value, phi in (("back_tension", sb, ps.alpha), ("front_tension", sf, 0.0)):
-                wk = w * ps.state(phi)[3]
+                wk = w * ps.end_two_k(phi)
                 if value >= wk and value != 0.0:
-                    raise ValueError(f"{name} must be < {wk:g} Pa (w 2k at that end: the strip "
-                                     f"would yield outside the gap), got {value:g}")
+                    raise ValueError(f"{name} must be < {wk:g} Pa (w 2k at that end, at the "
+                                     "mean strain rate: the strip would yield outside the "
+                                     f"gap), got {value:g}")
         ent, ext, phin, force, torque = _solve_once(ps, sb, sf, rtol)
         hn = ps.h(phin)
         new_slip = hn / h1 - 1.0 if small else hn * math.cos(phin) / h1 - 1.0
@@ -290,6 +334,10 @@ def solve_pass(roll_radius: float, h0: float, h1: float, roll_speed: float, fric
         H = ext.sol(phi)[0] if phi <= phin else ent.sol(phi)[0]
         p, tau, two_k = ps.local(phi, H)
         h, strain, rate, _ = ps.state(phi)
+        if phi == 0.0 or phi == a:  # yield condition at the ends: 2k at the mean rate
+            two_k = ps.end_two_k(phi)
+            p = H / h + w * two_k
+            tau = friction.shear(p, 0.5 * two_k)
         pr[j], sh[j], th[j], st[j], sr[j], tk[j] = p, tau, h, strain, rate, two_k
     x = R * angle if small else R * np.sin(angle)
     length = R * a if small else R * math.sin(a)
@@ -298,4 +346,5 @@ def solve_pass(roll_radius: float, h0: float, h1: float, roll_speed: float, fric
         neutral_thickness=hn, forward_slip=slip, exit_speed=U * (1.0 + slip),
         peak_pressure=float(pr.max()), mean_pressure=force / length, contact_length=length,
         contact_angle=a, angle=angle, x=x, pressure=pr, shear=sh, thickness=th, strain=st,
-        strain_rate=sr, plane_strain_flow_stress=tk, slip_iterations=iterations)
+        strain_rate=sr, plane_strain_flow_stress=tk, slip_iterations=iterations,
+        mean_strain_rate=ps.mean_rate)
