@@ -147,15 +147,14 @@ def compare(
     mesh: MeshOpt = None,
     method: MethodOpt = None,
 ) -> None:
-    """Run the FE model and slab theory (Orowan, Sims, Ford-Alexander) on one case; write
-    OUT/compare.{md,csv,json,png} side by side (FE run in OUT/fe)."""
+    """Run the FE model (steady unless --method) and slab theory (Orowan, Sims, Ford-Alexander)
+    on one case; write OUT/compare.{md,csv,json,png} side by side (FE run in OUT/fe)."""
     from hotroll.app.compare import run_compare
 
     if not case_file.exists() and len(EXAMPLES.get(str(case_file), [])) == 1:
         case_file = example_path(EXAMPLES[str(case_file)][0])     # a bundled example by name
-    extra = {"output.figures": False}
-    if method is not None:
-        extra["solver.method"] = method
+    # the FE side of a comparison is the steady answer unless asked otherwise
+    extra = {"output.figures": False, "solver.method": method or "steady"}
     case = _load(case_file, _overrides(mesh, None, None, **extra))
     console.print(Text(f"comparing {case.name} -> {out}", style="bold"))
     result = run_compare(case, out, progress=_Progress())
