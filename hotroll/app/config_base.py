@@ -1,0 +1,51 @@
+"""Shared pieces of the case description (``config.py``, ``config_laws.py``): the error type,
+the field helper that puts unit and allowed range into every message, the base section."""
+
+from __future__ import annotations
+
+from typing import Annotated, Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+from pydantic.fields import FieldInfo
+
+
+#: Contact mesh sizes of the report's Table 2 (m).
+MESH_TABLE: dict[str, float] = {
+    "C1": 5.02e-3, "C2": 4.2e-3, "M1": 3.7e-3, "M2": 3.01e-3, "F1": 2.7e-3, "F2": 2.02e-3,
+}
+MeshName = Literal["C1", "C2", "M1", "M2", "F1", "F2"]
+PosFloat = Annotated[float, Field(gt=0)]
+
+
+class CaseError(ValueError):
+    """Invalid case description; ``problems`` holds one ``section.key: ...`` line each."""
+
+    def __init__(self, problems: list[str] | str, source: str | None = None):
+        self.problems = [problems] if isinstance(problems, str) else list(problems)
+        self.source = source
+        n = len(self.problems)
+        head = f"{source or 'case'}: invalid case description ({n} problem{'s' * (n != 1)})"
+        super().__init__("\n".join([head] + [f"  {p}" for p in self.problems]))
+
+
+class _Problems(ValueError):
+    """Raised inside model validators; carries ready-made ``section.key: ...`` lines."""
+
+    def __init__(self, problems: list[str]):
+        self.problems = problems
+        super().__init__("; ".join(problems))
+
+
+def _field(default: Any, text: str, unit: str, allowed: str, **constraints: Any) -> Any:
+    """Field whose description and error messages carry unit and allowed range."""
+    allowed_u = f"{allowed} [{unit}]" if unit else allowed
+    desc = f"{text} [{unit or '-'}]; allowed: {allowed}"
+    return Field(default, description=desc, json_schema_extra={"allowed": allowed_u}, **constraints)
+
+
+class _Section(BaseModel):
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
+
+
+def _fields(model: type[BaseModel]) -> dict[str, FieldInfo]:
+    return {(f.alias or n): f for n, f in model.model_fields.items()}
