@@ -21,8 +21,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .sims import _check_pass
-from .slab import SQRT3, _check_number
+from .slab import SQRT3, _check_number, _check_pass
 
 
 @dataclass(frozen=True)

@@ -33,7 +33,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .slab import SQRT3, _check_number
+from .slab import SQRT3, _check_number, _check_pass
 
 
 @dataclass(frozen=True)
@@ -49,17 +49,6 @@ class SimsResult:
     mean_pressure: float      # Pa, F / L
     contact_length: float     # m, sqrt(R dh)
     contact_angle: float      # rad, sqrt(dh / R)
-
-
-def _check_pass(roll_radius, h0, h1):
-    R = _check_number("roll_radius", roll_radius, low=0.0, low_open=True)
-    h0 = _check_number("h0", h0, low=0.0, low_open=True)
-    h1 = _check_number("h1", h1, low=0.0, low_open=True)
-    if h1 >= h0:
-        raise ValueError(f"h1 must be in (0, h0) = (0, {h0:g}), got {h1:g}")
-    if R <= h0 - h1:
-        raise ValueError(f"roll_radius must be > draft h0 - h1 = {h0 - h1:g}, got {R:g}")
-    return R, h0, h1
 
 
 def sims_neutral_angle(roll_radius: float, h0: float, h1: float) -> float:

@@ -89,6 +89,17 @@ class NoNeutralPointError(RuntimeError):
 
 
 # ----------------------------------------------------------------------------- friction laws
+def _check_pass(roll_radius, h0, h1):
+    R = _check_number("roll_radius", roll_radius, low=0.0, low_open=True)
+    h0 = _check_number("h0", h0, low=0.0, low_open=True)
+    h1 = _check_number("h1", h1, low=0.0, low_open=True)
+    if h1 >= h0:
+        raise ValueError(f"h1 must be in (0, h0) = (0, {h0:g}), got {h1:g}")
+    if R <= h0 - h1:
+        raise ValueError(f"roll_radius must be > draft h0 - h1 = {h0 - h1:g}, got {R:g}")
+    return R, h0, h1
+
+
 def _check_number(name: str, value, low=None, high=None, low_open=False, high_open=False):
     try:
         v = float(value)
@@ -286,13 +297,7 @@ def solve_pass(roll_radius: float, h0: float, h1: float, roll_speed: float, fric
     (uniaxial), temperature in K (uniform), tensions in Pa (tensile positive).
     Raises ValueError for invalid input, NoNeutralPointError when no steady state exists.
     """
-    R = _check_number("roll_radius", roll_radius, low=0.0, low_open=True)
-    h0 = _check_number("h0", h0, low=0.0, low_open=True)
-    h1 = _check_number("h1", h1, low=0.0, low_open=True)
-    if h1 >= h0:
-        raise ValueError(f"h1 must be in (0, h0) = (0, {h0:g}), got {h1:g}")
-    if R <= h0 - h1:
-        raise ValueError(f"roll_radius must be > draft h0 - h1 = {h0 - h1:g}, got {R:g}")
+    R, h0, h1 = _check_pass(roll_radius, h0, h1)
     U = _check_number("roll_speed", roll_speed, low=0.0, low_open=True)
     if not isinstance(friction, (Coulomb, Tresca, Sticking)):
         raise ValueError(f"friction must be Coulomb(mu), Tresca(factor) or Sticking(), "
