@@ -165,7 +165,9 @@ def newton(
             if couple():
                 residual_ready = False   # the form changed: its residual must be re-evaluated
                 continue
-        if stats.update <= tol:
+        if stats.update <= tol and alpha == 1.0:
+            # a full Newton step below the tolerance: in Newton's quadratic range the residual
+            # after it is of the order of the step squared (a damped step is not converged)
             stats.converged = True
             break
     return stats
