@@ -27,7 +27,6 @@ constant flow stress, yield offset).
 from __future__ import annotations
 
 import argparse
-import csv
 import json
 import math
 import os
