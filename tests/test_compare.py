@@ -209,3 +209,14 @@ def test_slab_failure_is_recorded_not_raised(compared, tmp_path, monkeypatch):
     assert force["FE"] > 0 and force["Sims"] > 0
     assert "Slab (Orowan) not solved" in (tmp_path / "compare.md").read_text()
     assert (tmp_path / "compare.png").is_file()
+
+
+def test_compare_command_refuses_an_ambiguous_or_unknown_example(tmp_path):
+    from typer.testing import CliRunner
+
+    from hotroll.app.cli import app
+
+    r = CliRunner().invoke(app, ["compare", "3", "--out", str(tmp_path)])
+    assert r.exit_code == 2 and "several cases" in r.output
+    r = CliRunner().invoke(app, ["compare", "no_such_pass", "--out", str(tmp_path)])
+    assert r.exit_code == 2 and "hot_strip_finishing" in r.output

@@ -151,8 +151,16 @@ def compare(
     on one case; write OUT/compare.{md,csv,json,png} side by side (FE run in OUT/fe)."""
     from hotroll.app.compare import run_compare
 
-    if not case_file.exists() and len(EXAMPLES.get(str(case_file), [])) == 1:
-        case_file = example_path(EXAMPLES[str(case_file)][0])     # a bundled example by name
+    if not case_file.exists():               # a bundled example by name (or file stem)
+        name = str(case_file)
+        files = EXAMPLES.get(name, [name])
+        if len(files) != 1:
+            raise _fail(f"compare: example {name!r} has several cases ({', '.join(files)}); "
+                        f"name one of them")
+        try:
+            case_file = example_path(files[0])
+        except FileNotFoundError as e:
+            raise _fail(f"compare: {case_file} is neither a file nor a bundled example ({e})")
     # the FE side of a comparison is the steady answer unless asked otherwise
     extra = {"output.figures": False, "solver.method": method or "steady"}
     case = _load(case_file, _overrides(mesh, None, None, **extra))
