@@ -14,7 +14,7 @@ from hotroll.post.plots import plot_all, plot_compare, plot_series
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 ALL_FIGS = ("fig_mesh.png", "fig_sigma_ef.png", "fig_velocity.png",
-            "fig_contact.png", "fig_top.png", "fig_history.png")
+            "fig_contact.png", "fig_contact_angle.png", "fig_top.png", "fig_history.png")
 
 
 def _write_csv(path: Path, header: list[str], rows: np.ndarray) -> None:
@@ -158,7 +158,7 @@ def test_plot_all_partial_run(tmp_path):
     (run / "history.csv").unlink()
     (run / "fields.npz").unlink()
     paths = plot_all(run)
-    assert sorted(p.name for p in paths) == ["fig_contact.png", "fig_top.png"]
+    assert sorted(p.name for p in paths) == ["fig_contact.png", "fig_contact_angle.png", "fig_top.png"]
     for p in paths:
         _assert_png(p)
 
