@@ -307,7 +307,8 @@ class SteadyRun:
 
         coupled = s.a_f is None or s.free_surface == "traced" or self.strain is not None
         st = newton(f.problem, s.tol, s.max_it + 3 * s.max_outer,
-                    couple=couple if coupled else None, couple_below=s.couple_below)
+                    couple=couple if coupled else None, couple_below=s.couple_below,
+                    full_step=True)
         res.stats.append(st)
         res.settled = state["settled"] or not coupled
         record(st)
