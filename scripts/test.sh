@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Set up and run the test suite (about 1.5 minutes on 2 cores).
+# Set up and run the test suite (about 8 minutes on 2 cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
