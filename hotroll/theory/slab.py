@@ -70,6 +70,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
+from ..physics.flow_stress import _finite
+
 SQRT3 = math.sqrt(3.0)
 
 FlowStress = Callable[[float, float, float], float]
@@ -101,12 +103,7 @@ def _check_pass(roll_radius, h0, h1):
 
 
 def _check_number(name: str, value, low=None, high=None, low_open=False, high_open=False):
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {value!r}") from None
-    if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {value!r}")
+    v = _finite(name, value)
     lo_ok = low is None or (v > low if low_open else v >= low)
     hi_ok = high is None or (v < high if high_open else v <= high)
     if not (lo_ok and hi_ok):
