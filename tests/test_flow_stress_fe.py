@@ -182,3 +182,22 @@ def test_plastic_power_from_the_written_fields(tmp_path):
     area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
     power = float(np.sum(area * dens[t].mean(axis=1)))
     assert power == pytest.approx(s["plastic_power"], rel=0.03)   # measured 0.6 %
+
+
+def test_gap_means_from_the_written_fields(tmp_path):
+    """mean_flow_stress and mean_strain_rate are area means over the strip between the contact
+    start and the roll gap: recomputed here from the written vertex fields (triangles whose
+    centroid lies in that band, vertex means), and mean_pressure = force / contact length."""
+    s = run_case(_case({"law": "hensel-spittel", "A": 1.5e8, "m3": 0.15, "m2": 0.2}),
+                 tmp_path)
+    f = dict(np.load(tmp_path / "fields.npz"))
+    x0 = s["contact_start"][0]
+    p, t = f["points"], f["triangles"]
+    cx = p[t, 0].mean(axis=1)
+    band = (cx > x0) & (cx < s["roll_centre"][0])
+    e1, e2 = p[t[:, 1]] - p[t[:, 0]], p[t[:, 2]] - p[t[:, 0]]
+    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])[band]
+    for key, field in (("mean_flow_stress", "sigma_ef"), ("mean_strain_rate", "edot")):
+        mean = float(np.sum(area * f[field][t[band]].mean(axis=1)) / area.sum())
+        assert s[key] == pytest.approx(mean, rel=0.03)
+    assert s["mean_pressure"] == pytest.approx(s["roll_force"] / s["contact_length"], rel=1e-12)
