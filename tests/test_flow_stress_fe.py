@@ -9,14 +9,15 @@
 """
 from __future__ import annotations
 
-import json
 import math
 
 import numpy as np
 import pytest
 
-from hotroll.app.config import CaseError, case_from_dict
+from hotroll.app.config import CaseError
 from hotroll.app.runner import run_case
+
+from casebuild import build_case
 
 BASE = {
     "name": "hs",
@@ -31,13 +32,7 @@ BASE = {
 
 
 def _case(material=None, **over):
-    d = json.loads(json.dumps(BASE))
-    if material is not None:
-        d["material"] = material
-    for dotted, value in over.items():
-        sec, key = dotted.split(".")
-        d.setdefault(sec, {})[key] = value
-    return case_from_dict(d)
+    return build_case(BASE, "material", material, **over)
 
 
 def _run(tmp_path_factory, name, material=None, **over):

@@ -14,15 +14,16 @@ and the fields the run writes, not against the law object the solver used:
 """
 from __future__ import annotations
 
-import json
 import math
 
 import numpy as np
 import pytest
 from scipy.integrate import simpson
 
-from hotroll.app.config import CaseError, case_from_dict
+from hotroll.app.config import CaseError
 from hotroll.app.runner import run_case
+
+from casebuild import build_case
 from hotroll.physics.friction import CoulombFriction, TrescaFriction, ViscoplasticFriction
 
 BASE = {
@@ -43,13 +44,7 @@ THIN_MU02 = {"law": "coulomb", "mu": 0.2}
 
 
 def _case(friction=None, **over):
-    d = json.loads(json.dumps(BASE))
-    if friction is not None:
-        d["friction"] = friction
-    for dotted, value in over.items():
-        sec, key = dotted.split(".")
-        d.setdefault(sec, {})[key] = value
-    return case_from_dict(d)
+    return build_case(BASE, "friction", friction, **over)
 
 
 def _run(tmp_path_factory, name, friction=None, **over):
