@@ -117,7 +117,23 @@ def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
             table.add_row(key, escape(text if text is not None else _fmt(summary[key])),
                           escape(unit or UNITS.get(key, "")))
     console.print(table)
+    from hotroll.app.outcome import EXIT_CODES, exit_code
+
+    code = summary.get("exit_code", exit_code(summary))
+    if code:
+        err_console.print(Text(f"{case.name}: {EXIT_CODES[code]} (exit code {code}; status "
+                               f"{summary.get('status')}"
+                               + (f": {summary['failure']}" if summary.get("failure") else "")
+                               + ")", style="yellow"), soft_wrap=True)
+    summary["exit_code"] = code
     return summary
+
+
+def _exit(summaries: list[dict]) -> None:
+    """End the command with the worst run's exit code (0 when every run converged)."""
+    code = max((s.get("exit_code", 0) for s in summaries), default=0)
+    if code:
+        raise typer.Exit(code)
 
 
 @app.command()
@@ -136,7 +152,7 @@ def run(
     if method is not None:
         extra["solver.method"] = method
     case = _load(case_file, _overrides(mesh, end_time, nonlinear, **extra))
-    _run(case, out, resume)
+    _exit([_run(case, out, resume)])
 
 
 @app.command()
@@ -202,21 +218,19 @@ def example(
     over = _overrides(mesh, end_time, nonlinear, **extra)
     cases = [_load(example_path(name), over) for name in EXAMPLES[number]]  # validate all first
     if len(cases) == 1:
-        _run(cases[0], out, resume)
+        _exit([_run(cases[0], out, resume)])
         return
     from hotroll.app.sweep import Sweep
 
-    runs, sweep = {}, Sweep()
+    runs, sweep, summaries = {}, Sweep(), []
     for case in cases:
-        _run(case, out / case.name, resume, sweep)
+        summaries.append(_run(case, out / case.name, resume, sweep))
         runs[f"m = {case.material.rate_exponent(case.plate.temperature):g}"] = out / case.name
-    try:
-        from hotroll.post.plots import plot_compare
-    except ImportError as e:
-        console.print(Text(f"comparison plot skipped ({e})", style="yellow"))
-        return
+    from hotroll.post.plots import plot_compare
+
     png = plot_compare(runs, out / "compare.png")
     console.print(Text(f"comparison plot: {png or out / 'compare.png'}"))
+    _exit(summaries)
 
 
 def _value(text: str) -> Any:
@@ -255,18 +269,20 @@ def sweep(
         extra["output.figures"] = False
     base = _overrides(mesh, None, None, **extra)
     cases = [_load(case_file, base | {param: v}) for v in vals]   # validate all first
-    rows, sw = [], Sweep() if warm else None
+    rows, sw, summaries = [], Sweep() if warm else None, []
     for v, case in zip(vals, cases):
         label = f"{param}={v:g}" if isinstance(v, float) else f"{param}={v}"
         case = case.with_overrides(name=f"{case.name} {label}")
         s = _run(case, out / label, resume, sw)
+        summaries.append(s)
         rows.append({"param": param, "value": v, **{k: s.get(k) for k in SWEEP_KEYS}})
     out.mkdir(parents=True, exist_ok=True)
     write_csv(out / "sweep.csv", rows)
     console.print(Text(f"sweep table: {out / 'sweep.csv'}"))
+    _exit(summaries)
 
 
-SWEEP_KEYS = ["status", "converged", "neutral_angle", "roll_force", "roll_torque", "roll_power",
+SWEEP_KEYS = ["status", "exit_code", "converged", "neutral_angle", "roll_force", "roll_torque", "roll_power",
               "forward_slip", "a_f", "nonlinear_iterations", "wall_time_s", "warm_start_from",
               "warm_start_failed"]
 

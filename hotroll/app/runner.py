@@ -213,6 +213,9 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
     summary.update(width_totals(summary, case.pass_.width))
     summary["temperature"] = case.plate.temperature
     summary["units"] = {k: u for k, u in UNITS.items() if k in summary}
+    from .outcome import exit_code
+
+    summary["exit_code"] = exit_code(summary)
     write_json(out / "summary.json", summary)
     return summary
 
@@ -287,3 +290,4 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "averaged_over_steps": len(solved),
         "unconverged_steps_in_window": len(window) - len(solved),
     }
+

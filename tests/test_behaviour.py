@@ -1,0 +1,243 @@
+"""Behaviour of the real thing (issue 20): resume after an interruption, a real ``hotroll run``
+through the command line with its exit codes, the VTU file read back, the figures checked by
+their data. Coarse cases of Example 1's geometry (h = 0.02 m)."""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from hotroll.app.cli import app
+from hotroll.app.outcome import EXIT_CODES, exit_code
+from hotroll.app.runner import run_case
+
+from casebuild import build_case
+
+BASE = {
+    "name": "behaviour",
+    "pass": {"roll_radius": 0.6, "entry_thickness": 0.5, "exit_thickness": 0.4,
+             "roll_angular_velocity": math.pi / 3},
+    "plate": {"length": 1.0},
+    "material": {"K": 1.0, "m": 0.2},
+    "friction": {"a_f": 3.0},
+    "mesh": {"h_contact": 0.02},
+    "solver": {"method": "transient", "end_time": 0.04, "threads": 1, "checkpoint_every": 4},
+    "output": {"figures": False, "vtk": False},
+}
+
+
+def _history(out):
+    return np.genfromtxt(out / "history.csv", delimiter=",", names=True)
+
+
+# --- resume -----------------------------------------------------------------------------------
+class _Counter:
+    """Counts TransientRun._solve calls; raises KeyboardInterrupt (a kill) at call ``stop``."""
+
+    def __init__(self, monkeypatch, stop=None):
+        from hotroll.algorithms.transient import TransientRun
+
+        self.n, self.stop, real = 0, stop, TransientRun._solve
+
+        def counted(run):
+            self.n += 1
+            if self.stop is not None and self.n == self.stop:
+                raise KeyboardInterrupt("killed (test)")
+            return real(run)
+
+        monkeypatch.setattr(TransientRun, "_solve", counted)
+
+
+def test_resume_after_an_interruption_repeats_nothing(tmp_path, monkeypatch):
+    """Killed during step 9 (checkpoints every 4 steps: the last at step 8), the resumed run
+    solves only steps 8..n-1 and ends with the uninterrupted run's history; a changed case in
+    the same directory starts from step 0."""
+    case = build_case(BASE)
+    whole = _Counter(monkeypatch)
+    ref = run_case(case, tmp_path / "whole")
+    n = ref["steps"]
+    assert n >= 11 and whole.n == n                  # one _solve per step (step 0: initial)
+    ref_hist = _history(tmp_path / "whole")
+
+    out = tmp_path / "killed"
+    killed = _Counter(monkeypatch, stop=10)          # the 10th solve is step 9's
+    with pytest.raises(KeyboardInterrupt):
+        run_case(case, out)
+    assert killed.n == 10
+    resumed = _Counter(monkeypatch)
+    s = run_case(case, out)
+    assert resumed.n == n - 8                        # steps 8..n-1 only
+    assert s["steps"] == n and s["status"] == ref["status"] == "end_time"
+    hist = _history(out)
+    assert len(hist) == n and list(hist["step"]) == list(range(n))
+    for key in ("roll_force", "roll_torque", "neutral_angle", "forward_slip", "head_x"):
+        assert np.allclose(hist[key], ref_hist[key], rtol=1e-9, atol=1e-14, equal_nan=True), key
+    assert s["roll_force"] == pytest.approx(ref["roll_force"], rel=1e-9)
+
+    # a finished run resumed: nothing solved again
+    again = _Counter(monkeypatch)
+    assert run_case(case, out)["roll_force"] == pytest.approx(s["roll_force"], rel=1e-12)
+    assert again.n == 0
+
+    # a changed case (another a_f) in the same directory: the checkpoint is not its own
+    changed = _Counter(monkeypatch)
+    c = run_case(build_case(BASE, **{"friction.a_f": 3.5}), out)
+    assert changed.n == n and c["steps"] == n
+    assert c["roll_force"] != pytest.approx(s["roll_force"], rel=1e-6)
+
+
+# --- exit codes -------------------------------------------------------------------------------
+@pytest.mark.parametrize("summary, code", [
+    ({"converged": True, "status": "steady", "roll_force": 1.0, "roll_torque": 1.0}, 0),
+    ({"converged": False, "status": "failed", "failure": "step 3: no direct solver"}, 3),
+    ({"converged": False, "status": "failed", "failure": None, "roll_force": 1.0,
+      "roll_torque": 1.0}, 4),                        # steady: the last Newton did not converge
+    ({"converged": False, "status": "steady", "roll_force": 1.0, "roll_torque": 1.0}, 4),
+    ({"converged": False, "status": "end_time", "roll_force": math.nan, "roll_torque": 1.0}, 4),
+    ({"converged": False, "status": "end_time", "roll_force": 1.0, "roll_torque": 1.0}, 5),
+    ({"converged": False, "status": "unsettled", "roll_force": 1.0, "roll_torque": 1.0}, 5),
+    ({"converged": False, "status": "wall_time", "roll_force": 1.0, "roll_torque": 1.0}, 5),
+    ({"converged": False, "status": "steady", "outlet_driven": True, "roll_force": 1.0,
+      "roll_torque": 1.0}, 6),
+])
+def test_exit_code_says_what_happened(summary, code):
+    assert exit_code(summary) == code
+    assert code in EXIT_CODES
+
+
+def _write_case(tmp_path, name="case", **over):
+    path = tmp_path / f"{name}.toml"
+    path.write_text(build_case(BASE, **over).to_toml())
+    return path
+
+
+@pytest.fixture(scope="module")
+def cli_run(tmp_path_factory):
+    """A real ``hotroll run`` of a coarse steady case, with figures and the VTU file."""
+    tmp = tmp_path_factory.mktemp("cli")
+    case = _write_case(tmp, **{"solver.method": "steady", "output.figures": True,
+                               "output.vtk": True})
+    result = CliRunner().invoke(app, ["run", str(case), "--out", str(tmp / "out")])
+    return result, tmp / "out"
+
+
+def test_cli_run_converges_with_exit_code_0(cli_run):
+    import json
+
+    result, out = cli_run
+    assert result.exit_code == 0, result.output
+    s = json.loads((out / "summary.json").read_text())
+    assert s["converged"] and s["exit_code"] == 0
+    # the printed table carries the figures with their units
+    assert "roll_force" in result.output and "N/m" in result.output
+    assert f"{s['roll_force']:.6g}" in result.output
+
+
+def test_cli_exit_codes_of_real_runs(tmp_path, monkeypatch):
+    """Not settled: a transient run that reaches its end time first (5). Skids: friction too
+    low to draw the strip in (a_f = 0.5, the outlet penalty drives it; 6). Failed: a linear
+    solve that fails at a step (3)."""
+    runner = CliRunner()
+    short = _write_case(tmp_path, "short", **{"solver.end_time": 0.01})
+    r = runner.invoke(app, ["run", str(short), "--out", str(tmp_path / "short")])
+    assert r.exit_code == 5, r.output
+    skid = _write_case(tmp_path, "skid", **{"solver.method": "steady", "friction.a_f": 0.5})
+    r = runner.invoke(app, ["run", str(skid), "--out", str(tmp_path / "skid")])
+    assert r.exit_code == 6, r.output
+
+    import hotroll.algorithms.transient as T
+    from hotroll.algorithms.nonlinear import LinearSolveError
+
+    real, calls = T.solve, {"n": 0}
+
+    def failing(*args, **kw):
+        calls["n"] += 1
+        if calls["n"] == 3:
+            raise LinearSolveError("no direct solver (test)")
+        return real(*args, **kw)
+
+    monkeypatch.setattr(T, "solve", failing)
+    r = runner.invoke(app, ["run", str(short), "--out", str(tmp_path / "fail")])
+    assert r.exit_code == 3, r.output
+
+
+# --- VTU read back -----------------------------------------------------------------------------
+def test_vtu_has_the_fields_of_the_run(cli_run):
+    """The VTU's velocity at the plate's entry and exit ends is the summary's entry and exit
+    velocity, its pressure and sigma_ef are finite and sigma_ef > 0 where the plate deforms."""
+    import json
+
+    _, out = cli_run
+    s = json.loads((out / "summary.json").read_text())
+    import meshio     # an independent reader of the VTK XML format (what ParaView opens)
+
+    vtu = meshio.read(out / "fields.vtu")
+    pts, data = vtu.points, {k: np.asarray(v).reshape(len(vtu.points), -1)
+                             for k, v in vtu.point_data.items()}
+    assert set(data) >= {"velocity", "pressure", "edot", "sigma_ef"}
+    assert len(pts) > 1000 and data["velocity"].shape[1] == 2
+    assert all(np.all(np.isfinite(v)) for v in data.values())
+    x, vx = pts[:, 0], data["velocity"][:, 0]
+    assert vx[x > x.max() - 0.02].mean() == pytest.approx(s["exit_velocity"], rel=3e-3)
+    assert vx[x < x.min() + 0.02].mean() == pytest.approx(s["entry_velocity"], rel=3e-3)
+    # in the bite the plate deforms: sigma_ef = K sqrt3^(m+1) edot^m there
+    bite = (x > 0.8) & (x < 1.0)
+    assert np.all(data["sigma_ef"][bite] > 0)
+    expect = 3.0 ** 0.6 * data["edot"][bite, 0] ** 0.2
+    assert np.allclose(data["sigma_ef"][bite, 0], expect, rtol=1e-6)
+
+
+# --- figures by their data ---------------------------------------------------------------------
+def test_figures_show_finite_data_inside_their_axes(tmp_path, monkeypatch):
+    """Every figure of a real run: each axes with data has finite lines inside its limits, and
+    the contact figure's curves are the written contact profile."""
+    import hotroll.post.plots as P
+
+    s = run_case(build_case(BASE, **{"solver.method": "steady"}), tmp_path)
+    figs = {}
+    monkeypatch.setattr(P.plt, "close", lambda *a, **k: None)
+    from matplotlib.figure import Figure
+
+    real_savefig = Figure.savefig
+
+    def savefig(fig, path, *a, **k):          # every figure, whoever saves it
+        figs[Path(path).name] = fig
+        return real_savefig(fig, path, *a, **k)
+
+    monkeypatch.setattr(Figure, "savefig", savefig)
+    P.plot_all(tmp_path)
+    assert {"fig_contact.png", "fig_top.png", "fig_velocity.png", "fig_sigma_ef.png",
+            "fig_mesh.png", "fig_contact_angle.png"} <= set(figs)
+    for name, fig in figs.items():
+        drawn = 0
+        for ax in fig.axes:
+            for line in ax.get_lines():
+                xd, yd = (np.asarray(v, dtype=float) for v in line.get_data())
+                ok = np.isfinite(xd) & np.isfinite(yd)
+                if len(xd) < 2 or not ok.any():
+                    continue
+                drawn += 1
+                x0, x1 = sorted(ax.get_xlim())
+                y0, y1 = sorted(ax.get_ylim())
+                # the axes show the data (up to the window some figures zoom to)
+                assert x0 < np.max(xd[ok]) and np.min(xd[ok]) < x1, (name, line.get_label())
+                assert y0 <= np.max(yd[ok]) and np.min(yd[ok]) <= y1, (name, line.get_label())
+            drawn += len(ax.collections)
+        assert drawn > 0, name
+    # the contact figure plots the written profile: slip (first panel) and the raw normal
+    # stress (second panel) against x, and the neutral point's vertical line at its x
+    contact = np.genfromtxt(tmp_path / "contact.csv", delimiter=",", names=True)
+    a_vs, a_sn = figs["fig_contact.png"].axes[:2]
+
+    def has(ax, y):
+        return any(len(l.get_xdata()) == len(y)
+                   and np.allclose(np.asarray(l.get_xdata(), float), contact["x"])
+                   and np.allclose(np.asarray(l.get_ydata(), float), y) for l in ax.get_lines())
+
+    assert has(a_vs, contact["v_slip"]) and has(a_sn, contact["normal_stress"])
+    assert any(np.allclose(np.asarray(l.get_xdata(), float), s["neutral_point"][0])
+               for l in a_vs.get_lines())
+    assert s["converged"]
