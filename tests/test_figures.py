@@ -133,6 +133,40 @@ def test_force_is_carried_by_the_symmetry_line(coarse):
     assert s["force_balance"]["roll"][1] == pytest.approx(-s["roll_force"], rel=1e-12)
 
 
+def test_contact_geometry_and_shares(coarse):
+    """Contact length = the arc between the first and last contact node (R times their angle
+    difference; the contact is the chords, 1e-4 shorter); it ends at the gap (x = X_roll,
+    y = h1/2) and starts on the roll, after the nominal bite point (the free entry top sags
+    ahead of the roll: measured 7 % shorter than the nominal arc R alpha). The penalty share
+    is penalty power / roll power; the exit-correction change is the relative change of the
+    integral of the normal stress along the arc, from the written profile; horizontal force:
+    no tensions, the roll pushes only down (measured 3e-12 of the force)."""
+    s, c, _ = coarse
+    cx, cy = s["roll_centre"]
+    arc = R * (c["angle"][0] - c["angle"][-1])
+    assert s["contact_length"] == pytest.approx(arc, rel=1e-3)
+    alpha = math.acos(1.0 - 0.05 / R)
+    assert 0.85 * R * alpha < s["contact_length"] < R * alpha
+    assert s["contact_end"] == pytest.approx([1.0, 0.2], abs=1e-9)
+    assert math.hypot(s["contact_start"][0] - cx, s["contact_start"][1] - cy) == pytest.approx(R)
+    assert s["contact_start"][0] == pytest.approx(c["x"][0], abs=1e-12)
+    assert s["penalty_share"] == pytest.approx(s["penalty_power"] / s["roll_power"], rel=1e-9)
+    assert 0 < s["penalty_share"] < 0.03                 # measured 1.9 %
+    seg = np.hypot(np.diff(c["x"]), np.diff(c["y"]))
+
+    def trap(f):
+        return np.sum(0.5 * (f[1:] + f[:-1]) * seg)
+
+    raw, cor = trap(c["normal_stress"]), trap(c["normal_stress_corrected"])
+    assert s["exit_correction_normal_force_change"] == pytest.approx((cor - raw) / raw, rel=1e-6)
+    assert s["exit_correction_normal_force_change"] != 0.0
+    assert abs(s["horizontal_force"]) < 1e-6 * s["roll_force"]
+    assert s["horizontal_force"] == s["force_balance"]["roll"][0]
+    # the steady solver's free surface settled: its last move below its tolerance
+    assert s["fixed_point_settled"] and 0 < s["surface_residual_h"] <= 1e-3   # surface_tol
+    assert s["outlet_penalty_power"] == 0.0 and not s["outlet_driven"]
+
+
 @pytest.mark.parametrize("factor", [2.0])
 def test_rate_scaling(tmp_path_factory, coarse, factor):
     """omega x lambda: Norton-Hoff stresses scale with edot^m and the Norton friction with

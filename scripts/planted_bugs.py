@@ -1,0 +1,167 @@
+"""Plant one bug at a time in a copy of the package and run the test suite on it (issue 20).
+
+Each bug is a one-line textual change: the seven of issue 20 (a scaled force, a scaled torque,
+a doubled friction, the a_f constant C5 x 10, resume off, the exit correction off, no contact
+loss) and more of the same kind in other figures. For each the default suite runs on a copy of
+``hotroll/`` and ``tests/`` (``-x``: it stops at the first failure) and the table records the
+first failing test, or SURVIVED. A bug that survives is a figure without a test.
+
+    python scripts/planted_bugs.py                    # all, table in docs/planted_bugs.md
+    python scripts/planted_bugs.py --only force,torque
+    python scripts/planted_bugs.py --list
+
+It takes 1-3 minutes per caught bug on 2 cores (the whole suite for a survivor). Not in CI.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from datetime import date
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+#: name -> (file, old text, new text, what it breaks). ``old`` must occur exactly once.
+BUGS: dict[str, tuple[str, str, str, str]] = {
+    # --- the seven of issue 20 ---
+    "force": ("hotroll/post/quantities.py",
+              'out["roll_force"], out["horizontal_force"] = -out["roll_force_y"]',
+              'out["roll_force"], out["horizontal_force"] = -1.25 * out["roll_force_y"]',
+              "roll force x 1.25"),
+    "torque": ("hotroll/post/quantities.py",
+               '"roll_torque": K * form.integrate_friction',
+               '"roll_torque": 1.15 * K * form.integrate_friction',
+               "roll torque x 1.15"),
+    "friction_form": ("hotroll/discretisation/rolling_form.py",
+                      "friction = chi * self.friction_coefficient(w)",
+                      "friction = chi * 2.0 * self.friction_coefficient(w)",
+                      "friction stress doubled in the weak form only"),
+    "friction_coefficient": ("hotroll/discretisation/rolling_form.py",
+                             "return law.coefficient(s * s, a_f=self.a_f",
+                             "return 2.0 * law.coefficient(s * s, a_f=self.a_f",
+                             "friction stress doubled in the form and the quantities"),
+    "c5": ("hotroll/physics/friction_estimate.py", "c5 = 2.0**p", "c5 = 10.0 * 2.0**p",
+           "C5 of the a_f estimate (3.15) x 10"),
+    "resume": ("hotroll/algorithms/transient.py", "    def _load_state(self) -> bool:\n",
+               "    def _load_state(self) -> bool:\n        return False\n",
+               "resume switched off"),
+    "exit_corrected": ("hotroll/post/quantities.py",
+                       '    sn = np.array(profile["normal_stress"], dtype=float)\n    if len(sn) < 4:',
+                       '    sn = np.array(profile["normal_stress"], dtype=float)\n    return sn\n'
+                       '    if len(sn) < 4:',
+                       "exit-pressure correction switched off"),
+    "contact_loss": ("hotroll/post/quantities.py",
+                     "    sn = np.asarray(normal_stress)\n",
+                     "    sn = np.asarray(normal_stress)\n    return []\n",
+                     "contact_loss always []"),
+    # --- more of the same kind ---
+    "power": ("hotroll/post/quantities.py", '"roll_power": K * form.integrate_friction',
+              '"roll_power": 1.1 * K * form.integrate_friction', "roll power x 1.1"),
+    "plastic_power": ("hotroll/post/quantities.py", '"plastic_power": K * float(',
+                      '"plastic_power": 1.1 * K * float(', "plastic power x 1.1"),
+    "friction_power": ("hotroll/post/quantities.py",
+                       '"friction_power": K * form.integrate_friction',
+                       '"friction_power": 1.1 * K * form.integrate_friction',
+                       "friction power x 1.1"),
+    "forward_slip": ("hotroll/post/quantities.py",
+                     '"forward_slip": sec_out["velocity"] / rp.u_roll - 1.0',
+                     '"forward_slip": 1.1 * sec_out["velocity"] / rp.u_roll - 1.0',
+                     "forward slip from 1.1 x the exit velocity"),
+    "flux": ("hotroll/post/quantities.py", "    q = abs(float(Integrate(",
+             "    q = 1.1 * abs(float(Integrate(", "face flux x 1.1"),
+    "neutral_interp": ("hotroll/post/quantities.py", "else a / (a - b)", "else b / (a - b)",
+                       "neutral angle interpolated from the wrong end"),
+    "symmetry_stress": ("hotroll/post/quantities.py",
+                        "sym_stress = -K * float(Integrate(sigma_yy",
+                        "sym_stress = -1.1 * K * float(Integrate(sigma_yy",
+                        "symmetry line's force from sigma_yy x 1.1"),
+    "tension_force": ("hotroll/post/quantities.py",
+                      'tension = np.add(force(-form.tension_back * nh, "in")',
+                      'tension = np.add(force(-1.1 * form.tension_back * nh, "in")',
+                      "back tension's force x 1.1"),
+    "mean_pressure": ("hotroll/app/runner.py",
+                      'summary["mean_pressure"] = (summary["roll_force"] / summary',
+                      'summary["mean_pressure"] = (1.1 * summary["roll_force"] / summary',
+                      "mean pressure x 1.1"),
+    "coulomb_max": ("hotroll/physics/friction.py",
+                    "return smooth_minimum(self.mu * smooth_positive_part(pressure, d / self.mu), k, d)",
+                    "return -smooth_minimum(-self.mu * smooth_positive_part(pressure, d / self.mu), -k, d)",
+                    "Coulomb: max(mu p, k) instead of min"),
+    "nh_exponent": ("hotroll/physics/material.py", "(self.eps0**2 + edot2) ** ((m - 1.0) / 2.0)",
+                    "(self.eps0**2 + edot2) ** (m / 2.0)",
+                    "Norton-Hoff viscosity exponent (m-1)/2 -> m/2"),
+    "mill_power": ("hotroll/post/engineering.py", '"mill_power": 2.0 * summary["roll_power"]',
+                   '"mill_power": summary["roll_power"]', "mill power of one roll, not two"),
+}
+
+
+def plant(name: str, workdir: Path) -> Path:
+    """A copy of the package and tests with the bug ``name`` in it."""
+    path, old, new, _ = BUGS[name]
+    copy = workdir / name
+    shutil.rmtree(copy, ignore_errors=True)
+    for part in ("hotroll", "tests"):
+        shutil.copytree(ROOT / part, copy / part, ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copy(ROOT / "pyproject.toml", copy / "pyproject.toml")
+    target = copy / path
+    text = target.read_text()
+    if text.count(old) != 1:
+        raise SystemExit(f"{name}: the text to change occurs {text.count(old)} times in {path}")
+    target.write_text(text.replace(old, new))
+    return copy
+
+
+def run_suite(copy: Path) -> tuple[str, float]:
+    t0 = time.perf_counter()
+    env = dict(os.environ, PYTHONPATH=str(copy), PYTHONDONTWRITEBYTECODE="1")
+    proc = subprocess.run(
+        [sys.executable, "-m", "pytest", "-q", "-x", "-n", "2", "--dist", "loadfile",
+         "-p", "no:cacheprovider", "-o", "addopts=-m 'not slow'", "tests"],
+        cwd=copy, env=env, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    failed = re.findall(r"^FAILED (\S+)", proc.stdout, re.M)
+    if proc.returncode == 0:
+        return "SURVIVED", wall
+    return (failed[0] if failed else f"exit {proc.returncode}"), wall
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--only", default="", help="comma-separated bug names")
+    ap.add_argument("--list", action="store_true")
+    ap.add_argument("--out", type=Path, default=ROOT / "docs" / "planted_bugs.md")
+    args = ap.parse_args()
+    names = [n for n in (args.only.split(",") if args.only else BUGS) if BUGS.get(n)]
+    if args.list:
+        for n in names:
+            print(f"{n:22s} {BUGS[n][0]}: {BUGS[n][3]}")
+        return
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="planted-") as tmp:
+        for n in names:
+            copy = plant(n, Path(tmp))
+            caught, wall = run_suite(copy)
+            rows.append((n, BUGS[n][0], BUGS[n][3], caught, wall))
+            print(f"{n:22s} {caught}  ({wall:.0f} s)", flush=True)
+            shutil.rmtree(copy, ignore_errors=True)
+    lines = [f"# Planted bugs ({date.today()}, `python scripts/planted_bugs.py`)", "",
+             "| bug | file | change | first failing test | s |", "|---|---|---|---|---|"]
+    lines += [f"| {n} | `{f}` | {d} | {c if c == 'SURVIVED' else '`' + c + '`'} | {w:.0f} |"
+              for n, f, d, c, w in rows]
+    caught = sum(r[3] != "SURVIVED" for r in rows)
+    lines += ["", f"{caught} of {len(rows)} caught."]
+    if not args.only:
+        tmp_out = args.out.with_suffix(".tmp")
+        tmp_out.write_text("\n".join(lines) + "\n")
+        os.replace(tmp_out, args.out)
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
