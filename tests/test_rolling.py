@@ -3,7 +3,7 @@
 h = 0.02 m (4x coarser than Table 2's C1), a 1 m plate and 0.2 s of rolling, so that the plate
 head has passed the exit section; the direct steady solver on the same mesh size. Checks
 conservation (mass flux, power balance), the neutral point, the slip and normal-stress signs,
-unit independence, the outlet-driven state, resume, and steady = transient within stated bounds.
+the outlet-driven state, the force balance, and steady = transient within stated bounds.
 """
 from __future__ import annotations
 
@@ -94,8 +94,10 @@ ALL = ["slipping", "estimated", "steady_slipping", "steady_estimated"]
 def test_conservation(fixture, request):
     s, _, _ = request.getfixturevalue(fixture)
     assert s["mass_flux_error"] < 0.01          # measured 0.6 %
-    assert abs(s["mass_flux_in"] - s["mass_flux_out"]) < 0.01 * s["mass_flux_in"]
-    # roll power = plastic + friction + penalty power (3.6 tested with v); measured < 1e-4
+    # roll power = plastic + friction + penalty power: (3.6) tested with v, an identity of the
+    # discrete equations for any friction law, so it checks convergence and that the reported
+    # powers are the ones the equations contain (measured < 1e-4); the physics checks of the
+    # powers are in test_figures.py (torque x omega against the dissipation, rate scaling)
     assert s["power_balance_error"] < 0.02
     assert s["roll_power"] > 0 and s["plastic_power"] > 0 and s["friction_power"] >= 0
 
@@ -104,10 +106,8 @@ def test_conservation(fixture, request):
 def test_neutral_point_inside_arc(fixture, request):
     s, c, _ = request.getfixturevalue(fixture)
     x_touch = 1.0 - math.sqrt(0.6**2 - 0.55**2)
-    xn, yn = s["neutral_point"]
-    assert x_touch < xn < 1.0
+    assert x_touch < s["neutral_point"][0] < 1.0
     assert 0.0 < s["neutral_angle"] < math.acos(1 - 0.05 / 0.6)
-    assert math.hypot(xn - 1.0, yn - 0.8) == pytest.approx(0.6, rel=1e-9)   # on the roll
     assert s["forward_slip"] > 0 and s["exit_velocity"] > s["entry_velocity"]
 
 
@@ -146,31 +146,20 @@ def test_estimate_gives_large_a_f_and_sticking(estimated, slipping):
     assert np.median(inner) < 1e-2 * np.median(np.abs(slipping[1]["v_slip"][2:-2]))
 
 
-def test_unit_independence(tmp_path_factory, slipping):
-    s1, c1, _ = slipping
-    s2, c2, _ = _run(tmp_path_factory, "si", **{"friction.a_f": 3.0, "material.K": 1.5e8})
-    for key in ("neutral_angle", "forward_slip", "exit_velocity", "mass_flux_out"):
-        assert s2[key] == pytest.approx(s1[key], rel=1e-6, abs=1e-12)
-    for key in ("roll_force", "roll_torque", "roll_power", "plastic_power"):
-        assert s2[key] == pytest.approx(1.5e8 * s1[key], rel=1e-6)
-    assert np.allclose(c2["normal_stress"], 1.5e8 * c1["normal_stress"], rtol=1e-6, atol=1e-3)
-
-
 def test_outlet_driven_state_is_flagged(tmp_path_factory):
     s, _, _ = _run(tmp_path_factory, "af05", **{"friction.a_f": 0.5})
     assert s["outlet_driven"] and not s["converged"]
 
 
-def test_outputs_and_resume(slipping):
+def test_outputs_written(slipping):
+    """The files of a transient run, one history row per step (resume after a kill is in
+    test_behaviour.py)."""
     s, _, out = slipping
     for name in ("summary.json", "contact.csv", "top.csv", "history.csv", "fields.npz",
                  "case.toml", "checkpoint/state.npz"):
         assert (out / name).exists(), name
     hist = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
-    assert len(hist) == s["steps"]
-    again = run_case(_case(**{"friction.a_f": 3.0}), out)   # finished run: nothing to redo
-    assert again["steps"] == s["steps"]
-    assert again["roll_force"] == pytest.approx(s["roll_force"], rel=1e-12)
+    assert len(hist) == s["steps"] and list(hist["step"]) == list(range(s["steps"]))
 
 
 def test_linear_solver_failure_keeps_finished_steps(tmp_path, monkeypatch):
