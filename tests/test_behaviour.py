@@ -147,6 +147,12 @@ def test_cli_exit_codes_of_real_runs(tmp_path, monkeypatch):
     skid = _write_case(tmp_path, "skid", **{"solver.method": "steady", "friction.a_f": 0.5})
     r = runner.invoke(app, ["run", str(skid), "--out", str(tmp_path / "skid")])
     assert r.exit_code == 6, r.output
+    import json
+
+    s = json.loads((tmp_path / "skid" / "summary.json").read_text())
+    # the outlet penalty pushes the strip (negative power) instead of the roll pulling it
+    assert s["outlet_driven"] and not s["converged"]
+    assert s["outlet_penalty_power"] < -0.05 * s["plastic_power"]
 
     import hotroll.algorithms.transient as T
     from hotroll.algorithms.nonlinear import LinearSolveError

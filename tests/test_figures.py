@@ -248,3 +248,15 @@ def test_mass_and_power_checks_fire_on_a_wrong_field():
     vel.Set(CF((old[0] * (1 + 0.1 * x), old[1])))
     mass, power = errors()
     assert mass > 0.05 and power > 0.05
+
+
+def test_width_gives_whole_strip_figures(tmp_path_factory, coarse):
+    """[pass] width: one roll's force and torque and the mill's power (two rolls) for the
+    whole strip, the per-width figures unchanged."""
+    s, _, _ = _run(tmp_path_factory, "width", **{"pass.width": 1.5})
+    per = coarse[0]
+    assert s["roll_force"] == pytest.approx(per["roll_force"], rel=1e-9)
+    assert s["roll_force_total"] == pytest.approx(1.5 * per["roll_force"], rel=1e-9)
+    assert s["roll_torque_total"] == pytest.approx(1.5 * per["roll_torque"], rel=1e-9)
+    assert s["mill_power"] == pytest.approx(2 * 1.5 * per["roll_power"], rel=1e-9)
+    assert s["units"]["roll_force_total"] == "N" and s["units"]["roll_force"] == "N/m"

@@ -248,10 +248,3 @@ def test_coulomb_in_the_reports_scheme_agrees_with_steady(tmp_path_factory, coul
     assert tr["roll_torque"] == pytest.approx(st["roll_torque"], rel=0.03)
     assert abs(tr["forward_slip"] - st["forward_slip"]) < 0.005
     assert tr["power_balance_error"] < 1e-2
-
-
-def test_width_gives_whole_strip_figures(tmp_path_factory, coulomb):
-    s, _, _ = _run(tmp_path_factory, "width", **{"pass.width": 1.5})
-    assert s["roll_force_total"] == pytest.approx(1.5 * coulomb[0]["roll_force"], rel=1e-9)
-    assert s["mill_power"] == pytest.approx(2 * 1.5 * coulomb[0]["roll_power"], rel=1e-9)
-    assert s["units"]["roll_force_total"] == "N" and s["units"]["roll_force"] == "N/m"
