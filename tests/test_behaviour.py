@@ -51,6 +51,7 @@ class _Counter:
         monkeypatch.setattr(TransientRun, "_solve", counted)
 
 
+@pytest.mark.mutation   # cheap enough for mutmut's selection (pyproject [tool.mutmut])
 def test_resume_after_an_interruption_repeats_nothing(tmp_path, monkeypatch):
     """Killed during step 9 (checkpoints every 4 steps: the last at step 8), the resumed run
     solves only steps 8..n-1 and ends with the uninterrupted run's history; a changed case in
@@ -89,6 +90,44 @@ def test_resume_after_an_interruption_repeats_nothing(tmp_path, monkeypatch):
     assert c["roll_force"] != pytest.approx(s["roll_force"], rel=1e-6)
 
 
+@pytest.mark.mutation
+def test_transient_windows_by_hand():
+    """The summary's mean window covers 3 h of roll travel in whole projection periods, the
+    steady test's windows at least 6 periods: h = 0.02 m, dt = h/6 = 1/300 s, U = omega R =
+    0.2 pi m/s, 3 h / (U dt) = 0.06 / (0.2 pi / 300) = 28.6 steps -> 3 periods of 10 = 30
+    steps; steady window max(6, 3) periods = 60 steps. With checkpoints: the mesh is saved
+    once at the start, in the run's checkpoint directory."""
+    from hotroll.algorithms.transient import TransientRun
+    from hotroll.app.runner import build_model
+
+    model, settings = build_model(build_case(BASE))
+    assert settings.project_every == 10 and settings.dt == pytest.approx(0.02 / 6)
+    run = TransientRun(model, settings)
+    assert (run.window, run.steady_window) == (30, 60)
+    assert run.state.step == 0 and run.ckpt is None
+    # a contact set is detected at the start (the plate touches the roll at its head)
+    assert run.top.vertex_contact.sum() >= 3
+
+
+@pytest.mark.mutation
+def test_steady_test_looks_at_the_last_two_windows_only():
+    """steady_reached compares the last two windows (60 rows each here) and nothing before:
+    a start-up transient (force 50 % higher) in the rows before them, or a NaN forward slip
+    there (the head not yet past the exit at the start), does not keep a settled run from
+    being steady; the same transient inside the windows does."""
+    from hotroll.algorithms.transient import steady_reached
+
+    def row(f, slip=0.03):
+        return {"roll_force": 0.5 * f, "roll_torque": 0.1 * f, "strain_rate_measure": 0.09 * f,
+                "forward_slip": slip, "neutral_angle": 0.04 * f}
+
+    settled = [row(1.0) for _ in range(120)]
+    early = [row(1.5), row(1.5, slip=math.nan)] + [row(1.5) for _ in range(58)]
+    args = (60, 10, 2e-3, 0.39)
+    assert steady_reached(early + settled, *args)
+    assert not steady_reached(early[:30] + settled[:90], *args)   # the transient in window 1
+
+
 # --- exit codes -------------------------------------------------------------------------------
 @pytest.mark.parametrize("summary, code", [
     ({"converged": True, "status": "steady", "roll_force": 1.0, "roll_torque": 1.0}, 0),
@@ -103,6 +142,7 @@ def test_resume_after_an_interruption_repeats_nothing(tmp_path, monkeypatch):
     ({"converged": False, "status": "steady", "outlet_driven": True, "roll_force": 1.0,
       "roll_torque": 1.0}, 6),
 ])
+@pytest.mark.mutation   # cheap enough for mutmut's selection (pyproject [tool.mutmut])
 def test_exit_code_says_what_happened(summary, code):
     assert exit_code(summary) == code
     assert code in EXIT_CODES
@@ -136,6 +176,7 @@ def test_cli_run_converges_with_exit_code_0(cli_run):
     assert f"{s['roll_force']:.6g}" in result.output
 
 
+@pytest.mark.mutation   # cheap enough for mutmut's selection (pyproject [tool.mutmut])
 def test_cli_exit_codes_of_real_runs(tmp_path, monkeypatch):
     """Not settled: a transient run that reaches its end time first (5). Skids: friction too
     low to draw the strip in (a_f = 0.5, the outlet penalty drives it; 6). Failed: a linear

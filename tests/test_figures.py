@@ -27,6 +27,9 @@ from hotroll.app.runner import run_case
 
 from casebuild import build_case
 
+# cheap (one coarse steady solve per module, 0.6 s): in mutmut's test selection
+pytestmark = pytest.mark.mutation
+
 OMEGA = math.pi / 3
 R = 0.6
 BASE = {
@@ -106,6 +109,28 @@ def test_velocities_and_forward_slip_from_the_written_field(coarse):
     assert s["mass_flux_error"] == pytest.approx(
         abs(s["mass_flux_out"] - s["mass_flux_in"]) / s["mass_flux_in"], rel=1e-9)
     assert s["mass_flux_error"] < 0.01
+
+
+def test_top_profile_is_the_written_field_on_the_top(tmp_path_factory, coarse):
+    """top.csv: the top boundary's nodes from entry to exit with their velocity; its ends are
+    the strip's entry and exit heights (h0/2 = 0.25, the traced exit top 0.2 % above h1/2) and
+    velocities (the written field's rigid end values), and its free part never enters the roll."""
+    s, _, f = coarse
+    out = [p for p in tmp_path_factory.getbasetemp().glob("example1_h002*")][0]
+    top = np.genfromtxt(out / "top.csv", delimiter=",", names=True)
+    assert np.all(np.diff(top["x"]) > 0)
+    assert top["y"][0] == pytest.approx(0.25, abs=1e-9)
+    assert top["y"][-1] == pytest.approx(0.2, rel=5e-3)
+    assert top["v1"][0] == pytest.approx(s["entry_velocity"], rel=2e-3)
+    assert top["v1"][-1] == pytest.approx(s["exit_velocity"], rel=2e-3)
+    assert abs(top["v2"][0]) < 1e-3 * s["entry_velocity"]
+    # every top node is on or outside the roll (the contact nodes on it)
+    cx, cy = s["roll_centre"]
+    assert np.all(np.hypot(top["x"] - cx, top["y"] - cy) > R * (1 - 1e-9))
+    # the top's nodes are mesh vertices and edge midpoints: they are among the field's points
+    pts = {(round(x, 9), round(y, 9)) for x, y in f["points"]}
+    verts = [(round(x, 9), round(y, 9)) in pts for x, y in zip(top["x"], top["y"])]
+    assert sum(verts) >= len(top) // 2
 
 
 def test_neutral_angle_is_the_sign_change_of_the_written_slip(coarse):

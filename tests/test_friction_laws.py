@@ -94,6 +94,7 @@ def test_laws_on_numbers():
 
 
 # --- through the rolling code -------------------------------------------------------------------
+@pytest.mark.mutation   # cheap enough for mutmut's selection (pyproject [tool.mutmut])
 def test_tresca_shear_is_factor_times_k(tresca):
     summary, contact, fields = tresca
     assert summary["converged"] and summary["power_balance_error"] < 1e-2
@@ -108,6 +109,7 @@ def test_tresca_shear_is_factor_times_k(tresca):
     assert np.all(np.abs(ratio - 0.8) < 0.08)
 
 
+@pytest.mark.mutation   # cheap enough for mutmut's selection (pyproject [tool.mutmut])
 def test_coulomb_shear_is_mu_p_below_the_cap(coulomb):
     summary, contact, fields = coulomb
     assert summary["converged"] and summary["power_balance_error"] < 1e-2
