@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import copy
+import math
 
 from hotroll.app.config import Case, case_from_dict
 
@@ -16,3 +17,21 @@ def build_case(base: dict, section: str | None = None, table: dict | None = None
         sec, name = key.split(".")
         d.setdefault(sec, {})[name] = value
     return case_from_dict(d)
+
+
+def example1_coarse(name: str, **sections) -> dict:
+    """Example 1's pass (R = 0.6 m, 0.5 -> 0.4 m, omega = pi/3 rad/s, Norton-Hoff K = 1,
+    m = 0.2) on the coarse mesh h = 0.02 m, one thread, no figures; ``sections`` replace or
+    add whole sections (friction, solver, plate, ...)."""
+    base = {
+        "name": name,
+        "pass": {"roll_radius": 0.6, "entry_thickness": 0.5, "exit_thickness": 0.4,
+                 "roll_angular_velocity": math.pi / 3},
+        "plate": {"length": 1.0},
+        "material": {"K": 1.0, "m": 0.2},
+        "mesh": {"h_contact": 0.02},
+        "solver": {"method": "steady", "threads": 1},
+        "output": {"figures": False, "vtk": False},
+    }
+    base.update(copy.deepcopy(sections))
+    return base

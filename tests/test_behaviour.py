@@ -14,20 +14,10 @@ from hotroll.app.cli import app
 from hotroll.app.outcome import EXIT_CODES, exit_code
 from hotroll.app.runner import run_case
 
-from casebuild import build_case
+from casebuild import build_case, example1_coarse
 
-BASE = {
-    "name": "behaviour",
-    "pass": {"roll_radius": 0.6, "entry_thickness": 0.5, "exit_thickness": 0.4,
-             "roll_angular_velocity": math.pi / 3},
-    "plate": {"length": 1.0},
-    "material": {"K": 1.0, "m": 0.2},
-    "friction": {"a_f": 3.0},
-    "mesh": {"h_contact": 0.02},
-    "solver": {"method": "transient", "end_time": 0.04, "threads": 1, "checkpoint_every": 4},
-    "output": {"figures": False, "vtk": False},
-}
-
+BASE = example1_coarse("behaviour", friction={"a_f": 3.0}, solver={
+    "method": "transient", "end_time": 0.04, "threads": 1, "checkpoint_every": 4})
 
 def _history(out):
     return np.genfromtxt(out / "history.csv", delimiter=",", names=True)

@@ -25,24 +25,15 @@ import pytest
 from hotroll.app.config import case_from_dict
 from hotroll.app.runner import run_case
 
-from casebuild import build_case
+from casebuild import build_case, example1_coarse
 
 # cheap (one coarse steady solve per module, 0.6 s): in mutmut's test selection
 pytestmark = pytest.mark.mutation
 
 OMEGA = math.pi / 3
 R = 0.6
-BASE = {
-    "name": "example1_coarse",
-    "pass": {"roll_radius": R, "entry_thickness": 0.5, "exit_thickness": 0.4,
-             "roll_angular_velocity": OMEGA},
-    "plate": {"length": 4.0},
-    "material": {"K": 1.0, "m": 0.2},
-    "friction": {"law": "viscoplastic", "a_f": 5.0},
-    "mesh": {"h_contact": 0.02},
-    "solver": {"method": "steady", "threads": 1},
-    "output": {"figures": False, "vtk": False},
-}
+BASE = example1_coarse("example1_coarse", plate={"length": 4.0},
+                       friction={"law": "viscoplastic", "a_f": 5.0})
 # issue 14's mesh study, traced tops, a_f = 5 (docs/studies/mesh_convergence_example1.md)
 FORCE_EXTRAPOLATED = 0.52147     # N/m (K = 1), Richardson from the three finest meshes
 TORQUE_FINEST = 0.085128         # N m/m, h = 1.5 mm (band 0.085 % over h <= 3.7 mm)
