@@ -94,7 +94,13 @@ class _NumpyOps:
 
     @staticmethod
     def prep(x):
-        return x if isinstance(x, (float, int, np.floating, np.integer)) else np.asarray(x, float)
+        """Python numbers as they are, numpy scalars as Python floats (a float32 scalar would
+        keep the law in single precision), anything else as a float64 array."""
+        if isinstance(x, (float, int)):
+            return x
+        if isinstance(x, (np.floating, np.integer)):
+            return float(x)
+        return np.asarray(x, float)
 
 
 class _NgOps:
