@@ -81,6 +81,57 @@ def test_resume_after_an_interruption_repeats_nothing(tmp_path, monkeypatch):
 
 
 @pytest.mark.mutation
+def test_checkpoint_round_trip(tmp_path):
+    """A checkpoint restores everything a step needs: displacement, solution, a_f, the
+    bilateral contact set (even where a fresh detection would differ), the strain at the
+    nodes, step, time and history; a checkpoint of another case (its fingerprint) is not
+    used."""
+    from hotroll.algorithms.transient import TransientRun
+    from hotroll.app.runner import build_model
+
+    case = build_case(BASE, "material", {"law": "hensel-spittel", "A": 1.0, "m2": 0.2,
+                                         "m3": 0.2})
+    model, settings = build_model(case)
+    ckpt = tmp_path / "ckpt"
+    run = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint="A")
+    assert run.strain is not None
+    run.s.end_time = 3.5 * run.s.dt
+    run.run()
+    assert run.state.step == 3
+    # a contact node 5 tolerances off the roll: the carried (bilateral) contact set keeps it,
+    # a fresh detection would release it (test_rolling.py::test_contact_is_bilateral_...)
+    top, rp = run.top, model.rp
+    P = top.vertex_positions(run.d)
+    on = np.nonzero(top.vertex_contact & (P[:, 0] < rp.axis_x - 0.05))[0]
+    k = on[len(on) // 2]
+    r = np.hypot(*(P[k] - rp.centre))
+    off = np.array(rp.centre) + (P[k] - rp.centre) * (r + 5 * settings.contact_tol) / r
+    top.set_vertices(run.d, top.verts[[k]], off[None])
+    run.strain.values[:] += np.linspace(0.0, 1.0, run.strain.values.size)
+    run.form.a_f.Set(4.25)
+    run.save_checkpoint()
+    again = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint="A")
+    # the vertices as saved (the detection after loading puts the midpoints of the contact
+    # edges back on the arc, here those next to the node moved off it)
+    assert np.allclose(again.top.vertex_positions(again.d), top.vertex_positions(run.d),
+                       rtol=0.0, atol=1e-12)
+    assert np.array_equal(again.form.problem.gf.vec.FV().NumPy(),
+                          run.form.problem.gf.vec.FV().NumPy())
+    assert again.form.a_f.Get() == 4.25
+    assert np.array_equal(again.top.vertex_contact, run.top.vertex_contact)
+    assert np.array_equal(again.strain.values, run.strain.values)
+    assert (again.state.step, again.state.time) == (3, pytest.approx(3 * settings.dt))
+    import json
+
+    # (NaN != NaN: compared as JSON text)
+    assert json.dumps(again.state.history) == json.dumps(run.state.history)
+    assert len(again.state.history) == 4 and again.state.status == "running"
+    other = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint="B")
+    assert other.state.step == 0 and not other.state.history
+    assert other.form.a_f.Get() != 4.25
+
+
+@pytest.mark.mutation
 def test_transient_windows_by_hand():
     """The summary's mean window covers 3 h of roll travel in whole projection periods, the
     steady test's windows at least 6 periods: h = 0.02 m, dt = h/6 = 1/300 s, U = omega R =
