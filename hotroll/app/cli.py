@@ -119,13 +119,12 @@ def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
     console.print(table)
     from hotroll.app.outcome import EXIT_CODES, exit_code
 
-    code = summary.get("exit_code", exit_code(summary))
+    code = summary.setdefault("exit_code", exit_code(summary))   # the runner has written it
     if code:
         err_console.print(Text(f"{case.name}: {EXIT_CODES[code]} (exit code {code}; status "
                                f"{summary.get('status')}"
                                + (f": {summary['failure']}" if summary.get("failure") else "")
                                + ")", style="yellow"), soft_wrap=True)
-    summary["exit_code"] = code
     return summary
 
 
@@ -282,8 +281,8 @@ def sweep(
     _exit(summaries)
 
 
-SWEEP_KEYS = ["status", "exit_code", "converged", "neutral_angle", "roll_force", "roll_torque", "roll_power",
-              "forward_slip", "a_f", "nonlinear_iterations", "wall_time_s", "warm_start_from",
+SWEEP_KEYS = ["status", "exit_code", "converged", "neutral_angle", "roll_force", "roll_torque",
+              "roll_power", "forward_slip", "a_f", "nonlinear_iterations", "wall_time_s", "warm_start_from",
               "warm_start_failed"]
 
 

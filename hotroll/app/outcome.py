@@ -27,7 +27,14 @@ def exit_code(summary: dict) -> int:
     if summary.get("outlet_driven"):
         return 6
     if status in ("failed", "steady") or not all(
-            isinstance(summary.get(k), float) and math.isfinite(summary[k])
-            for k in ("roll_force", "roll_torque")):
+            _finite(summary.get(k)) for k in ("roll_force", "roll_torque")):
         return 4
     return 5
+
+
+def _finite(value) -> bool:
+    """A finite real number (None, text and NaN are not)."""
+    try:
+        return math.isfinite(float(value))
+    except (TypeError, ValueError):
+        return False

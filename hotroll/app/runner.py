@@ -290,4 +290,3 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "averaged_over_steps": len(solved),
         "unconverged_steps_in_window": len(window) - len(solved),
     }
-
