@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Mutation testing (mutmut 3) of the physics (hotroll/physics), the post-processed quantities
-# (hotroll/post/quantities.py, engineering.py) and hotroll/algorithms/transient.py (the steady-state
-# test and the summary window); [tool.mutmut] in pyproject.toml says what is mutated and which
+# (hotroll/post/quantities.py, engineering.py) and hotroll/algorithms/settling.py (the steady-state
+# test and the summary windows); [tool.mutmut] in pyproject.toml says what is mutated and which
 # tests may run. mutmut changes one thing in one function at a time (a < for a <=, 2.0 for 3.0, a
 # dropped argument, ...) and runs the cheap tests that call that function: a mutant the tests
 # still pass ("survived") is a behaviour no test pins down. The FE rolling runs (4-20 s each) are

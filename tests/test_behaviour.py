@@ -41,7 +41,6 @@ class _Counter:
         monkeypatch.setattr(TransientRun, "_solve", counted)
 
 
-@pytest.mark.mutation   # cheap enough for mutmut's selection (pyproject [tool.mutmut])
 def test_resume_after_an_interruption_repeats_nothing(tmp_path, monkeypatch):
     """Killed during step 9 (checkpoints every 4 steps: the last at step 8), the resumed run
     solves only steps 8..n-1 and ends with the uninterrupted run's history; a changed case in
@@ -80,7 +79,6 @@ def test_resume_after_an_interruption_repeats_nothing(tmp_path, monkeypatch):
     assert c["roll_force"] != pytest.approx(s["roll_force"], rel=1e-6)
 
 
-@pytest.mark.mutation
 def test_checkpoint_round_trip(tmp_path):
     """A checkpoint restores everything a step needs: displacement, solution, a_f, the
     bilateral contact set (even where a fresh detection would differ), the strain at the
@@ -156,7 +154,7 @@ def test_steady_test_looks_at_the_last_two_windows_only():
     a start-up transient (force 50 % higher) in the rows before them, or a NaN forward slip
     there (the head not yet past the exit at the start), does not keep a settled run from
     being steady; the same transient inside the windows does."""
-    from hotroll.algorithms.transient import steady_reached
+    from hotroll.algorithms.settling import steady_reached
 
     def row(f, slip=0.03):
         return {"roll_force": 0.5 * f, "roll_torque": 0.1 * f, "strain_rate_measure": 0.09 * f,
@@ -217,7 +215,6 @@ def test_cli_run_converges_with_exit_code_0(cli_run):
     assert f"{s['roll_force']:.6g}" in result.output
 
 
-@pytest.mark.mutation   # cheap enough for mutmut's selection (pyproject [tool.mutmut])
 def test_cli_exit_codes_of_real_runs(tmp_path, monkeypatch):
     """Not settled: a transient run that reaches its end time first (5). Skids: friction too
     low to draw the strip in (a_f = 0.5, the outlet penalty drives it; 6). Failed: a linear

@@ -91,9 +91,16 @@ def test_hensel_spittel_with_a_and_m3_is_norton_hoff(tmp_path_factory, plain):
 
 
 @pytest.fixture(scope="module")
-def hardening(tmp_path_factory):
-    return _run(tmp_path_factory, "hs_m2", {"law": "hensel-spittel", "A": 1.5e8, "m3": 0.15,
-                                            "m2": 0.2})
+def hardening_run(tmp_path_factory):
+    """One steady Hensel-Spittel run with strain hardening (m2 = 0.2): summary and fields."""
+    out = tmp_path_factory.mktemp("hs_m2")
+    s = run_case(_case({"law": "hensel-spittel", "A": 1.5e8, "m3": 0.15, "m2": 0.2}), out)
+    return s, dict(np.load(out / "fields.npz"))
+
+
+@pytest.fixture(scope="module")
+def hardening(hardening_run):
+    return hardening_run[0]
 
 
 def test_strain_hardening_raises_the_force(tmp_path_factory, hardening):
@@ -162,15 +169,13 @@ def test_grades_run(tmp_path_factory):
 
 
 @pytest.mark.mutation   # cheap enough for mutmut's selection (pyproject [tool.mutmut])
-def test_plastic_power_from_the_written_fields(tmp_path):
+def test_plastic_power_from_the_written_fields(hardening_run):
     """The plastic power of the solve equals int sigma_f(strain, edot, T) edot dx computed here
     from the written vertex fields (strain, rate) and the grade's formula on each triangle:
     a wrong consistency field in the form shows up as a wrong power."""
     from hotroll.physics.flow_stress import HenselSpittel
 
-    s = run_case(_case({"law": "hensel-spittel", "A": 1.5e8, "m3": 0.15, "m2": 0.2}),
-                 tmp_path)
-    f = dict(np.load(tmp_path / "fields.npz"))
+    s, f = hardening_run
     law = HenselSpittel(A=1.5e8, m3=0.15, m2=0.2)
     dens = law.sigma(f["strain"], f["edot"], 1373.15) * f["edot"]
     p, t = f["points"], f["triangles"]
@@ -181,13 +186,11 @@ def test_plastic_power_from_the_written_fields(tmp_path):
 
 
 @pytest.mark.mutation   # cheap enough for mutmut's selection (pyproject [tool.mutmut])
-def test_gap_means_from_the_written_fields(tmp_path):
+def test_gap_means_from_the_written_fields(hardening_run):
     """mean_flow_stress and mean_strain_rate are area means over the strip between the contact
     start and the roll gap: recomputed here from the written vertex fields (triangles whose
     centroid lies in that band, vertex means), and mean_pressure = force / contact length."""
-    s = run_case(_case({"law": "hensel-spittel", "A": 1.5e8, "m3": 0.15, "m2": 0.2}),
-                 tmp_path)
-    f = dict(np.load(tmp_path / "fields.npz"))
+    s, f = hardening_run
     x0 = s["contact_start"][0]
     p, t = f["points"], f["triangles"]
     cx = p[t, 0].mean(axis=1)

@@ -603,7 +603,7 @@ def _rows(n_old, n_new, **shift):
 
 
 def test_steady_reached_scales_per_key():
-    from hotroll.algorithms.transient import steady_reached
+    from hotroll.algorithms.settling import steady_reached
 
     tol, bite = 1e-3, 0.4
     args = (4, 2, tol, bite)                   # window 4 rows, period 2: no noise here
@@ -632,7 +632,7 @@ def test_steady_reached_scales_per_key():
 
 
 def test_steady_reached_noise_allowance_by_hand():
-    from hotroll.algorithms.transient import steady_reached
+    from hotroll.algorithms.settling import steady_reached
 
     # period 1, window 4: force batch means older [10, 12, 10, 12], newer the same + 1 (+1.7):
     # sample variances 4/3 each, noise = 2 sqrt((4/3 + 4/3) / 4) = 1.63299; tol x 11 = 0.011
@@ -645,3 +645,30 @@ def test_steady_reached_noise_allowance_by_hand():
     assert steady_reached(rows(1.0), 4, 1, 1e-3, 0.4)        # 1 <= 1.633
     assert steady_reached(rows(1.6), 4, 1, 1e-3, 0.4)        # 1.6 <= 1.633
     assert not steady_reached(rows(1.7), 4, 1, 1e-3, 0.4)    # 1.7 > 1.633
+
+
+def test_summary_windows_by_hand():
+    """Whole projection periods covering 3 h of roll travel (ceil, not round); the steady
+    window at least 6 periods; no projection (0) counts as a period of one step."""
+    from hotroll.algorithms.settling import summary_windows
+
+    # 3 h / (U dt) = 0.06 / (0.2 pi / 300) = 28.65 steps -> 3 periods of 10; steady: 6 periods
+    assert summary_windows(0.02, 0.2 * math.pi, 1.0 / 300.0, 10) == (30, 60)
+    # 3 x 0.25 / (1 x 0.125) = 6 steps exactly: 1.2 periods of 5 -> 2 (not 1)
+    assert summary_windows(0.25, 1.0, 0.125, 5) == (10, 30)
+    assert summary_windows(0.25, 1.0, 0.125, 4) == (8, 24)          # 1.5 -> 2 periods of 4
+    assert summary_windows(0.25, 1.0, 0.125, 0) == (6, 6)           # period 1: 6 steps
+    assert summary_windows(0.25, 1.0, 0.125, 1) == (6, 6)
+    # many periods: the steady window is the summary window (not 6 periods)
+    assert summary_windows(0.25, 1.0, 0.0078125, 2) == (96, 96)     # 96 steps, 48 periods
+
+
+def test_transit_time_by_hand():
+    """One contact transit l_c / U; with a carried strain, at the entry speed U h1/h0 plus 20 %."""
+    from types import SimpleNamespace
+
+    from hotroll.algorithms.settling import transit_time
+
+    rp = SimpleNamespace(contact_length=0.1, u_roll=0.5, half_entry=0.25, half_exit=0.2)
+    assert transit_time(rp, False) == pytest.approx(0.2, rel=1e-14)
+    assert transit_time(rp, True) == pytest.approx(0.2 * 1.2 * 0.25 / 0.2, rel=1e-14)

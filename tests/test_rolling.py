@@ -244,7 +244,7 @@ def _history(drift: float, n: int = 120, seed: int = 0) -> list:
 
 
 def test_steady_criterion_separates_drift_from_periodic_noise():
-    from hotroll.algorithms.transient import steady_reached
+    from hotroll.algorithms.settling import steady_reached
 
     args = (60, 10, 2e-3, 0.39)
     assert steady_reached(_history(0.0), *args)         # +-20 % spikes, no drift: steady

@@ -6,14 +6,7 @@ the roll back onto it and flag contact nodes (3.9), a contact node staying in co
 exit point (bilateral (2.28a)); every 10 steps put all contact nodes on the roll surface. The
 first iterate of the first step uses m = 1 (Section 3.4).
 
-Steady state (the report judges it by eye from Fig. 3; the histories oscillate with the period
-of the contact projection): a window is a whole number (>= 6) of projection periods, at least
-the time the roll surface needs to travel 3 h (the summary averages over whole periods covering
-3 h). The run is steady when, for the roll force, torque, strain-rate measure, forward slip and
-neutral angle, the means over the last two windows differ by at most ``steady_tol`` (relative;
-10 x bite angle for the angle) or by at most twice their standard error (batch means over the
-projection periods: the drift is below the noise), at least one contact transit time l_c/|U|
-after the start, with the head past the exit section.
+Steady state and the summary windows: ``settling.py``.
 """
 from __future__ import annotations
 
@@ -36,29 +29,8 @@ from ..post import quantities as Q
 from ..process.contact import TopBoundary
 from ..process.geometry import RollPass
 from .nonlinear import LinearSolveError, SolveStats, picard, solve
+from .settling import STEADY_KEYS, steady_reached, summary_windows, transit_time  # noqa: F401
 from .threads import solver_threads
-
-
-STEADY_KEYS = ("roll_force", "roll_torque", "strain_rate_measure", "forward_slip",
-               "neutral_angle")
-
-
-def steady_reached(history: list, window: int, period: int, tol: float,
-                   bite_angle: float) -> bool:
-    """Steady-state test of the module docstring on the last 2 ``window`` rows of ``history``
-    (docs/theory.md, section 3.4). ``window`` is a multiple of ``period``."""
-    if len(history) < 2 * window or not math.isfinite(history[-1]["forward_slip"]):
-        return False
-    period = max(1, period)
-    for key in STEADY_KEYS:
-        rows = np.array([r[key] for r in history[-2 * window:]], dtype=float)
-        last, prev = np.split(rows.reshape(-1, period).mean(axis=1), 2)   # batch means
-        a, b = last.mean(), prev.mean()
-        scale = {"neutral_angle": 10.0 * bite_angle, "forward_slip": 1.0 + abs(a)}.get(key, abs(a))
-        noise = 2.0 * math.sqrt((last.var(ddof=1) + prev.var(ddof=1)) / len(last))
-        if not (math.isfinite(a) and math.isfinite(b) and abs(a - b) <= max(tol * scale, noise)):
-            return False
-    return True
 
 
 class TangledMeshError(RuntimeError):
@@ -163,9 +135,8 @@ class TransientRun:
         self._det = ngsolve.GridFunction(ngsolve.L2(self.mesh, order=0))   # for _check_mesh
         # summary means: whole projection periods covering 3 h of roll travel; the steady test
         # compares two windows of at least 6 periods each
-        period = max(1, settings.project_every)
-        periods = math.ceil(3.0 * model.h / (rp.u_roll * settings.dt) / period)
-        self.window, self.steady_window = period * periods, period * max(6, periods)
+        self.window, self.steady_window = summary_windows(model.h, rp.u_roll, settings.dt,
+                                                          settings.project_every)
         self.last_stats = SolveStats()
         if not self._load_state():
             self._detect(project=True)
@@ -227,12 +198,7 @@ class TransientRun:
     # --- steady state ----------------------------------------------------------------------------
     def is_steady(self) -> bool:
         rp = self.model.rp
-        # a strain-dependent flow stress is steady only once material that entered the bite
-        # after the start has left the gap: the contact length at the entry speed (~ U h1/h0)
-        transit = rp.contact_length / rp.u_roll
-        if self.strain is not None:
-            transit *= 1.2 * rp.half_entry / rp.half_exit
-        return (self.state.time >= transit
+        return (self.state.time >= transit_time(rp, self.strain is not None)
                 and steady_reached(self.state.history, self.steady_window, self.s.project_every,
                                    self.s.steady_tol, rp.bite_angle))
 
