@@ -231,3 +231,43 @@ def test_cli_sweep_bad_value_before_run(tmp_path, fake_runner):
     result = runner.invoke(app, ["sweep", str(example_path("example1")), "--param",
                                  "material.mm", "--values", "0.2", "--out", str(tmp_path)])
     assert result.exit_code == 2 and "mm" in result.output and not fake_runner
+
+
+# --- [thermal] (issue 16) ---------------------------------------------------------------------
+THERMAL = {"htc_contact": 2e4, "roll_temperature": 350.0, "htc_air": 20.0, "emissivity": 0.8}
+
+
+def test_thermal_section_needs_the_strip_properties(base):
+    """A [thermal] section without the material's density, specific heat and conductivity is
+    refused naming each missing key; without [thermal] they are not needed."""
+    assert case_from_dict(base).thermal is None
+    text = problems({**base, "thermal": THERMAL})
+    for key in ("density", "specific_heat", "conductivity"):
+        assert f"material.{key}: missing, required with a [thermal] section" in text
+
+
+@pytest.mark.parametrize("section, key, value, expected", [
+    ("thermal", "emissivity", 1.5, "thermal.emissivity: must be in [0, 1]"),
+    ("thermal", "taylor_quinney", -0.1, "thermal.taylor_quinney: must be in [0, 1]"),
+    ("thermal", "htc_contact", -1.0, "thermal.htc_contact: must be >= 0 [W/(m^2 K)]"),
+    ("thermal", "roll_temperature", 0.0, "thermal.roll_temperature: must be > 0 [K]"),
+    ("material", "conductivity", [[1400.0, 30.0], [1000.0, 25.0]], "material.conductivity: must be"),
+    ("material", "density", -7800.0, "material.density: must be"),
+    ("material", "specific_heat", [[1000.0, 650.0]], "material.specific_heat: must be"),
+])
+def test_bad_thermal_input_names_the_field(base, section, key, value, expected):
+    data = {**base, "thermal": dict(THERMAL)}
+    data["material"] = {**base["material"], "density": 7600.0, "specific_heat": 650.0,
+                        "conductivity": 30.0}
+    data[section] = {**data[section], key: value}
+    assert expected in problems(data)
+
+
+def test_thermal_case_round_trips_with_tables(base):
+    data = {**base, "thermal": THERMAL,
+            "material": {**base["material"], "density": 7600.0, "conductivity": 30.0,
+                         "specific_heat": [[1000.0, 600.0], [1400.0, 700.0]]}}
+    case = case_from_dict(data)
+    assert case.material.specific_heat == [(1000.0, 600.0), (1400.0, 700.0)]
+    assert case.thermal.taylor_quinney == 0.9 and case.thermal.friction_heat_to_strip == 0.5
+    assert case_from_toml(case.to_toml()) == case

@@ -49,6 +49,7 @@ class SteadySettings:
     a_f_max: float = 1e6
     a_f_rtol: float = 1e-2           # fixed point of the a_f rule reached at this change
     strain_rtol: float = 1e-3        # ... and of the strain field (strain-dependent flow stress)
+    thermal_rtol: float = 1e-4       # ... and of the temperature (max change / max T)
     upstream: float | None = None    # flat entry length before the touching point (None: auto)
     downstream: float | None = None  # flat exit length after the roll gap (None: auto)
     m_path: tuple[float, ...] = ()   # continuation in m ending at the target (() : direct)
@@ -142,10 +143,12 @@ class SteadyRun:
                                       margin=settings.fine_margin * rp.contact_length
                                       + 4 * model.h)
         reduced = NortonHoff(1.0, mat.m, mat.eps0)
-        self.strain, consistency = model.strain_setup(self.mesh)
+        self.strain, self.thermal, consistency = model.field_setup(self.mesh)
         self.form = RollingForm(self.mesh, rp, reduced, model.friction, PenaltyTable(model.h),
                                 free_surface=settings.free_surface,
                                 tensions=model.reduced_tensions, consistency=consistency)
+        if self.thermal is not None:
+            self.thermal.attach(self.form)
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.d = self.disp.vec.FV().NumPy()
@@ -191,6 +194,8 @@ class SteadyRun:
         row = {"step": index, "time": math.nan, "m": self.form.m.Get()}
         row.update(Q.measure(self.form, self.top, self.d, self.model.material.K, self.model.h,
                              self.head_x()))
+        if self.thermal is not None:
+            row.update(self.thermal.measure(self.model.rp.axis_x, self.model.h))
         row.update({"iterations": stats.iterations, "residual": stats.residual,
                     "solver_converged": stats.converged})
         return row
@@ -274,6 +279,7 @@ class SteadyRun:
         self._set_shape()
         self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else warm.a_f)
         self._update_strain()
+        self._update_thermal()
 
     def _cold_start(self) -> None:
         """Reference strip shape, kinematic velocity guess and a_f (3.15) from it."""
@@ -282,6 +288,10 @@ class SteadyRun:
         self._kinematic_guess()
         self._update_strain()
         self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else self._estimate_a_f())
+        if self.thermal is not None:     # the temperature of the guessed flow, from the entry's
+            self.thermal.field.gf.Set(self.model.temperature)
+            self.form.m.Set(self.model.material.m)
+            self._update_thermal()
 
     def _follow(self, path: list[float], res: SteadyResult, record) -> None:
         """Loose Newton solves at the intermediate m of ``path``, then the coupled Newton at the
@@ -305,7 +315,8 @@ class SteadyRun:
             record(SolveStats(iterations=0, converged=False))
             return True
 
-        coupled = s.a_f is None or s.free_surface == "traced" or self.strain is not None
+        coupled = (s.a_f is None or s.free_surface == "traced" or self.strain is not None
+                   or self.thermal is not None)
         st = newton(f.problem, s.tol, s.max_it + 3 * s.max_outer,
                     couple=couple if coupled else None, couple_below=s.couple_below,
                     full_step=True)
@@ -318,6 +329,7 @@ class SteadyRun:
         in units of its tolerance."""
         s, f = self.s, self.form
         change = self._update_strain() / s.strain_rtol
+        change = max(change, self._update_thermal() / s.thermal_rtol)
         if s.a_f is None:
             a_old, a_new = f.a_f.Get(), self._estimate_a_f()
             res.a_f_history.append(a_new)
@@ -335,6 +347,13 @@ class SteadyRun:
         if self.strain is None:
             return 0.0
         return self.strain.transport(self.form.problem.velocity)
+
+    def _update_thermal(self) -> float:
+        """The steady temperature of the current flow (``thermal/coupling.py``); its largest
+        change over the largest temperature (0 for an isothermal run)."""
+        if self.thermal is None:
+            return 0.0
+        return self.thermal.update_steady()
 
     def _top_parts(self) -> np.ndarray:
         """Part of every top P2 node (vertices, then edge midpoints, as ``Q.top_nodes``):

@@ -68,24 +68,37 @@ class RollingModel:
     mesh: MeshSpec
     back_tension: float = 0.0   # Pa, mean tensile stress on the entry face
     front_tension: float = 0.0  # Pa, mean tensile stress on the exit face
-    flow_stress: object = None  # strain-dependent flow-stress law (None: material is the law)
-    temperature: float = 1373.15  # K, uniform
+    flow_stress: object = None  # flow-stress law of a strain or temperature field (None: the
+                                # material is the law)
+    temperature: float = 1373.15  # K: uniform, or the entry temperature with ``thermal``
     entry_strain: float = 0.0
+    carries_strain: bool = True   # the law depends on the strain: a strain field is carried
+    thermal: tuple | None = None  # (ThermalProperties, ThermalBoundary): the coupled problem
 
     @property
     def v_reg(self) -> float:
         return self.friction.v_reg
 
-    def strain_setup(self, mesh):
-        """(StrainField or None, K(strain, T)/K_ref as a CF or 1.0) for a strain-dependent
-        flow stress (``discretisation/strain.py``)."""
-        if self.flow_stress is None:
-            return None, 1.0
-        from ..discretisation.strain import StrainField
+    def field_setup(self, mesh):
+        """(StrainField or None, ThermalCoupling or None, the form's consistency K(eps, T)/K_ref
+        as a CF, or 1.0): the fields a strain- or temperature-dependent flow stress needs
+        (``discretisation/strain.py``, ``thermal/coupling.py``)."""
+        strain = None
+        if self.flow_stress is not None and self.carries_strain:
+            from ..discretisation.strain import StrainField
 
-        field = StrainField(mesh, self.entry_strain)
-        ratio = self.flow_stress.consistency(field.gf, self.temperature) / self.material.K
-        return field, ratio
+            strain = StrainField(mesh, self.entry_strain)
+        if self.thermal is not None:
+            from ..thermal.coupling import ThermalCoupling
+
+            coupling = ThermalCoupling(mesh, *self.thermal, K_ref=self.material.K,
+                                       m_ref=self.material.m, eps0=self.material.eps0,
+                                       flow=self.flow_stress, strain=strain,
+                                       entry_strain=self.entry_strain)
+            return strain, coupling, coupling.consistency()
+        if strain is None:
+            return None, None, 1.0
+        return strain, None, self.flow_stress.consistency(strain.gf, self.temperature) / self.material.K
 
     @property
     def reduced_tensions(self) -> tuple[float, float]:
@@ -124,10 +137,12 @@ class TransientRun:
             self.ckpt.mkdir(parents=True, exist_ok=True)
             self.mesh.ngmesh.Save(str(self.ckpt / "mesh.vol"))
         reduced = NortonHoff(1.0, mat.m, mat.eps0)
-        self.strain, consistency = model.strain_setup(self.mesh)
+        self.strain, self.thermal, consistency = model.field_setup(self.mesh)
         self.form = RollingForm(self.mesh, rp, reduced, model.friction, PenaltyTable(model.h),
                                 free_surface=settings.free_surface,
                                 tensions=model.reduced_tensions, consistency=consistency)
+        if self.thermal is not None:
+            self.thermal.attach(self.form)
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.top = TopBoundary(self.mesh, V.ndof // 2)

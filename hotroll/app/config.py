@@ -1,7 +1,7 @@
 """Validated case description (TOML -> pydantic models), SI units throughout.
 
 A case file has the sections ``[pass]``, ``[plate]``, ``[material]`` (required)
-and ``[friction]``, ``[mesh]``, ``[solver]``, ``[output]`` (optional).  Every
+and ``[friction]``, ``[mesh]``, ``[solver]``, ``[output]``, ``[thermal]`` (optional).  Every
 problem is reported as ``<section.key>: <what is wrong; allowed range>`` in a
 single :class:`CaseError`. The shared helpers are in ``config_base.py``, the law sections
 (``[material]``, ``[friction]``) in ``config_laws.py``.
@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import tomllib
+import typing
 from pathlib import Path
 from typing import Any, Literal
 
@@ -22,6 +23,7 @@ from ..process.geometry import RollPass
 from .config_base import (MESH_TABLE, CaseError, MeshName, PosFloat, _field, _fields, _Problems,
                           _Section)
 from .config_laws import FrictionConfig, MaterialConfig
+from .config_thermal import ThermalConfig
 
 __all__ = ["MESH_TABLE", "Case", "CaseError", "FrictionConfig", "MaterialConfig", "case_from_dict",
            "case_from_toml", "load_case", "flat"]
@@ -100,8 +102,9 @@ class PassConfig(_Section):
 class PlateConfig(_Section):
     length: float = _field(
         ..., "initial plate length, at least 3 x the projected contact length", "m", "> 0", gt=0)
-    temperature: float = _field(1373.15, "plate temperature, uniform (flow stress)", "K", "> 0",
-                                gt=0)
+    temperature: float = _field(
+        1373.15, "plate temperature: uniform (isothermal run) or at the entry (with [thermal])",
+        "K", "> 0", gt=0)
     entry_strain: float = _field(0.0, "equivalent plastic strain the plate enters with", "",
                                  ">= 0", ge=0)
     free_surface: Literal["traced", "constrained"] = _field(
@@ -177,6 +180,9 @@ class Case(_Section):
     mesh: MeshConfig = Field(default_factory=MeshConfig, description="mesh sizes")
     solver: SolverConfig = Field(default_factory=SolverConfig, description="solver settings")
     output: OutputConfig = Field(default_factory=OutputConfig, description="output switches")
+    thermal: ThermalConfig | None = Field(
+        None, description="heat sources and losses; present: the coupled thermo-mechanical "
+        "problem, absent: isothermal at plate.temperature")
 
     @model_validator(mode="after")
     def _check_sizes(self) -> Case:
@@ -201,6 +207,11 @@ class Case(_Section):
         if self.mesh.h_far is not None and self.mesh.h_far < h:
             problems.append(f"mesh.h_far: must be >= mesh.h_contact ({h:g} m), "
                             f"got {self.mesh.h_far:g} m")
+        if self.thermal is not None:
+            problems += [f"material.{key}: missing, required with a [thermal] section "
+                         f"({_fields(MaterialConfig)[key].description})"
+                         for key in ("density", "specific_heat", "conductivity")
+                         if getattr(self.material, key) is None]
         if problems:
             raise _Problems(problems)
         return self
@@ -283,8 +294,12 @@ def load_case(path: str | Path) -> Case:
 
 
 def _model_of(model: type[BaseModel], key: str) -> type[BaseModel] | None:
+    """The section model of ``key`` (an optional section: the model inside ``X | None``)."""
     ann = _fields(model)[key].annotation
-    return ann if isinstance(ann, type) and issubclass(ann, BaseModel) else None
+    for a in (ann, *typing.get_args(ann)):
+        if isinstance(a, type) and issubclass(a, BaseModel):
+            return a
+    return None
 
 
 def _problems(err: ValidationError) -> list[str]:
@@ -334,6 +349,8 @@ def _toml_value(v: Any) -> str:
         return repr(v)
     if isinstance(v, str):
         return json.dumps(v, ensure_ascii=False)
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
     raise TypeError(f"cannot write {type(v).__name__} to TOML")
 
 

@@ -8,9 +8,10 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import model_validator
+from pydantic import field_validator, model_validator
 
 from .config_base import PosFloat, _field, _fields, _Problems, _Section
+from .config_thermal import Property, check_property
 
 
 class MaterialConfig(_Section):
@@ -32,6 +33,18 @@ class MaterialConfig(_Section):
     m8: float | None = _field(None, "Hensel-Spittel m8 (edot^(m8 T))", "1/degC", "a finite number (omit: 0)")
     m9: float | None = _field(None, "Hensel-Spittel m9 (T^m9)", "", "a finite number (omit: 0)")
     eps0: float = _field(1e-4, "strain-rate regularisation eps0", "1/s", "> 0", gt=0)
+    # thermal properties: used only with a [thermal] section (config_thermal.py)
+    density: Property | None = _field(None, "density (with [thermal])", "kg/m^3",
+                                      "> 0 or a table [[T (K), value], ...]")
+    specific_heat: Property | None = _field(None, "specific heat capacity (with [thermal])",
+                                            "J/(kg K)", "> 0 or a table [[T (K), value], ...]")
+    conductivity: Property | None = _field(None, "thermal conductivity (with [thermal])",
+                                           "W/(m K)", "> 0 or a table [[T (K), value], ...]")
+
+    @field_validator("density", "specific_heat", "conductivity", mode="before")
+    @classmethod
+    def _property(cls, v, info):
+        return check_property(info.field_name, v)
 
     _HS = ("A", "m1", "m2", "m3", "m4", "m5", "m7", "m8", "m9")
 
@@ -81,6 +94,13 @@ class MaterialConfig(_Section):
         if self.grade is not None:
             return self._grade().law(eps0=self.eps0)
         return HenselSpittel(**{k: getattr(self, k) or 0.0 for k in self._HS}, eps0=self.eps0)
+
+    def thermal_properties(self):
+        """The strip's ``ThermalProperties`` (``hotroll/thermal``); all three must be given."""
+        from ..thermal.properties import ThermalProperties
+
+        return ThermalProperties(density=self.density, specific_heat=self.specific_heat,
+                                 conductivity=self.conductivity)
 
     def rate_exponent(self, temperature: float) -> float:
         """m of the law at the plate temperature (K)."""

@@ -21,6 +21,11 @@ AVERAGED = ("roll_force", "roll_torque", "roll_power", "forward_slip", "entry_ve
             "exit_velocity", "mass_flux_in", "mass_flux_out", "plastic_power", "friction_power",
             "penalty_power", "outlet_penalty_power", "horizontal_force", "neutral_angle", "tension_power",
             "contact_length", "a_f", "strain_rate_measure", "slip_measure")
+#: The thermal figures of the history rows that the summary averages (with a [thermal] section).
+THERMAL_AVERAGED = ("exit_temperature_mean", "exit_temperature_surface", "max_temperature",
+                    "min_temperature", "plastic_heat", "friction_heat_to_strip", "heat_to_roll",
+                    "heat_to_air", "advected_in", "advected_out", "conducted_in",
+                    "heat_balance_error")
 
 
 def reference_material(case: Case):
@@ -86,9 +91,13 @@ def build_model(case: Case):
                          case.friction.law_object(rp.u_roll, material.m), spec,
                          back_tension=case.pass_.back_tension,
                          front_tension=case.pass_.front_tension,
-                         flow_stress=flow if strain_dependent(flow) else None,
+                         flow_stress=flow if strain_dependent(flow) or case.thermal else None,
                          temperature=case.plate.temperature,
-                         entry_strain=case.plate.entry_strain)
+                         entry_strain=case.plate.entry_strain,
+                         carries_strain=strain_dependent(flow),
+                         thermal=(case.material.thermal_properties(),
+                                  case.thermal.boundary(case.plate.temperature))
+                         if case.thermal else None)
     settings = TransientSettings(
         dt=case.dt, end_time=end_time, nonlinear=sv.nonlinear, tol=sv.tolerance,
         max_it=sv.max_iterations, steady_tol=sv.steady_tolerance, max_steps=sv.max_steps,
@@ -212,7 +221,9 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
                                 if summary.get("contact_length") else None)
     summary.update(width_totals(summary, case.pass_.width))
     summary["temperature"] = case.plate.temperature
-    summary["units"] = {k: u for k, u in UNITS.items() if k in summary}
+    from ..thermal.coupling import THERMAL_UNITS
+
+    summary["units"] = {k: u for k, u in (UNITS | THERMAL_UNITS).items() if k in summary}
     from .outcome import exit_code
 
     summary["exit_code"] = exit_code(summary)
@@ -289,4 +300,7 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "back_tension": case.pass_.back_tension, "front_tension": case.pass_.front_tension,
         "averaged_over_steps": len(solved),
         "unconverged_steps_in_window": len(window) - len(solved),
+        "thermal": case.thermal is not None,
+        **{k: float(np.nanmean([r[k] for r in solved])) for k in THERMAL_AVERAGED
+           if case.thermal is not None},
     }

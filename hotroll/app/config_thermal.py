@@ -1,0 +1,74 @@
+"""The thermal part of the case (issue 16): the ``[thermal]`` section and the strip's thermal
+properties in ``[material]`` (``density``, ``specific_heat``, ``conductivity``).
+
+A case with a ``[thermal]`` section solves the coupled thermo-mechanical problem
+(``hotroll/thermal``); without one the run is isothermal at ``plate.temperature``, as before.
+A property is a constant or a table of ``[T (K), value]`` pairs, piecewise linear in T and
+constant beyond its ends.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Union
+
+from .config_base import _field, _Section
+
+#: A thermal property: a constant, or [[T (K), value], ...] with strictly increasing T.
+Property = Union[float, list[tuple[float, float]]]
+
+PROPERTY_UNITS = {"density": "kg/m^3", "specific_heat": "J/(kg K)", "conductivity": "W/(m K)"}
+
+
+def check_property(key: str, value: Any) -> Any:
+    """A constant > 0 or a table of >= 2 [T, value] pairs, T > 0 strictly increasing, values
+    > 0; the message names ``material.<key>`` and the allowed form."""
+    allowed = (f"a number > 0 [{PROPERTY_UNITS[key]}] or a table [[T (K), value], ...] of at "
+               f"least 2 rows, T > 0 strictly increasing, values > 0")
+    if value is None:
+        return None
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"must be {allowed}, got {value!r}")
+        return float(value)
+    try:
+        rows = [(float(t), float(v)) for t, v in value]
+    except (TypeError, ValueError):
+        raise ValueError(f"must be {allowed}, got {value!r}") from None
+    ts = [t for t, _ in rows]
+    ok = (len(rows) >= 2 and all(math.isfinite(t) and t > 0 for t in ts)
+          and all(math.isfinite(v) and v > 0 for _, v in rows)
+          and all(b > a for a, b in zip(ts, ts[1:])))
+    if not ok:
+        raise ValueError(f"must be {allowed}, got {value!r}")
+    return rows
+
+
+class ThermalConfig(_Section):
+    """Heat sources and losses of the strip (W, K, m); the properties are in ``[material]``."""
+
+    taylor_quinney: float = _field(0.9, "share of the plastic work that becomes heat (beta)", "",
+                                   "in [0, 1]", ge=0, le=1)
+    friction_heat_to_strip: float = _field(
+        0.5, "share of the friction heat that goes into the strip (the rest into the roll)", "",
+        "in [0, 1]", ge=0, le=1)
+    htc_contact: float = _field(..., "heat transfer coefficient strip -> roll in the contact",
+                                "W/(m^2 K)", ">= 0", ge=0)
+    roll_temperature: float = _field(..., "roll surface temperature", "K", "> 0", gt=0)
+    htc_air: float = _field(..., "convective heat transfer coefficient on the free surfaces",
+                            "W/(m^2 K)", ">= 0", ge=0)
+    emissivity: float = _field(..., "emissivity of the free surfaces (radiation)", "",
+                               "in [0, 1]", ge=0, le=1)
+    ambient_temperature: float = _field(293.15, "ambient temperature (air and radiation)", "K",
+                                        "> 0", gt=0)
+
+    def boundary(self, entry_temperature: float):
+        """The solver's boundary data (``hotroll.thermal.properties.ThermalBoundary``)."""
+        from ..thermal.properties import ThermalBoundary
+
+        return ThermalBoundary(
+            entry_temperature=entry_temperature, roll_temperature=self.roll_temperature,
+            ambient_temperature=self.ambient_temperature, htc_contact=self.htc_contact,
+            htc_air=self.htc_air, emissivity=self.emissivity,
+            friction_heat_to_strip=self.friction_heat_to_strip,
+            taylor_quinney=self.taylor_quinney)
