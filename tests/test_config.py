@@ -271,3 +271,13 @@ def test_thermal_case_round_trips_with_tables(base):
     assert case.material.specific_heat == [(1000.0, 600.0), (1400.0, 700.0)]
     assert case.thermal.taylor_quinney == 0.9 and case.thermal.friction_heat_to_strip == 0.5
     assert case_from_toml(case.to_toml()) == case
+
+
+def test_thermal_transient_is_refused_until_coupled(base):
+    data = {**base, "thermal": THERMAL,
+            "material": {**base["material"], "density": 7600.0, "specific_heat": 650.0,
+                         "conductivity": 30.0},
+            "solver": {**base.get("solver", {}), "method": "transient"}}
+    assert 'solver.method: "transient" with a [thermal] section is not available' in problems(data)
+    data["solver"]["method"] = "steady"
+    assert case_from_dict(data).thermal is not None
