@@ -237,11 +237,15 @@ def test_cli_sweep_bad_value_before_run(tmp_path, fake_runner):
 THERMAL = {"htc_contact": 2e4, "roll_temperature": 350.0, "htc_air": 20.0, "emissivity": 0.8}
 
 
+def _steady(base):
+    return {**base, "solver": {**base.get("solver", {}), "method": "steady"}}
+
+
 def test_thermal_section_needs_the_strip_properties(base):
     """A [thermal] section without the material's density, specific heat and conductivity is
     refused naming each missing key; without [thermal] they are not needed."""
     assert case_from_dict(base).thermal is None
-    text = problems({**base, "thermal": THERMAL})
+    text = problems({**_steady(base), "thermal": THERMAL})
     for key in ("density", "specific_heat", "conductivity"):
         assert f"material.{key}: missing, required with a [thermal] section" in text
 
@@ -256,7 +260,7 @@ def test_thermal_section_needs_the_strip_properties(base):
     ("material", "specific_heat", [[1000.0, 650.0]], "material.specific_heat: must be"),
 ])
 def test_bad_thermal_input_names_the_field(base, section, key, value, expected):
-    data = {**base, "thermal": dict(THERMAL)}
+    data = {**_steady(base), "thermal": dict(THERMAL)}
     data["material"] = {**base["material"], "density": 7600.0, "specific_heat": 650.0,
                         "conductivity": 30.0}
     data[section] = {**data[section], key: value}
@@ -264,7 +268,7 @@ def test_bad_thermal_input_names_the_field(base, section, key, value, expected):
 
 
 def test_thermal_case_round_trips_with_tables(base):
-    data = {**base, "thermal": THERMAL,
+    data = {**_steady(base), "thermal": THERMAL,
             "material": {**base["material"], "density": 7600.0, "conductivity": 30.0,
                          "specific_heat": [[1000.0, 600.0], [1400.0, 700.0]]}}
     case = case_from_dict(data)
