@@ -35,3 +35,14 @@ def example1_coarse(name: str, **sections) -> dict:
     }
     base.update(copy.deepcopy(sections))
     return base
+
+
+def shared_scope(fixture_name, config) -> str:
+    """Scope of a fixture whose result several tests read: "module", except in mutmut's stats
+    run (MUTANT_UNDER_TEST=stats), where it is "function". mutmut records which tests call each
+    function and runs only those against its mutants; a module fixture is built in the first
+    test only, and the other tests reading it would never run against a mutant of the code
+    that made their numbers."""
+    import os
+
+    return "function" if os.environ.get("MUTANT_UNDER_TEST") == "stats" else "module"

@@ -25,7 +25,7 @@ import pytest
 from hotroll.app.config import case_from_dict
 from hotroll.app.runner import run_case
 
-from casebuild import build_case, example1_coarse
+from casebuild import build_case, example1_coarse, shared_scope
 
 # cheap (one coarse steady solve per module, 0.6 s): in mutmut's test selection
 pytestmark = pytest.mark.mutation
@@ -48,7 +48,7 @@ def _run(tmp_path_factory, name, **over):
     return s, contact, dict(np.load(out / "fields.npz"))
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def coarse(tmp_path_factory):
     return _run(tmp_path_factory, "example1_h002")
 

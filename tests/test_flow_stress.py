@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 import pytest
+from casebuild import shared_scope
 
 from hotroll.physics.flow_stress import (
     DEFAULT_STRAIN_MIN,
@@ -206,7 +207,7 @@ def test_grade_library():
 
 
 # --- NGSolve CoefficientFunctions ----------------------------------------------------------------
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def mesh():
     ngsolve = pytest.importorskip("ngsolve")
     from netgen.geom2d import unit_square

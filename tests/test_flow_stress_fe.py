@@ -17,7 +17,7 @@ import pytest
 from hotroll.app.config import CaseError
 from hotroll.app.runner import run_case
 
-from casebuild import build_case
+from casebuild import build_case, shared_scope
 
 BASE = {
     "name": "hs",
@@ -76,7 +76,7 @@ def test_strain_transport_is_exact_for_plane_strain_compression():
     assert field.mean_between(lo, hi) == pytest.approx(0.1 + 2 / math.sqrt(3) * mean, rel=2e-3)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def plain(tmp_path_factory):
     return _run(tmp_path_factory, "hs_plain")
 
@@ -90,7 +90,7 @@ def test_hensel_spittel_with_a_and_m3_is_norton_hoff(tmp_path_factory, plain):
     assert plain["exit_strain"] is None          # no strain field without a strain term
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def hardening_run(tmp_path_factory):
     """One steady Hensel-Spittel run with strain hardening (m2 = 0.2): summary and fields."""
     out = tmp_path_factory.mktemp("hs_m2")
@@ -98,7 +98,7 @@ def hardening_run(tmp_path_factory):
     return s, dict(np.load(out / "fields.npz"))
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def hardening(hardening_run):
     return hardening_run[0]
 

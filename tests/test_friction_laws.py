@@ -23,7 +23,7 @@ from scipy.integrate import simpson
 from hotroll.app.config import CaseError
 from hotroll.app.runner import run_case
 
-from casebuild import build_case
+from casebuild import build_case, shared_scope
 from hotroll.physics.friction import CoulombFriction, TrescaFriction, ViscoplasticFriction
 
 BASE = {
@@ -63,12 +63,12 @@ def _k_from_fields(contact, fields):
     return fields["sigma_ef"][nearest] / SQRT3
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def coulomb(tmp_path_factory):
     return _run(tmp_path_factory, "coulomb")
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def tresca(tmp_path_factory):
     return _run(tmp_path_factory, "tresca", {"law": "tresca", "factor": 0.8})
 
@@ -161,7 +161,7 @@ def test_large_mu_sticks_like_a_factor_of_one(tmp_path_factory, coulomb):
 
 
 # --- tensions -----------------------------------------------------------------------------------
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def tensions(tmp_path_factory, coulomb):
     f = {"law": "coulomb", "mu": 0.5}
     base = _run(tmp_path_factory, "mu05", f)[0]

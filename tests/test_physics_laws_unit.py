@@ -19,6 +19,7 @@ import warnings
 
 import numpy as np
 import pytest
+from casebuild import shared_scope
 
 from hotroll.physics.flow_stress import HenselSpittel, NortonHoffStress, ValidityRange
 from hotroll.physics.friction import smooth_minimum, smooth_positive_part
@@ -36,7 +37,7 @@ def exactly(message: str) -> str:
     return "^" + re.escape(message) + "$"
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def mesh():
     ngsolve = pytest.importorskip("ngsolve")
     from netgen.geom2d import unit_square
