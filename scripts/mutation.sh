@@ -6,7 +6,9 @@
 # dropped argument, ...) and runs the cheap tests that call that function: a mutant the tests
 # still pass ("survived") is a behaviour no test pins down. The FE rolling runs (4-20 s each) are
 # not in the selection, so a function only they check shows survivors or "no tests"; re-check one
-# mutant against any test by hand:
+# mutant against any test by hand (below). mutmut learns which tests call which function in a
+# "stats" run; a shared (module) fixture is built inside one test only, so the fixtures that
+# several tests read use tests/casebuild.shared_scope, function-scoped in that run:
 #   cd mutants && MUTANT_UNDER_TEST=<name> ../.venv/bin/python -m pytest tests/test_rolling.py -x
 #
 # NOT part of CI (it takes long): run it by hand, in the background, after changing the physics or
