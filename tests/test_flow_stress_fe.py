@@ -168,7 +168,6 @@ def test_grades_run(tmp_path_factory):
     assert np.isfinite(s["exit_strain"])
 
 
-@pytest.mark.mutation   # cheap enough for mutmut's selection (pyproject [tool.mutmut])
 def test_plastic_power_from_the_written_fields(hardening_run):
     """The plastic power of the solve equals int sigma_f(strain, edot, T) edot dx computed here
     from the written vertex fields (strain, rate) and the grade's formula on each triangle:
@@ -185,7 +184,6 @@ def test_plastic_power_from_the_written_fields(hardening_run):
     assert power == pytest.approx(s["plastic_power"], rel=0.03)   # measured 0.6 %
 
 
-@pytest.mark.mutation   # cheap enough for mutmut's selection (pyproject [tool.mutmut])
 def test_gap_means_from_the_written_fields(hardening_run):
     """mean_flow_stress and mean_strain_rate are area means over the strip between the contact
     start and the roll gap: recomputed here from the written vertex fields (triangles whose
