@@ -46,3 +46,19 @@ def shared_scope(fixture_name, config) -> str:
     import os
 
     return "function" if os.environ.get("MUTANT_UNDER_TEST") == "stats" else "module"
+
+
+def gap_means_from_fields(summary: dict, fields: dict) -> dict:
+    """mean_flow_stress and mean_strain_rate recomputed from written vertex fields (fields.npz):
+    area means over the triangles whose centroid lies between the contact start and the roll
+    gap, each triangle at the mean of its vertex values."""
+    import numpy as np
+
+    x0 = summary["contact_start"][0]
+    p, t = fields["points"], fields["triangles"]
+    cx = p[t, 0].mean(axis=1)
+    band = (cx > x0) & (cx < summary["roll_centre"][0])
+    e1, e2 = p[t[:, 1]] - p[t[:, 0]], p[t[:, 2]] - p[t[:, 0]]
+    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])[band]
+    return {key: float(np.sum(area * fields[name][t[band]].mean(axis=1)) / area.sum())
+            for key, name in (("mean_flow_stress", "sigma_ef"), ("mean_strain_rate", "edot"))}

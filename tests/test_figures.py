@@ -25,7 +25,7 @@ import pytest
 from hotroll.app.config import case_from_dict
 from hotroll.app.runner import run_case
 
-from casebuild import build_case, example1_coarse, shared_scope
+from casebuild import build_case, example1_coarse, gap_means_from_fields, shared_scope
 
 # cheap (one coarse steady solve per module, 0.6 s): in mutmut's test selection
 pytestmark = pytest.mark.mutation
@@ -153,18 +153,10 @@ def test_gap_means_from_the_written_fields(coarse):
     """mean_flow_stress and mean_strain_rate are area means over the strip between the contact
     start and the roll gap: recomputed here from the written vertex fields (triangles whose
     centroid lies in that band, vertex means; measured 0.8 % (stress) and 1.6 % (rate) apart at
-    h = 0.02), and mean_pressure =
-    force / contact length. The same check on a Hensel-Spittel pass is in
-    test_flow_stress_fe.py (too slow for mutmut's selection)."""
+    h = 0.02), and mean_pressure = force / contact length. The same check on a Hensel-Spittel
+    pass is in test_flow_stress_fe.py (too slow for mutmut's selection)."""
     s, _, f = coarse
-    x0 = s["contact_start"][0]
-    p, t = f["points"], f["triangles"]
-    cx = p[t, 0].mean(axis=1)
-    band = (cx > x0) & (cx < s["roll_centre"][0])
-    e1, e2 = p[t[:, 1]] - p[t[:, 0]], p[t[:, 2]] - p[t[:, 0]]
-    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])[band]
-    for key, field in (("mean_flow_stress", "sigma_ef"), ("mean_strain_rate", "edot")):
-        mean = float(np.sum(area * f[field][t[band]].mean(axis=1)) / area.sum())
+    for key, mean in gap_means_from_fields(s, f).items():
         assert s[key] == pytest.approx(mean, rel=0.03)
     assert s["mean_pressure"] == pytest.approx(s["roll_force"] / s["contact_length"], rel=1e-12)
 
