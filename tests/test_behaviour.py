@@ -326,3 +326,28 @@ def test_figures_show_finite_data_inside_their_axes(tmp_path, monkeypatch):
     assert any(np.allclose(np.asarray(l.get_xdata(), float), s["neutral_point"][0])
                for l in a_vs.get_lines())
     assert s["converged"]
+
+
+@pytest.mark.mutation
+def test_exit_figures_wait_for_the_head():
+    """The exit face counts as a cross-section of the exit strip once the head is past the bite
+    by l_c/4 + 2h (Q.measure): before, the exit velocity, flux, thickness and forward slip are
+    NaN; just past it they are the head face's (here the unsolved start: v = 0, so the forward
+    slip is -1 and the thickness that of the head face, in the roll gap at the start)."""
+    from hotroll.algorithms.transient import TransientRun
+    from hotroll.app.runner import build_model
+    from hotroll.post import quantities as Q
+
+    model, settings = build_model(build_case(BASE))
+    run = TransientRun(model, settings)
+    rp, h = model.rp, model.h
+    threshold = rp.axis_x + 0.25 * rp.contact_length + 2 * h
+    keys = ("exit_velocity", "mass_flux_out", "exit_thickness_measured", "forward_slip")
+    for head in (rp.axis_x, threshold - 0.5 * h, threshold):
+        row = Q.measure(run.form, run.top, run.d, 1.0, h, head)
+        assert all(math.isnan(row[k]) for k in keys), head
+        assert row["head_x"] == head
+    row = Q.measure(run.form, run.top, run.d, 1.0, h, threshold + 1e-9)
+    assert row["exit_velocity"] == 0.0 and row["mass_flux_out"] == 0.0
+    assert row["forward_slip"] == -1.0
+    assert row["exit_thickness_measured"] == pytest.approx(2.0 * rp.half_exit, rel=1e-9)

@@ -49,8 +49,21 @@ def _run(tmp_path_factory, name, **over):
 
 
 @pytest.fixture(scope=shared_scope)
-def coarse(tmp_path_factory):
-    return _run(tmp_path_factory, "example1_h002")
+def coarse_dir(tmp_path_factory):
+    """The output directory of the coarse steady run."""
+    out = tmp_path_factory.mktemp("example1_h002")
+    run_case(build_case(BASE), out)
+    return out
+
+
+@pytest.fixture(scope=shared_scope)
+def coarse(coarse_dir):
+    """(summary, contact.csv, fields.npz) of the coarse steady run."""
+    import json
+
+    s = json.loads((coarse_dir / "summary.json").read_text())
+    contact = np.genfromtxt(coarse_dir / "contact.csv", delimiter=",", names=True)
+    return s, contact, dict(np.load(coarse_dir / "fields.npz"))
 
 
 def test_force_torque_slip_angle_against_the_mesh_converged_values(coarse):
@@ -159,6 +172,45 @@ def test_gap_means_from_the_written_fields(coarse):
     for key, mean in gap_means_from_fields(s, f).items():
         assert s[key] == pytest.approx(mean, rel=0.03)
     assert s["mean_pressure"] == pytest.approx(s["roll_force"] / s["contact_length"], rel=1e-12)
+
+
+def test_gap_means_of_an_empty_band_are_nan():
+    """A contact start at or past the roll gap leaves no deformation zone: the gap means are
+    NaN (not a division by a zero area). The form of the coarse strip, not solved."""
+    from hotroll.algorithms.steady import SteadyRun
+    from hotroll.app.runner import build_model, steady_settings
+    from hotroll.post.engineering import gap_means
+
+    case = build_case(BASE, **{"solver.method": "steady"})
+    model, _ = build_model(case)
+    run = SteadyRun(model, steady_settings(case), case.plate.length)
+    rp = model.rp
+    for x_start in (rp.axis_x, rp.axis_x + 0.01):
+        means = gap_means(run.form, rp, x_start, 1.0)
+        assert set(means) == {"mean_flow_stress", "mean_strain_rate"}
+        assert all(math.isnan(v) for v in means.values())
+
+
+def test_history_columns_against_the_fields_and_the_laws(coarse_dir, coarse):
+    """The last history row (the summary's state): the neutral point on the roll at the neutral
+    angle; the measured exit thickness at the roll gap 2 h1 = 0.4 m (measured -0.2 %: the
+    traced exit top); the head at the end of the written strip; the strain-rate measure
+    int (sqrt3 edot)^(m+1) equals the plastic power over K for Norton-Hoff (K = 1 here;
+    measured 1.3e-5 apart, the eps0 regularisation) and the slip measure int |v_s|^(m+1) the
+    friction power over a_f K (measured 0.6 % apart, the v_reg regularisation near the neutral
+    point)."""
+    import csv
+
+    s, _, f = coarse
+    row = {k: float(v) for k, v in list(csv.DictReader(open(coarse_dir / "history.csv")))[-1]
+           .items() if v not in ("True", "False", "")}
+    (cx, cy), ang = s["roll_centre"], row["neutral_angle"]
+    assert row["neutral_x"] == pytest.approx(cx - R * math.sin(ang), abs=1e-9)
+    assert row["neutral_y"] == pytest.approx(cy - R * math.cos(ang), abs=1e-9)
+    assert row["exit_thickness_measured"] == pytest.approx(0.4, rel=5e-3)
+    assert row["head_x"] == pytest.approx(float(f["points"][:, 0].max()), abs=1e-9)
+    assert row["strain_rate_measure"] == pytest.approx(row["plastic_power"], rel=1e-4)
+    assert row["slip_measure"] * row["a_f"] == pytest.approx(row["friction_power"], rel=0.02)
 
 
 def test_contact_geometry_and_shares(coarse):

@@ -617,3 +617,19 @@ def test_numpy_scalars_are_evaluated_in_double_precision():
     rounded = law.sigma(*(float(np.float32(a)) for a in args))
     assert f32 == rounded and float(arr[0]) == rounded
     assert rounded == pytest.approx(exact, rel=1e-6)
+
+
+def test_regularised_effective_stress_by_hand():
+    """(2.21): sigma_ef = K 3^((m+1)/2) (eps0^2 + edot^2)^(m/2); m and K default to the law's
+    and are overridden when given (the form passes its own m and the consistency field)."""
+    from hotroll.physics.material import NortonHoff
+
+    law = NortonHoff(K=2.0, m=0.25, eps0=1e-3)
+    # edot = 0: only the regularisation, 2 3^0.625 (1e-6)^0.125 = 2 3^0.625 10^-0.75
+    assert law.sigma_ef_reg(0.0) == pytest.approx(2.0 * 3.0**0.625 * 10.0**-0.75, rel=1e-14)
+    assert law.sigma_ef_reg(4.0) == pytest.approx(2.0 * 3.0**0.625 * (4.0 + 1e-6) ** 0.125,
+                                                  rel=1e-14)
+    assert law.sigma_ef_reg(4.0, m=0.5) == pytest.approx(2.0 * 3.0**0.75 * (4.0 + 1e-6) ** 0.25,
+                                                         rel=1e-14)
+    assert law.sigma_ef_reg(4.0, K=3.0) == pytest.approx(3.0 * 3.0**0.625 * (4.0 + 1e-6) ** 0.125,
+                                                         rel=1e-14)

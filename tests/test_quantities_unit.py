@@ -516,6 +516,13 @@ def test_display_scales_and_units():
     assert display("mill_power", 1.234e6) == ("1234", "kW")
     # Pa -> MPa at >= 1e6: 1.5e8 Pa = 150 MPa; 5e5 Pa stays in Pa
     assert display("mean_pressure", 1.5e8) == ("150", "MPa")
+    # every threshold included, exactly at 1e6 (N, Pa) and 1e3 (N m, N m/m, W, W/m)
+    assert display("roll_force_total", 1e6) == ("1", "MN")
+    assert display("mean_pressure", 1e6) == ("1", "MPa")
+    assert display("roll_torque", 1e3) == ("1", "kN m/m")
+    assert display("roll_torque_total", 1e3) == ("1", "kN m")
+    assert display("roll_power", 1e3) == ("1", "kW/m")
+    assert display("mill_power", 1e3) == ("1", "kW")
     assert display("back_tension", 5e5) == ("500000", "Pa")
     # units without a scale: 6 significant digits
     assert display("forward_slip", 0.0123456789) == ("0.0123457", "-")
