@@ -288,6 +288,20 @@ def test_exit_corrected_measures_distance_along_the_arc():
     assert np.allclose(out, line, rtol=0, atol=1e-9)
 
 
+def test_exit_corrected_four_unevenly_spaced_nodes():
+    """Four nodes (the fewest corrected) at x = 0, 0.5, 1.25, 1.5: the distance to the end is
+    summed from the end, d = 1.5, 1.0, 0.25, 0 (not the forward sums 1.5, 1.25, 0.5). h = 0.3:
+    zone*h = 0.6, fit*h = 1.8; reference d = 1.5, 1.0 (values 4, 2): the line 4 (d - 1.5) + 4
+    gives -1 at d = 0.25 and -2 at d = 0."""
+    x = np.array([0.0, 0.5, 1.25, 1.5])
+    prof = {"x": x, "y": np.zeros(4), "normal_stress": np.array([4.0, 2.0, 9.0, -9.0])}
+    assert exit_corrected(prof, 0.3) == pytest.approx([4.0, 2.0, -1.0, -2.0], rel=1e-12,
+                                                      abs=1e-12)
+    # three nodes are returned as they are
+    three = {"x": x[:3], "y": np.zeros(3), "normal_stress": np.array([4.0, 2.0, 9.0])}
+    assert np.array_equal(exit_corrected(three, 0.3), [4.0, 2.0, 9.0])
+
+
 def test_exit_corrected_least_squares_fit_and_zone_bounds():
     """Nodes 0.25 apart (exact binary fractions), h = 0.25: zone*h = 0.5, fit*h = 1.5. Distance
     to the end d = 1.75, 1.5, ..., 0. A node at d = 0.5 is a reference node (>=), not corrected;
