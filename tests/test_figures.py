@@ -213,6 +213,74 @@ def test_history_columns_against_the_fields_and_the_laws(coarse_dir, coarse):
     assert row["slip_measure"] * row["a_f"] == pytest.approx(row["friction_power"], rel=0.02)
 
 
+def test_constrained_tops_close_the_force_and_power_balances(tmp_path_factory):
+    """Held-flat tops ((3.2d) penalty on the free top): they carry part of the load, and the
+    plate's forces (roll + free tops + faces + symmetry reaction) and powers (roll = plastic +
+    friction + penalties) still close; the free tops' share is the force they carry over the
+    roll force (measured 0.36, and power balance 2.6e-4 apart; test_rolling: 36 %)."""
+    s, _, _ = _run(tmp_path_factory, "constrained", **{"plate.free_surface": "constrained"})
+    assert s["converged"]
+    fb = s["force_balance"]
+    force = s["roll_force"]
+    assert -fb["roll"][1] == pytest.approx(force, rel=1e-12)
+    assert s["balance_error"] < 1e-4
+    total = np.sum([fb[k] for k in ("roll", "free_top", "face", "symmetry")], axis=0)
+    assert np.hypot(*total) < 1e-4 * force
+    assert s["free_top_force_share"] == pytest.approx(np.hypot(*fb["free_top"]) / force,
+                                                      rel=1e-9)
+    assert 0.2 < s["free_top_force_share"] < 0.6
+    assert s["power_balance_error"] < 1e-3
+    dissipated = s["plastic_power"] + s["friction_power"] + s["penalty_power"]
+    assert s["roll_power"] == pytest.approx(dissipated, rel=1e-3)
+
+
+def test_penalty_powers_and_forces_of_a_rigid_motion_by_hand():
+    """The one-sided penalties (3.2a, b) and the exit face's vertical penalty, on the coarse
+    steady strip (traced tops, not solved) moving rigidly at v = (a U, c U): no plastic work,
+    and every face and free-top term by hand. gamma_io = 2 / h^(m+1) (Table 1), gamma_s = 25/h
+    on the exit face; the flat entry top is `upstream` long, the flat exit top `downstream`.
+    - a = 0.5 (slower than the roll): the outlet penalty -gamma_io (U - v_x) pushes the exit top
+      and face forward: force gamma_io 0.5 U (downstream + h1) in x, power -gamma_io 0.25 U^2
+      (downstream + h1); the exit face's gamma_s v_y h1 against c;
+    - a = 1.5 (faster): the inlet penalty gamma_io (v_x - U) holds the entry top and face back:
+      force -gamma_io 0.5 U (upstream + h0), power gamma_io 0.75 U^2 (upstream + h0); no outlet
+      penalty."""
+    from ngsolve import CF
+
+    from hotroll.algorithms.steady import SteadyRun
+    from hotroll.app.runner import build_model, steady_settings
+    from hotroll.post import quantities as Q
+
+    case = build_case(BASE, **{"solver.method": "steady"})
+    model, _ = build_model(case)
+    run = SteadyRun(model, steady_settings(case), case.plate.length)
+    rp, U, h = model.rp, model.rp.u_roll, model.h
+    g_io, g_s = 2.0 / h ** (model.material.m + 1.0), 25.0 / h
+    up, down, h0, h1 = run.upstream, run.downstream, rp.half_entry, rp.half_exit
+
+    def rigid(a, c):
+        run.form.problem.gf.vec[:] = 0.0
+        run.form.problem.gf.components[0].Set(CF((a * U, c * U)))
+        return Q.integrals(run.form, 1.0)
+
+    slow = rigid(0.5, 0.1)
+    assert abs(slow["plastic_power"]) < 1e-12
+    assert slow["outlet_penalty_power"] == pytest.approx(-g_io * 0.25 * U**2 * (down + h1),
+                                                        rel=1e-9)
+    assert slow["penalty_power"] - slow["contact_penalty_power"] == pytest.approx(
+        -g_io * 0.25 * U**2 * (down + h1) + g_s * (0.1 * U) ** 2 * h1, rel=1e-9)
+    assert slow["face_force_x"] == pytest.approx(g_io * 0.5 * U * h1, rel=1e-9)
+    assert slow["face_force_y"] == pytest.approx(-g_s * 0.1 * U * h1, rel=1e-9)
+    assert slow["free_top_force_x"] == pytest.approx(g_io * 0.5 * U * down, rel=1e-9)
+    fast = rigid(1.5, 0.0)
+    assert fast["outlet_penalty_power"] == 0.0
+    assert fast["penalty_power"] - fast["contact_penalty_power"] == pytest.approx(
+        g_io * 0.75 * U**2 * (up + h0), rel=1e-9)
+    assert fast["face_force_x"] == pytest.approx(-g_io * 0.5 * U * h0, rel=1e-9)
+    assert fast["free_top_force_x"] == pytest.approx(-g_io * 0.5 * U * up, rel=1e-9)
+    assert fast["face_force_y"] == 0.0 and fast["free_top_force_y"] == 0.0
+
+
 def test_contact_geometry_and_shares(coarse):
     """Contact length = the arc between the first and last contact node (R times their angle
     difference; the contact is the chords, 1e-4 shorter); it ends at the gap (x = X_roll,
