@@ -211,6 +211,17 @@ def test_history_columns_against_the_fields_and_the_laws(coarse_dir, coarse):
     assert row["head_x"] == pytest.approx(float(f["points"][:, 0].max()), abs=1e-9)
     assert row["strain_rate_measure"] == pytest.approx(row["plastic_power"], rel=1e-4)
     assert row["slip_measure"] * row["a_f"] == pytest.approx(row["friction_power"], rel=0.02)
+    # the inputs of (3.15): int |v|^(m+1) over the strip from the written vertex velocities
+    # (triangle = mean of its vertices; measured 3.6e-5 apart), and the backward-slip length
+    # against the arc from the contact start to the neutral point (measured 3.5 mm shorter:
+    # whole contact edges, 20 mm long, are counted by the sign of the slip)
+    p, t = f["points"], f["triangles"]
+    e1, e2 = p[t[:, 1]] - p[t[:, 0]], p[t[:, 2]] - p[t[:, 0]]
+    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+    w = np.linalg.norm(f["v"], axis=1) ** (1.0 + 0.2)
+    assert row["volume_v_p"] == pytest.approx(float(np.sum(area * w[t].mean(axis=1))), rel=2e-4)
+    theta_start = math.asin((cx - s["contact_start"][0]) / R)
+    assert row["backward_length"] == pytest.approx(R * (theta_start - ang), abs=0.01)
 
 
 def test_constrained_tops_close_the_force_and_power_balances(tmp_path_factory):
@@ -244,7 +255,8 @@ def test_penalty_powers_and_forces_of_a_rigid_motion_by_hand():
       (downstream + h1); the exit face's gamma_s v_y h1 against c;
     - a = 1.5 (faster): the inlet penalty gamma_io (v_x - U) holds the entry top and face back:
       force -gamma_io 0.5 U (upstream + h0), power gamma_io 0.75 U^2 (upstream + h0); no outlet
-      penalty."""
+      penalty;
+    - tensions on the end faces: their force and power by hand."""
     from ngsolve import CF
 
     from hotroll.algorithms.steady import SteadyRun
@@ -279,6 +291,17 @@ def test_penalty_powers_and_forces_of_a_rigid_motion_by_hand():
     assert fast["face_force_x"] == pytest.approx(-g_io * 0.5 * U * h0, rel=1e-9)
     assert fast["free_top_force_x"] == pytest.approx(-g_io * 0.5 * U * up, rel=1e-9)
     assert fast["face_force_y"] == 0.0 and fast["free_top_force_y"] == 0.0
+    # tensions (reduced: stresses over K) 2 behind, 3 ahead: the back tension pulls the entry
+    # face back, the front one the exit face forward; their power on v = (0.5 U, 0.1 U)
+    run.form.tension_back.Set(2.0)
+    run.form.tension_front.Set(3.0)
+    tens = rigid(0.5, 0.1)
+    assert tens["tension_force_x"] == pytest.approx(-2.0 * h0 + 3.0 * h1, rel=1e-9)
+    assert tens["tension_power"] == pytest.approx((-2.0 * h0 + 3.0 * h1) * 0.5 * U, rel=1e-9)
+    # the summary's power balance error: |roll + tension - plastic - friction - penalty| / roll
+    gap = (tens["roll_power"] + tens["tension_power"] - tens["plastic_power"]
+           - tens["friction_power"] - tens["penalty_power"])
+    assert tens["power_balance_error"] == pytest.approx(abs(gap / tens["roll_power"]), rel=1e-12)
 
 
 def test_contact_geometry_and_shares(coarse):
