@@ -237,6 +237,7 @@ def test_constrained_tops_close_the_force_and_power_balances(tmp_path_factory):
     assert s["balance_error"] < 1e-4
     total = np.sum([fb[k] for k in ("roll", "free_top", "face", "symmetry")], axis=0)
     assert np.hypot(*total) < 1e-4 * force
+    assert s["balance_error"] == pytest.approx(np.hypot(*total) / force, rel=1e-6, abs=1e-15)
     assert s["free_top_force_share"] == pytest.approx(np.hypot(*fb["free_top"]) / force,
                                                       rel=1e-9)
     assert 0.2 < s["free_top_force_share"] < 0.6
