@@ -9,6 +9,8 @@ the repository root:
 
     .venv/bin/python scripts/mutation_recheck.py [--tests tests/test_rolling.py ...] [NAME ...]
 
+(one --tests per file; a pytest error other than failing tests is reported as "error")
+
 The mutated package is the one in ``mutants/`` (mutmut's trampolines pick the mutant from
 MUTANT_UNDER_TEST). The current ``tests/`` are copied there first.
 """
@@ -49,6 +51,8 @@ def check(name: str, tests: list[str], timeout: float) -> tuple[str, str, str]:
         return name, "timeout", f"> {timeout:.0f} s"
     if r.returncode == 0:
         return name, "survived", ""
+    if r.returncode != 1:       # 2-5: interrupted, internal or usage error, nothing collected
+        return name, "error", f"pytest exit code {r.returncode}"
     failed = [ln.split(" ")[1] for ln in r.stdout.splitlines() if ln.startswith("FAILED ")]
     return name, "killed", failed[0] if failed else f"exit code {r.returncode}"
 
@@ -56,13 +60,15 @@ def check(name: str, tests: list[str], timeout: float) -> tuple[str, str, str]:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("names", nargs="*", help="mutant names (default: every survivor)")
-    ap.add_argument("--tests", nargs="*", default=["tests"], help="test files or directories")
+    ap.add_argument("--tests", action="append", default=None,
+                    help="a test file, directory or node id (repeat the option; default: tests)")
     ap.add_argument("--timeout", type=float, default=900.0, help="per mutant, s")
     ap.add_argument("-j", type=int, default=2)
     args = ap.parse_args()
     if not MUTANTS.is_dir():
         sys.exit("no mutants/ directory: run scripts/mutation.sh first")
     shutil.copytree(ROOT / "tests", MUTANTS / "tests", dirs_exist_ok=True)
+    args.tests = args.tests or ["tests"]
     names = args.names or survivors()
     print(f"{len(names)} mutants against {' '.join(args.tests)}", flush=True)
     out = ROOT / "docs" / "mutation" / f"recheck-{dt.date.today().isoformat()}.txt"

@@ -419,6 +419,9 @@ def test_neutral_index_minimises_the_misclassified_count():
     # zeros count on neither side: [0, 0, -1, 1] costs 1, 1, 1, 0, 1 -> 3 (if zeros counted as
     # forward slip, k = 3 would cost 2 and k = 0 win)
     assert neutral_index(np.array([0.0, 0.0, -1.0, 1.0])) == 3
+    # a zero slip is neither backward nor forward: trailing zeros do not pull the split past
+    # them (counted as backward, the split would move to 4)
+    assert neutral_index(np.array([-1.0, 1.0, 0.0, 0.0])) == 1
     # weights: [-1, 1, -1, 1] unweighted ties at k = 1 and 3 (cost 1) -> 1; with weights
     # [1, 1, 5, 1]: costs 6, 5, 6, 1, 2 -> 3
     v = np.array([-1.0, 1.0, -1.0, 1.0])
