@@ -123,6 +123,9 @@ def test_top_profile_is_the_written_field_on_the_top(tmp_path_factory, coarse):
     out = [p for p in tmp_path_factory.getbasetemp().glob("example1_h002*")][0]
     top = np.genfromtxt(out / "top.csv", delimiter=",", names=True)
     assert np.all(np.diff(top["x"]) > 0)
+    # the whole top, from the inlet face to the exit face (not only the contact)
+    assert top["x"][0] == pytest.approx(float(f["points"][:, 0].min()), abs=1e-9)
+    assert top["x"][-1] == pytest.approx(float(f["points"][:, 0].max()), abs=1e-9)
     assert top["y"][0] == pytest.approx(0.25, abs=1e-9)
     assert top["y"][-1] == pytest.approx(0.2, rel=5e-3)
     assert top["v1"][0] == pytest.approx(s["entry_velocity"], rel=2e-3)
@@ -134,7 +137,8 @@ def test_top_profile_is_the_written_field_on_the_top(tmp_path_factory, coarse):
     # the top's nodes are mesh vertices and edge midpoints: they are among the field's points
     pts = {(round(x, 9), round(y, 9)) for x, y in f["points"]}
     verts = [(round(x, 9), round(y, 9)) in pts for x, y in zip(top["x"], top["y"])]
-    assert sum(verts) >= len(top) // 2
+    # vertex, midpoint, vertex, ...: every top edge, in contact or free, has its midpoint
+    assert verts == [i % 2 == 0 for i in range(len(top))]
 
 
 def test_neutral_angle_is_the_sign_change_of_the_written_slip(coarse):
@@ -303,6 +307,36 @@ def test_penalty_powers_and_forces_of_a_rigid_motion_by_hand():
     gap = (tens["roll_power"] + tens["tension_power"] - tens["plastic_power"]
            - tens["friction_power"] - tens["penalty_power"])
     assert tens["power_balance_error"] == pytest.approx(abs(gap / tens["roll_power"]), rel=1e-12)
+
+
+def test_contact_profile_vertex_flags_and_no_contact():
+    """The contact profile of the coarse strip (not solved: the reference arc is the contact)
+    flags as vertices exactly its contact vertices, alternating with the edge midpoints from
+    entry to exit; with no contact at all it is empty, with every column present."""
+    from hotroll.algorithms.steady import SteadyRun
+    from hotroll.app.runner import build_model, steady_settings
+    from hotroll.post import quantities as Q
+
+    case = build_case(BASE, **{"solver.method": "steady"})
+    model, _ = build_model(case)
+    run = SteadyRun(model, steady_settings(case), case.plate.length)
+    prof = Q.contact_profile(run.form, run.top, run.d, 1.0)
+    n_vertices = int(run.top.vertex_contact.sum())
+    assert n_vertices >= 3 and int(np.sum(prof["vertex"])) == n_vertices
+    assert list(prof["vertex"]) == [1 - i % 2 for i in range(2 * n_vertices - 1)]
+    run.top.vertex_contact[:] = False
+    run.top.edge_contact[:] = False
+    # one contact vertex without a contact edge (the report's scheme at a first touch): a
+    # profile of that one node
+    first = 0
+    run.top.vertex_contact[first] = True
+    one = Q.contact_profile(run.form, run.top, run.d, 1.0)
+    assert len(one["x"]) == 1 and list(one["vertex"]) == [1]
+    run.top.vertex_contact[first] = False
+    empty = Q.contact_profile(run.form, run.top, run.d, 1.0)
+    assert set(empty) == {"x", "y", "angle", "v_slip", "normal_stress", "shear_stress",
+                          "vertex"}
+    assert all(len(v) == 0 for v in empty.values())
 
 
 def test_contact_geometry_and_shares(coarse):
