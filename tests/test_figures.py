@@ -312,7 +312,9 @@ def test_penalty_powers_and_forces_of_a_rigid_motion_by_hand():
 def test_contact_profile_vertex_flags_and_no_contact():
     """The contact profile of the coarse strip (not solved: the reference arc is the contact)
     flags as vertices exactly its contact vertices, alternating with the edge midpoints from
-    entry to exit; with no contact at all it is empty, with every column present."""
+    entry to exit; its normal stress on a rigid motion is the penalty reaction by hand; with
+    one contact vertex it has one node, with no contact at all it is empty, with every column
+    present."""
     from hotroll.algorithms.steady import SteadyRun
     from hotroll.app.runner import build_model, steady_settings
     from hotroll.post import quantities as Q
@@ -324,6 +326,21 @@ def test_contact_profile_vertex_flags_and_no_contact():
     n_vertices = int(run.top.vertex_contact.sum())
     assert n_vertices >= 3 and int(np.sum(prof["vertex"])) == n_vertices
     assert list(prof["vertex"]) == [1 - i % 2 for i in range(2 * n_vertices - 1)]
+    # the written normal stress is the penalty reaction -gamma v.n (Table 1): on a rigid motion
+    # v = (U, 0), v.n = U n_x with n towards the roll centre; gamma = 10/h inside the soft
+    # zone I (2 nodes of the coarse arc lie in it), 25/h elsewhere
+    from ngsolve import CF
+
+    U = model.rp.u_roll
+    run.form.problem.gf.components[0].Set(CF((U, 0.0)))
+    moving = Q.contact_profile(run.form, run.top, run.d, 1.0)
+    (lo, hi), (cx, cy) = model.rp.soft_zone, model.rp.centre
+    x, y = moving["x"], moving["y"]
+    inside = (x - lo) * (hi - x) > 0
+    assert 1 <= inside.sum() < len(x)
+    gamma = np.where(inside, 10.0, 25.0) / model.h
+    n_x = (cx - x) / np.hypot(cx - x, cy - y)
+    assert moving["normal_stress"] == pytest.approx(-gamma * U * n_x, rel=1e-9, abs=1e-9)
     run.top.vertex_contact[:] = False
     run.top.edge_contact[:] = False
     # one contact vertex without a contact edge (the report's scheme at a first touch): a
