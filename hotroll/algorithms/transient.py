@@ -29,7 +29,7 @@ from ..post import quantities as Q
 from ..process.contact import TopBoundary
 from ..process.geometry import RollPass
 from .nonlinear import LinearSolveError, SolveStats, picard, solve
-from .settling import STEADY_KEYS, steady_reached, summary_windows, transit_time  # noqa: F401
+from .settling import steady_reached, summary_windows, transit_time
 from .threads import solver_threads
 
 
@@ -98,7 +98,8 @@ class RollingModel:
             return strain, coupling, coupling.consistency()
         if strain is None:
             return None, None, 1.0
-        return strain, None, self.flow_stress.consistency(strain.gf, self.temperature) / self.material.K
+        ratio = self.flow_stress.consistency(strain.gf, self.temperature) / self.material.K
+        return strain, None, ratio
 
     @property
     def reduced_tensions(self) -> tuple[float, float]:

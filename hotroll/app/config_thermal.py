@@ -9,7 +9,6 @@ constant beyond its ends.
 
 from __future__ import annotations
 
-import math
 from typing import Any, Union
 
 from .config_base import _field, _Section
@@ -22,26 +21,18 @@ PROPERTY_UNITS = {"density": "kg/m^3", "specific_heat": "J/(kg K)", "conductivit
 
 def check_property(key: str, value: Any) -> Any:
     """A constant > 0 or a table of >= 2 [T, value] pairs, T > 0 strictly increasing, values
-    > 0; the message names ``material.<key>`` and the allowed form."""
-    allowed = (f"a number > 0 [{PROPERTY_UNITS[key]}] or a table [[T (K), value], ...] of at "
-               f"least 2 rows, T > 0 strictly increasing, values > 0")
+    > 0 (``hotroll.thermal.properties.check_property``); a table comes back as a list of pairs.
+    The case error names ``material.<key>`` and the allowed form."""
+    from ..thermal.properties import ThermalInputError
+    from ..thermal.properties import check_property as thermal_property
+
     if value is None:
         return None
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
-        if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"must be {allowed}, got {value!r}")
-        return float(value)
     try:
-        rows = [(float(t), float(v)) for t, v in value]
-    except (TypeError, ValueError):
-        raise ValueError(f"must be {allowed}, got {value!r}") from None
-    ts = [t for t, _ in rows]
-    ok = (len(rows) >= 2 and all(math.isfinite(t) and t > 0 for t in ts)
-          and all(math.isfinite(v) and v > 0 for _, v in rows)
-          and all(b > a for a, b in zip(ts, ts[1:])))
-    if not ok:
-        raise ValueError(f"must be {allowed}, got {value!r}")
-    return rows
+        checked = thermal_property(key, value, PROPERTY_UNITS[key])
+    except ThermalInputError as e:
+        raise ValueError(str(e)) from None
+    return list(checked) if isinstance(checked, tuple) else checked
 
 
 class ThermalConfig(_Section):

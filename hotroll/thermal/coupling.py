@@ -18,6 +18,9 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
+from ..discretisation.rolling_form import TOP
 from .field import SolveInfo, TemperatureField
 from .properties import ThermalBoundary, ThermalProperties
 
@@ -38,13 +41,9 @@ class ThermalCoupling:
         self._k = GridFunction(H1(mesh, order=1))       # k = sigma_ef/sqrt3 (reduced), P1
         self.form = None
         self.last = SolveInfo(0, 0.0)
-
-    @property
-    def m_varies(self) -> bool:
-        """Whether the law's rate exponent depends on the temperature (Hensel-Spittel m8)."""
-        if self.flow is None:
-            return False
-        return float(self.flow.rate_exponent(1000.0)) != float(self.flow.rate_exponent(1500.0))
+        # whether the law's rate exponent depends on the temperature (Hensel-Spittel m8)
+        self.m_varies = flow is not None and (float(flow.rate_exponent(1000.0))
+                                              != float(flow.rate_exponent(1500.0)))
 
     def consistency(self):
         """K(eps, T)/K_ref at the field's temperature (and the strain field), with the rate
@@ -100,8 +99,6 @@ class ThermalCoupling:
     def update_steady(self, tol: float = 1e-8) -> float:
         """The steady temperature of the current flow (and the lagged rate); returns the
         largest temperature change over the largest temperature."""
-        import numpy as np
-
         old = self.field.values.copy()
         self.last = self.field.solve_steady(*self.sources(), tol=tol)
         self._lag_rate()
@@ -128,7 +125,7 @@ class ThermalCoupling:
         sel = IfPos(x - x0, IfPos(x0 + band - x, 1.0, 0.0), 0.0)
         flux = float(Integrate(sel * u[0], self.mesh))
         mean = float(Integrate(sel * u[0] * T, self.mesh)) / flux if flux else math.nan
-        top = self.mesh.Boundaries("top|arc|exit")
+        top = self.mesh.Boundaries(TOP)
         length = float(Integrate(sel, self.mesh, BND, definedon=top))
         surface = (float(Integrate(sel * T, self.mesh, BND, definedon=top)) / length
                    if length else math.nan)
@@ -138,8 +135,6 @@ class ThermalCoupling:
         """The thermal figures of one state (K, W/m): exit mean (mixing cup) and surface
         temperatures over 2 h after the roll gap section ``x_exit``, the heat flows and the
         balance error, the extreme temperatures."""
-        import numpy as np
-
         mean, surface = self.section_means(x_exit, 2.0 * h)
         out = {"exit_temperature_mean": mean, "exit_temperature_surface": surface,
                "max_temperature": float(np.max(self.field.values)),

@@ -48,7 +48,7 @@ def _number(name: str, value, low: float, low_open: bool, high: float | None, un
     return v
 
 
-def _property(name: str, value, unit: str) -> float | Table:
+def check_property(name: str, value, unit: str) -> float | Table:
     """A positive finite constant, or a table of at least 2 (T, value) pairs with T > 0 strictly
     increasing and positive finite values; returned as a float or a tuple of float pairs."""
     rule = (f"must be a positive finite number ({unit}) or a table of at least 2 (T in K, "
@@ -113,7 +113,7 @@ class ThermalProperties:
     def __post_init__(self):
         for name, unit in (("density", "kg/m^3"), ("specific_heat", "J/(kg K)"),
                            ("conductivity", "W/(m K)")):
-            object.__setattr__(self, name, _property(name, getattr(self, name), unit))
+            object.__setattr__(self, name, check_property(name, getattr(self, name), unit))
 
     # --- values ------------------------------------------------------------------------------
     def rho_c(self, T):
