@@ -489,6 +489,20 @@ def test_mass_and_power_checks_fire_on_a_wrong_field():
     vel = run.form.problem.gf.components[0]
     old = GridFunction(vel.space)
     old.vec.data = vel.vec
+    # the symmetry line's reaction (the residual of (3.6) in its Dirichlet rows) depends only
+    # on the elements along y = 0: a vertical velocity added at the vertices above y0 (the
+    # highest vertex of an element touching the line) leaves it unchanged to round-off, while
+    # the perturbed free rows' residual is of the order of the force
+    sym = Q.force_balance(run.form, 1.0)["symmetry_force_y"]
+    mesh = run.form.mesh
+    py = np.array([mesh[v].point[1] for v in mesh.vertices])
+    tris = np.array([[v.nr for v in el.vertices] for el in mesh.Elements()])
+    y0 = float(py[tris[np.any(py[tris] < 1e-12, axis=1)]].max())
+    assert y0 < 0.9 * model.rp.half_exit
+    ns = vel.space.ndof // 2                    # the y block; vertex dofs lead each block
+    vel.vec.FV().NumPy()[ns + np.nonzero(py > y0)[0]] += 0.3 * model.rp.u_roll
+    assert Q.force_balance(run.form, 1.0)["symmetry_force_y"] == pytest.approx(sym, rel=1e-9)
+    vel.vec.data = old.vec
     vel.Set(CF((old[0] * (1 + 0.1 * x), old[1])))
     mass, power = errors()
     assert mass > 0.05 and power > 0.05
