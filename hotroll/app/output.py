@@ -61,8 +61,9 @@ def write_npz(path: Path, **arrays) -> None:
 
 
 def vertex_fields(run) -> dict:
-    """Deformed vertices, triangles and vertex values of v, p, edot, strain and sigma_ef (the
-    flow stress at that strain and rate; SI units)."""
+    """Deformed vertices, triangles and vertex values of v, p, edot, strain, temperature (the
+    coupled field, or the plate's uniform one) and sigma_ef (the flow stress at that strain,
+    rate and temperature); SI units."""
     import ngsolve
 
     from ..discretisation.forms import strain_rate
@@ -83,19 +84,22 @@ def vertex_fields(run) -> dict:
     model, field = run.model, getattr(run, "strain", None)
     strain = (field.values[:nv].copy() if field is not None
               else np.full(nv, model.entry_strain))
-    sigma = (model.flow_stress.sigma(strain, edot, model.temperature)
+    thermal = getattr(run, "thermal", None)
+    temperature = (thermal.vertex_temperature() if thermal is not None
+                   else np.full(nv, model.temperature))
+    sigma = (model.flow_stress.sigma(strain, edot, temperature)
              if model.flow_stress is not None else model.material.sigma_ef(edot))
     return {
         "points": pts, "triangles": tris, "v": vel, "pressure": pressure, "edot": edot,
-        "strain": strain, "sigma_ef": np.asarray(sigma),
+        "strain": strain, "sigma_ef": np.asarray(sigma), "temperature": temperature,
         "contact_edges": np.stack([run.top.ea[rows], run.top.eb[rows]], -1),
         "roll_centre": np.array(run.model.rp.centre), "roll_radius": run.model.rp.radius,
     }
 
 
 def write_vtk(run, path: Path) -> Path:
-    """ParaView file (.vtu) of velocity, pressure, strain rate, sigma_ef (and the strain) on the
-    deformed plate."""
+    """ParaView file (.vtu) of velocity, pressure, strain rate, sigma_ef (and the strain, the
+    temperature) on the deformed plate."""
     import ngsolve
 
     from ..discretisation.forms import strain_rate
@@ -110,6 +114,9 @@ def write_vtk(run, path: Path) -> Path:
     if getattr(run, "strain", None) is not None:
         coefs.append(run.strain.gf)
         names.append("strain")
+    if getattr(run, "thermal", None) is not None:
+        coefs.append(run.thermal.field.gf)
+        names.append("temperature")
     vtk = ngsolve.VTKOutput(run.mesh, coefs=coefs, names=names,
                             filename=str(Path(path).with_suffix("")), subdivision=1)
     vtk.Do()

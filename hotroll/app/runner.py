@@ -198,14 +198,17 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
     from ..post import quantities as Q
 
     K, hist = run.model.material.K, run.state.history
-    prof = Q.contact_profile(run.form, run.top, run.d, K)
+    thermal = getattr(run, "thermal", None)
+    columns = thermal.contact_columns() if thermal is not None else None
+    prof = Q.contact_profile(run.form, run.top, run.d, K, columns)
     prof["normal_stress_corrected"] = (Q.exit_corrected(prof, run.model.h)
                                       if case.solver.exit_pressure_correction
                                       else prof["normal_stress"])
     prof["normal_stress_smooth"] = Q.smoothed(prof, prof["normal_stress"])
     prof["shear_stress_smooth"] = Q.smoothed(prof, prof["shear_stress"])
     write_csv(out / "contact.csv", prof)
-    write_csv(out / "top.csv", Q.top_profile(run.form, run.top, run.d))
+    top_columns = {"temperature": columns["temperature"]} if columns else None
+    write_csv(out / "top.csv", Q.top_profile(run.form, run.top, run.d, top_columns))
     write_csv(out / "history.csv", hist)
     write_npz(out / "fields.npz", **vertex_fields(run))
     if case.output.vtk:

@@ -12,7 +12,8 @@ is ``(xc - R sin(phi), yc - R cos(phi))``.
 
 Public functions
 ----------------
-plot_all(out_dir)                        -> list[Path]   (fig_*.png in out_dir)
+plot_all(out_dir)                        -> list[Path]   (fig_*.png in out_dir; the
+                                                          temperature's in plots_thermal.py)
 plot_compare(runs, out_png, title="")    -> Path         (overlay of several runs)
 plot_series(table, x_key, y_keys, out_png, ...) -> Path  (parameter studies)
 """
@@ -622,10 +623,12 @@ def plot_all(out_dir) -> list[Path]:
     A figure that fails is reported with a warning and skipped so that one
     bad file does not cost the others.
     """
+    from .plots_thermal import FIGURES as THERMAL_FIGURES
+
     out_dir = Path(out_dir)
     run = _Run(out_dir)
     written: list[Path] = []
-    for name, func in _FIGURES:
+    for name, func in _FIGURES + THERMAL_FIGURES:
         try:
             p = func(run, out_dir / name)
         except Exception as exc:  # noqa: BLE001 - post-processing must not abort a run

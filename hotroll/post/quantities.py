@@ -24,13 +24,17 @@ def top_nodes(form: RollingForm, top: TopBoundary, disp: np.ndarray, contact_onl
     return xy, np.vstack([top.vertex_values(vel, verts), top.midpoint_values(vel, rows)])
 
 
-def contact_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: float) -> dict:
-    """Slip, normal and shear stress at the contact nodes, sorted from entry to exit."""
+def contact_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: float,
+                    vertex_values: dict[str, np.ndarray] | None = None) -> dict:
+    """Slip, normal and shear stress at the contact nodes, sorted from entry to exit;
+    ``vertex_values``: more columns from fields given at the mesh vertices (e.g. the
+    temperature), read as ``at_top_nodes`` reads them."""
     rp, pen = form.rp, form.penalties
+    extra = vertex_values or {}
     xy, vel = top_nodes(form, top, disp, contact_only=True)
     if len(xy) == 0:
         return {k: np.zeros(0) for k in ("x", "y", "angle", "v_slip", "normal_stress",
-                                          "shear_stress", "vertex")}
+                                          "shear_stress", "vertex", *extra)}
     vertex = np.arange(len(xy)) < int(top.vertex_contact.sum())   # vertices come first
     ang = rp.angle(xy)
     order = np.argsort(-ang)
@@ -48,7 +52,18 @@ def contact_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: fl
            "normal_stress": -K * pressure, "shear_stress": shear, "vertex": vertex.astype(int)}
     if k is not None:
         out["shear_flow_stress"] = K * k
+    for name, values in extra.items():
+        out[name] = at_top_nodes(values, top, contact_only=True)[order]
     return out
+
+
+def at_top_nodes(values: np.ndarray, top: TopBoundary, contact_only: bool) -> np.ndarray:
+    """A field given at the mesh vertices, at the top nodes as ``top_nodes`` orders them: the
+    vertices' values, then each edge midpoint's as the mean of its two vertices (exact for a P1
+    field)."""
+    verts = top.verts[top.vertex_contact] if contact_only else top.verts
+    rows = np.nonzero(top.edge_contact)[0] if contact_only else np.arange(len(top.edge))
+    return np.concatenate([values[verts], 0.5 * (values[top.ea[rows]] + values[top.eb[rows]])])
 
 
 def _nodal_k(form: RollingForm, top: TopBoundary, contact_only: bool):
@@ -61,16 +76,19 @@ def _nodal_k(form: RollingForm, top: TopBoundary, contact_only: bool):
 
     k = GridFunction(H1(form.mesh, order=1))
     k.Set(form.shear_flow_stress(form.problem.velocity))
-    kv = k.vec.FV().NumPy()
-    verts = top.verts[top.vertex_contact] if contact_only else top.verts
-    rows = np.nonzero(top.edge_contact)[0] if contact_only else np.arange(len(top.edge))
-    return np.concatenate([kv[verts], 0.5 * (kv[top.ea[rows]] + kv[top.eb[rows]])])
+    return at_top_nodes(k.vec.FV().NumPy(), top, contact_only)
 
 
-def top_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray) -> dict:
+def top_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray,
+                vertex_values: dict[str, np.ndarray] | None = None) -> dict:
+    """Position and velocity of every top node, sorted by x (and the ``vertex_values``
+    fields there, as in ``contact_profile``)."""
     xy, vel = top_nodes(form, top, disp, contact_only=False)
     o = np.argsort(xy[:, 0])
-    return {"x": xy[o, 0], "y": xy[o, 1], "v1": vel[o, 0], "v2": vel[o, 1]}
+    out = {"x": xy[o, 0], "y": xy[o, 1], "v1": vel[o, 0], "v2": vel[o, 1]}
+    for name, values in (vertex_values or {}).items():
+        out[name] = at_top_nodes(values, top, contact_only=False)[o]
+    return out
 
 
 def neutral_index(v_slip: np.ndarray, weights: np.ndarray | None = None) -> int:

@@ -111,6 +111,16 @@ class ThermalCoupling:
         return self.last
 
     # --- figures ---------------------------------------------------------------------------
+    def vertex_temperature(self) -> np.ndarray:
+        """The temperature at the mesh vertices (K), a copy."""
+        return self.field.values[:self.mesh.nv].copy()
+
+    def contact_columns(self) -> dict[str, np.ndarray]:
+        """Vertex fields for the contact and top profiles: the temperature (K) and, on the
+        contact, the heat flux to the roll htc_contact (T - T_roll) (W/m^2)."""
+        T, bc = self.vertex_temperature(), self.field.bc
+        return {"temperature": T, "heat_flux_to_roll": bc.htc_contact * (T - bc.roll_temperature)}
+
     def balance(self) -> dict:
         """Heat flows (W/m) and the balance error of ``TemperatureField.balance``."""
         return self.field.balance(*self.sources())
