@@ -147,12 +147,12 @@ class SteadyRun:
         self.form = RollingForm(self.mesh, rp, reduced, model.friction, PenaltyTable(model.h),
                                 free_surface=settings.free_surface,
                                 tensions=model.reduced_tensions, consistency=consistency)
-        if self.thermal is not None:
-            self.thermal.attach(self.form)
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.d = self.disp.vec.FV().NumPy()
         self.top = TopBoundary(self.mesh, V.ndof // 2)
+        if self.thermal is not None:     # the temperature's own strip mesh (thermal/coupling.py)
+            self.thermal.attach(self.form, self.disp, self.top)
         # reference shape: the arc's P2 midpoints on the roll (nothing else moves: the flat
         # tops stay flat even where they pass within the contact tolerance of the roll)
         self.arc = self.top.region == "arc"
@@ -289,7 +289,7 @@ class SteadyRun:
         self._update_strain()
         self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else self._estimate_a_f())
         if self.thermal is not None:     # the temperature of the guessed flow, from the entry's
-            self.thermal.field.gf.Set(self.model.temperature)
+            self.thermal.reset(self.model.temperature)
             self.form.m.Set(self.model.material.m)
             self._update_thermal()
 
@@ -329,7 +329,7 @@ class SteadyRun:
         in units of its tolerance."""
         s, f = self.s, self.form
         change = self._update_strain() / s.strain_rtol
-        change = max(change, self._update_thermal() / s.thermal_rtol)
+        change = max(change, self._update_thermal(newton_steps=1) / s.thermal_rtol)
         if s.a_f is None:
             a_old, a_new = f.a_f.Get(), self._estimate_a_f()
             res.a_f_history.append(a_new)
@@ -348,12 +348,13 @@ class SteadyRun:
             return 0.0
         return self.strain.transport(self.form.problem.velocity)
 
-    def _update_thermal(self) -> float:
-        """The steady temperature of the current flow (``thermal/coupling.py``); its largest
-        change over the largest temperature (0 for an isothermal run)."""
+    def _update_thermal(self, newton_steps: int = 30) -> float:
+        """The steady temperature of the current flow (``thermal/coupling.py``; in the fixed
+        point one Newton step per update); its largest change over the largest temperature
+        (0 for an isothermal run)."""
         if self.thermal is None:
             return 0.0
-        return self.thermal.update_steady()
+        return self.thermal.update_steady(max_iter=newton_steps)
 
     def _top_parts(self) -> np.ndarray:
         """Part of every top P2 node (vertices, then edge midpoints, as ``Q.top_nodes``):

@@ -73,7 +73,7 @@ class RollingModel:
     temperature: float = 1373.15  # K: uniform, or the entry temperature with ``thermal``
     entry_strain: float = 0.0
     carries_strain: bool = True   # the law depends on the strain: a strain field is carried
-    thermal: tuple | None = None  # (ThermalProperties, ThermalBoundary): the coupled problem
+    thermal: tuple | None = None  # (ThermalProperties, ThermalBoundary, strip mesh refinement)
 
     @property
     def v_reg(self) -> float:
@@ -91,7 +91,8 @@ class RollingModel:
         if self.thermal is not None:
             from ..thermal.coupling import ThermalCoupling
 
-            coupling = ThermalCoupling(mesh, *self.thermal, K_ref=self.material.K,
+            props, bc, refine = self.thermal
+            coupling = ThermalCoupling(mesh, props, bc, refine=refine, K_ref=self.material.K,
                                        m_ref=self.material.m, eps0=self.material.eps0,
                                        flow=self.flow_stress, strain=strain,
                                        entry_strain=self.entry_strain)
@@ -142,8 +143,9 @@ class TransientRun:
         self.form = RollingForm(self.mesh, rp, reduced, model.friction, PenaltyTable(model.h),
                                 free_surface=settings.free_surface,
                                 tensions=model.reduced_tensions, consistency=consistency)
-        if self.thermal is not None:
-            self.thermal.attach(self.form)
+        if self.thermal is not None:     # refused by the case validation (app/config.py)
+            raise ValueError("the transient scheme has no thermal coupling: use the steady "
+                             "solver (solver.method = 'steady') with [thermal]")
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.top = TopBoundary(self.mesh, V.ndof // 2)

@@ -52,6 +52,9 @@ class ThermalConfig(_Section):
                                "in [0, 1]", ge=0, le=1)
     ambient_temperature: float = _field(293.15, "ambient temperature (air and radiation)", "K",
                                         "> 0", gt=0)
+    mesh_refinement: float = _field(
+        1.0, "the temperature's strip mesh finer by this factor (rows and columns; for "
+        "convergence studies)", "", "in [0.25, 16]", ge=0.25, le=16)
 
     def boundary(self, entry_temperature: float):
         """The solver's boundary data (``hotroll.thermal.properties.ThermalBoundary``)."""

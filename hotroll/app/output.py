@@ -62,8 +62,9 @@ def write_npz(path: Path, **arrays) -> None:
 
 def vertex_fields(run) -> dict:
     """Deformed vertices, triangles and vertex values of v, p, edot, strain, temperature (the
-    coupled field, or the plate's uniform one) and sigma_ef (the flow stress at that strain,
-    rate and temperature); SI units."""
+    coupled field at the vertex, or the plate's uniform one), flow_temperature (the one the
+    flow stress takes: the mechanics elements' means, thermal/coupling.py) and sigma_ef (the
+    flow stress at that strain, rate and flow temperature); SI units."""
     import ngsolve
 
     from ..discretisation.forms import strain_rate
@@ -85,13 +86,14 @@ def vertex_fields(run) -> dict:
     strain = (field.values[:nv].copy() if field is not None
               else np.full(nv, model.entry_strain))
     thermal = getattr(run, "thermal", None)
-    temperature = (thermal.vertex_temperature() if thermal is not None
-                   else np.full(nv, model.temperature))
-    sigma = (model.flow_stress.sigma(strain, edot, temperature)
+    temperature, flow_T = ((thermal.vertex_temperature(), thermal.flow_temperature())
+                           if thermal is not None else (np.full(nv, model.temperature),) * 2)
+    sigma = (model.flow_stress.sigma(strain, edot, flow_T)
              if model.flow_stress is not None else model.material.sigma_ef(edot))
     return {
         "points": pts, "triangles": tris, "v": vel, "pressure": pressure, "edot": edot,
         "strain": strain, "sigma_ef": np.asarray(sigma), "temperature": temperature,
+        "flow_temperature": flow_T,
         "contact_edges": np.stack([run.top.ea[rows], run.top.eb[rows]], -1),
         "roll_centre": np.array(run.model.rp.centre), "roll_radius": run.model.rp.radius,
     }
@@ -99,7 +101,8 @@ def vertex_fields(run) -> dict:
 
 def write_vtk(run, path: Path) -> Path:
     """ParaView file (.vtu) of velocity, pressure, strain rate, sigma_ef (and the strain, the
-    temperature) on the deformed plate."""
+    temperature) on the deformed plate; with a temperature, also thermal.vtu, the field on its
+    own strip mesh."""
     import ngsolve
 
     from ..discretisation.forms import strain_rate
@@ -114,10 +117,14 @@ def write_vtk(run, path: Path) -> Path:
     if getattr(run, "strain", None) is not None:
         coefs.append(run.strain.gf)
         names.append("strain")
-    if getattr(run, "thermal", None) is not None:
-        coefs.append(run.thermal.field.gf)
+    thermal = getattr(run, "thermal", None)
+    if thermal is not None:
+        coefs.append(thermal.T)
         names.append("temperature")
     vtk = ngsolve.VTKOutput(run.mesh, coefs=coefs, names=names,
                             filename=str(Path(path).with_suffix("")), subdivision=1)
     vtk.Do()
+    if thermal is not None:                   # the temperature on its own strip mesh
+        ngsolve.VTKOutput(thermal.strip.mesh, coefs=[thermal.field.gf], names=["temperature"],
+                          filename=str(Path(path).with_name("thermal")), subdivision=0).Do()
     return Path(path).with_suffix(".vtu")

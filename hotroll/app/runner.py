@@ -96,7 +96,8 @@ def build_model(case: Case):
                          entry_strain=case.plate.entry_strain,
                          carries_strain=strain_dependent(flow),
                          thermal=(case.material.thermal_properties(),
-                                  case.thermal.boundary(case.plate.temperature))
+                                  case.thermal.boundary(case.plate.temperature),
+                                  case.thermal.mesh_refinement)
                          if case.thermal else None)
     settings = TransientSettings(
         dt=case.dt, end_time=end_time, nonlinear=sv.nonlinear, tol=sv.tolerance,
@@ -211,6 +212,8 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
     write_csv(out / "top.csv", Q.top_profile(run.form, run.top, run.d, top_columns))
     write_csv(out / "history.csv", hist)
     write_npz(out / "fields.npz", **vertex_fields(run))
+    if thermal is not None:                   # the temperature's own (finer) strip mesh
+        write_npz(out / "thermal.npz", **thermal.strip_fields())
     if case.output.vtk:
         write_vtk(run, out / "fields.vtu")
     summary = summarise(case, run, prof, wall) | (extra or {})
@@ -306,4 +309,6 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "thermal": case.thermal is not None,
         **{k: float(np.nanmean([r[k] for r in solved])) for k in THERMAL_AVERAGED
            if case.thermal is not None},
+        **({"thermal_dofs": last["thermal_dofs"], "thermal_layer": last["thermal_layer"]}
+           if case.thermal is not None else {}),
     }

@@ -1,7 +1,8 @@
 """The temperature figure of a coupled run (issue 16), from its output files only.
 
 ``fig_temperature.png``: the temperature field over the strip and zoomed on the roll bite
-(fields.npz), and the surface temperature along the top with the heat flux to the roll along
+(thermal.npz: the field on its own strip mesh, graded to the roll-chill layer; fields.npz's
+vertex values if it is missing), and the surface temperature along the top with the heat flux to the roll along
 the contact (top.csv, contact.csv), the exit mean and surface temperatures of summary.json
 marked. Written by ``plots.plot_all`` when the run has a ``[thermal]`` section.
 """
@@ -11,6 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
+from matplotlib.tri import Triangulation
+
 from .plots import (_Run, _col, _draw_contact_edges, _draw_outline, _draw_roll, _full_extent,
                     _na, _save, _set_window, _title, _vline, _window_range, plt)
 
@@ -18,10 +21,9 @@ from .plots import (_Run, _col, _draw_contact_edges, _draw_outline, _draw_roll, 
 def _fig_temperature(run: _Run, path: Path) -> Path | None:
     if not run.summary.get("thermal"):
         return None
-    tri = run.triangulation()
-    if tri is None or "temperature" not in run.fields:
+    tri, T = _temperature_field(run)
+    if tri is None:
         return None
-    T = np.asarray(run.fields["temperature"], dtype=float)
     full, window = _full_extent(tri), run.bite_window()
     fig, axes = plt.subplots(3, 1, figsize=(10, 11), layout="constrained")
     for ax, win in ((axes[0], None), (axes[1], window)):
@@ -36,6 +38,19 @@ def _fig_temperature(run: _Run, path: Path) -> Path | None:
     axes[1].set_title("zoom on the roll bite, temperature [K]")
     _surface_panel(axes[2], run)
     return _save(fig, path)
+
+
+def _temperature_field(run: _Run):
+    """(Triangulation, vertex temperatures) of thermal.npz, else of fields.npz, else None."""
+    path = run.dir / "thermal.npz"
+    if path.is_file():
+        with np.load(path) as f:
+            p, t, T = (np.asarray(f[k]) for k in ("points", "triangles", "temperature"))
+        return Triangulation(p[:, 0], p[:, 1], t), T.astype(float)
+    tri = run.triangulation()
+    if tri is None or "temperature" not in run.fields:
+        return None, None
+    return tri, np.asarray(run.fields["temperature"], dtype=float)
 
 
 def _surface_panel(ax, run: _Run) -> None:
