@@ -1,0 +1,143 @@
+"""The temperature's strip mesh (hotroll/thermal/strip_mesh.py, issue 16) against known answers:
+the Graetz series on the strip mesh itself with its convergence rate under refinement, the
+stream-function velocity's flux and tangency, and the grading rules by hand. Steel-like data
+as in test_thermal.py."""
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from hotroll.thermal import TemperatureField, ThermalBoundary, ThermalProperties
+from hotroll.thermal.strip_mesh import (FIRST_CELL, ThermalStrip, graded_axis, layer_thickness,
+                                        top_rows)
+
+from test_thermal import ALPHA, K, graetz_theta
+
+ngsolve = pytest.importorskip("ngsolve")
+pytestmark = pytest.mark.mutation
+
+STEEL = ThermalProperties(7800.0, 650.0, K)
+
+
+def flat_pass(H: float, L: float, U: float, lc: float):
+    """The geometry a ThermalStrip reads from a pass, for a flat channel of half-height H from
+    x = 0 to L: the 'contact' from 0.2 L over lc, the 'gap' at 0.2 L + lc."""
+    return SimpleNamespace(contact_length=lc, half_exit=H, half_entry=H, x_touch=0.2 * L,
+                           axis_x=0.2 * L + lc, u_roll=U)
+
+
+def plug_strip(H, L, U, lc, refine, h=None):
+    rp = flat_pass(H, L, U, lc)
+    top = np.array([[0.0, H], [L, H]])
+    strip = ThermalStrip(rp, top, h or H / 3.0, layer_thickness(rp, ALPHA), refine)
+    strip.place(strip.reference)
+    y = strip.reference[:, 1]
+    strip.set_stream_function((U * y).reshape(strip.shape), total=U * H)
+    return strip
+
+
+def test_graetz_series_on_the_strip_mesh():
+    """Plug flow U through the strip mesh of a flat channel (rows graded to the top from
+    delta / 8, delta = sqrt(alpha l_c / U); columns l_c / 40 in the fine zone, growing
+    outside), velocity curl psi of psi = U y, cooled through h = Bi k / H from where the roll
+    would touch: the Graetz series with axial conduction (test_thermal.graetz_theta) from
+    there. Rolling-like, U H / alpha = 2000, Bi = 5. Measured max |theta error| 1.15e-3,
+    7.4e-4, 2.9e-4 (1.3e-4 at 8) at refinements 1, 2, 4: first order overall, rate 0.99 (SUPG's
+    O(h) streamline diffusion; test_thermal.py's graded rectangle measures 1.8 with finer
+    columns)."""
+    from ngsolve import IfPos, x
+
+    H, T0, Tr, bi = 0.01, 1300.0, 300.0, 5.0
+    U, L = 2000.0 * ALPHA / H, 12.0 * H
+    bc = ThermalBoundary(T0, Tr, 300.0, bi * K / H, 0.0, 0.0)
+    x0 = flat_pass(H, L, U, 4.0 * H).x_touch           # the cooling starts where a roll would
+    cooled = IfPos(x - x0, 1.0, 0.0)
+    xs, ys = np.meshgrid(np.linspace(x0 + 0.05 * L, 0.8 * L, 15), np.linspace(0.0, H, 9))
+    # (upstream the top is insulated: T0 there up to the axial conduction's alpha / U = H/2000)
+    exact = graetz_theta(xs.ravel() - x0, ys.ravel(), H, U, bi)
+    assert exact.min() < 0.75
+    errors = []
+    for refine in (1.0, 2.0, 4.0):
+        strip = plug_strip(H, L, U, 4.0 * H, refine)
+        field = TemperatureField(strip.mesh, STEEL, bc, inlet="left", top="top",
+                                 outlet="right")
+        info = field.solve_steady(strip.velocity(), 0.0, 0.0, cooled)
+        assert info.change < 1e-10
+        pts = strip.mesh(xs.ravel(), ys.ravel() / H)       # logical (x, eta = y / H)
+        theta = (np.asarray(field.gf(pts)).ravel() - Tr) / (T0 - Tr)
+        errors.append(float(np.max(np.abs(theta - exact))))
+    rate = math.log2(errors[0] / errors[2]) / 2.0
+    assert errors[0] < 2.5e-3 and errors[2] < 6e-4
+    assert errors[1] < errors[0] and errors[2] < errors[1]
+    assert rate > 0.8, errors
+
+
+def test_stream_function_velocity_carries_the_flux_and_follows_the_top():
+    """A strip placed on a curved, stretched shape (top y = H (1 - 0.3 sin(pi x / L)^2)) with
+    an arbitrary flux profile below each vertex: curl psi carries exactly `total` through the
+    inlet and the outlet, nothing through the top and the symmetry line, and its divergence
+    is zero (P1 psi: the velocity is constant per triangle)."""
+    from ngsolve import BND, Integrate, specialcf
+
+    H, L, U = 0.02, 0.2, 1.0
+    strip = plug_strip(H, L, U, 0.05, 1.0)
+    X, Y = strip.reference[:, 0], strip.reference[:, 1]
+    shape = H * (1.0 - 0.3 * np.sin(np.pi * X / L) ** 2) / H
+    strip.place(np.stack([X + 0.01 * np.sin(np.pi * X / L) * Y / H, Y * shape], -1))
+    eta = strip.logical_points[:, 1]
+    flux = (eta + 0.4 * eta**2 * (1.0 - eta) * np.cos(3 * X / L)).reshape(strip.shape)
+    total = 0.0123
+    strip.set_stream_function(flux, total)
+    v, n, mesh = strip.velocity(), specialcf.normal(2), strip.mesh
+    def through(region):
+        return Integrate(v * n, mesh, BND, definedon=mesh.Boundaries(region))
+    assert -through("left") == pytest.approx(total, rel=1e-12)
+    assert through("right") == pytest.approx(total, rel=1e-12)
+    for region in ("top", "bottom"):
+        assert abs(through(region)) < 1e-14
+        assert Integrate((v * n) ** 2, mesh, BND, definedon=mesh.Boundaries(region)) < 1e-24
+    from ngsolve import grad
+    g = grad(strip.psi)
+    assert Integrate(g * g, mesh) > 0.0          # a real flow
+
+
+def test_grading_rules_by_hand():
+    """graded_axis: every break is a node, spacing <= fine between the breaks, growing by at
+    most 1.3 outside up to coarse; top_rows: the top row `first` thick, each next at most 1.2
+    times the last, none above `largest`, from 0 to 1."""
+    breaks = [0.3, 0.35, 0.5, 0.6]
+    X = graded_axis(0.0, 1.0, breaks, fine=0.01, coarse=0.1)
+    assert X[0] == 0.0 and X[-1] == 1.0 and np.all(np.diff(X) > 0)
+    for b in breaks:
+        assert np.min(np.abs(X - b)) < 1e-12
+    inside = (X[:-1] >= 0.3 - 1e-12) & (X[1:] <= 0.6 + 1e-12)
+    assert np.max(np.diff(X)[inside]) <= 0.01 + 1e-12
+    d = np.diff(X)
+    assert np.max(d) <= 0.1 * 1.5 + 1e-12       # (the last step to an end: up to 1.5 coarse)
+    assert np.all(d[1:-1] / d[:-2] < 1.3 + 1e-9) and np.all(d[:-2] / d[1:-1] < 1.3 + 1e-9)
+    eta = top_rows(0.001, 0.05)
+    assert eta[0] == 0.0 and eta[-1] == 1.0
+    rows = np.diff(eta)[::-1]                           # from the top
+    assert rows[0] == pytest.approx(0.001, rel=1e-12)
+    assert np.all(rows[1:-1] / rows[:-2] <= 1.2 + 1e-12)
+    assert np.max(rows[:-1]) <= 0.05 + 1e-12
+    with pytest.raises(ValueError, match="first"):
+        top_rows(0.1, 0.05)
+
+
+def test_layer_thickness_and_first_row_by_hand():
+    """delta = sqrt(alpha l_c / U); the strip's top row is delta / 8 thick (in units of the
+    exit half-thickness, for a flat strip exactly)."""
+    rp = flat_pass(0.02, 0.3, 2.0, 0.05)
+    delta = layer_thickness(rp, ALPHA)
+    assert delta == pytest.approx(math.sqrt(ALPHA * 0.05 / 2.0), rel=1e-12)
+    strip = ThermalStrip(rp, np.array([[0.0, 0.02], [0.3, 0.02]]), 0.004, delta)
+    assert (1.0 - strip.eta[-2]) * 0.02 == pytest.approx(FIRST_CELL * delta, rel=1e-9)
+    # the roll gap is a column, and logical() inverts the reference map
+    assert np.min(np.abs(strip.X - rp.axis_x)) < 1e-12
+    X, eta = strip.logical(strip.reference)
+    assert X == pytest.approx(strip.logical_points[:, 0], abs=1e-12)
+    assert eta == pytest.approx(strip.logical_points[:, 1], abs=1e-12)
