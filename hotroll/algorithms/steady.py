@@ -194,8 +194,9 @@ class SteadyRun:
         row = {"step": index, "time": math.nan, "m": self.form.m.Get()}
         row.update(Q.measure(self.form, self.top, self.d, self.model.material.K, self.model.h,
                              self.head_x()))
-        if self.thermal is not None:
-            row.update(self.thermal.measure(self.model.rp.axis_x, self.model.h))
+        if self.thermal is not None:     # the heat flows after the solves, not every update
+            row.update(self.thermal.measure(self.model.rp.axis_x, self.model.h,
+                                            heat_flows=stats.iterations > 0))
         row.update({"iterations": stats.iterations, "residual": stats.residual,
                     "solver_converged": stats.converged})
         return row

@@ -34,8 +34,9 @@ def _fig_temperature(run: _Run, path: Path) -> Path | None:
         _draw_roll(ax, run, (full[0], full[1]))
         _draw_contact_edges(ax, run, lw=1.0)
         _set_window(ax, win, full=full)
+    axes[1].set_aspect("auto")      # y stretched: the chilled layer is thin against the bite
     axes[0].set_title(_title(run, "temperature [K]"))
-    axes[1].set_title("zoom on the roll bite, temperature [K]")
+    axes[1].set_title("zoom on the roll bite (y stretched), temperature [K]")
     _surface_panel(axes[2], run)
     return _save(fig, path)
 

@@ -225,8 +225,12 @@ class ThermalCoupling:
 
     # --- updates ---------------------------------------------------------------------------
     def _lag_rate(self) -> None:
+        """e*^2 = eps0^2 + edot^2 of the current flow, P1; floored at eps0^2 (the projection
+        of a steep rate field overshoots below zero, and its log would be NaN)."""
         if self.m_varies:
             self._rate2.Set(self._e2(self.form.problem.velocity) + self.eps0**2)
+            vals = self._rate2.vec.FV().NumPy()
+            vals[:] = np.maximum(vals, self.eps0**2)
 
     def update_steady(self, tol: float = 1e-8, max_iter: int = 30) -> float:
         """The steady temperature of the current flow on the strip mesh, sampled back at the
@@ -332,19 +336,25 @@ class ThermalCoupling:
         surface = float(self.field.values[(ny - 1) * nx1 + self.strip.i_exit])
         return mean, surface
 
-    def measure(self, x_exit: float, h: float) -> dict:
+    def measure(self, x_exit: float, h: float, heat_flows: bool = True) -> dict:
         """The thermal figures of one state (K, W/m): exit mean (mixing cup over 2 h after the
         roll gap section ``x_exit``) and the surface temperature at the gap, the heat flows
-        and the balance error, the extreme temperatures, the strip mesh's size."""
+        and the balance error (NaN without ``heat_flows``: the fixed point's intermediate
+        rows), the extreme temperatures, the strip mesh's size."""
         mean, surface = self.section_means(x_exit, 2.0 * h)
         vals = self.field.values
         out = {"exit_temperature_mean": mean, "exit_temperature_surface": surface,
                "max_temperature": float(np.max(vals)), "min_temperature": float(np.min(vals)),
                "thermal_iterations": self.last.iterations, "thermal_dofs": int(len(vals)),
                "thermal_layer": self.delta}
-        out.update(self.balance())
+        flows = self.balance() if heat_flows else dict.fromkeys(HEAT_FLOWS, math.nan)
+        out.update(flows)
         return out
 
+
+#: The heat flows and the balance error of ``TemperatureField.balance`` (W/m, -).
+HEAT_FLOWS = ("plastic_heat", "friction_heat_to_strip", "heat_to_roll", "heat_to_air",
+              "advected_in", "advected_out", "conducted_in", "heat_balance_error")
 
 #: Units of the thermal figures in summary.json and history.csv.
 THERMAL_UNITS = {

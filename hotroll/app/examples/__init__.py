@@ -15,6 +15,7 @@ EXAMPLES: dict[str, list[str]] = {
     "roughing_slab": ["roughing_slab"],
     "hot_aluminium": ["hot_aluminium"],
     "tension_pass": ["tension_pass"],
+    "hot_strip_finishing_thermal": ["hot_strip_finishing_thermal"],
 }
 
 
