@@ -23,6 +23,9 @@ SUMMARY_KEYS = ["status", "free_surface", "h_contact", "neutral_point", "neutral
                 "mean_flow_stress", "mean_strain_rate", "exit_strain", "roll_force_total",
                 "roll_torque_total", "mill_power", "a_f", "balance_error",
                 "converged", "steps", "nonlinear_iterations", "wall_time_s"]
+#: With [thermal]: shown after the mechanics' figures (units from summary.json's ``units``).
+THERMAL_KEYS = ["exit_temperature_mean", "exit_temperature_surface", "plastic_heat",
+                "friction_heat_to_strip", "heat_to_roll", "heat_to_air", "heat_balance_error"]
 #: Units of what the command line prints (per unit width of the upper roll).
 UNITS = {"h_contact": "m", "neutral_point": "m", "neutral_angle": "rad", "roll_force": "N/m",
          "roll_torque": "N m/m", "roll_power": "W/m", "forward_slip": "-", "a_f": "m^-m",
@@ -111,9 +114,11 @@ def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
     table.add_column("unit")
     from hotroll.post.engineering import display
 
-    for key in SUMMARY_KEYS:
+    thermal = THERMAL_KEYS if summary.get("thermal") else []
+    keys = SUMMARY_KEYS[:-4] + thermal + SUMMARY_KEYS[-4:]      # before the run's own figures
+    for key in keys:
         if summary.get(key) is not None:
-            text, unit = display(key, summary[key])
+            text, unit = display(key, summary[key], summary.get("units", {}).get(key))
             table.add_row(key, escape(text if text is not None else _fmt(summary[key])),
                           escape(unit or UNITS.get(key, "")))
     console.print(table)

@@ -58,10 +58,11 @@ def width_totals(summary: dict, width: float | None) -> dict:
             "mill_power": 2.0 * summary["roll_power"] * width}
 
 
-def display(key: str, value):
+def display(key: str, value, unit: str | None = None):
     """(text, unit) for a person: forces in MN/m (MN), torques in kN m/m (kN m), powers in
-    kW/m (kW), stresses in MPa, where the magnitude calls for it; SI otherwise."""
-    unit = UNITS.get(key, "")
+    kW/m (kW), stresses in MPa, where the magnitude calls for it; SI otherwise. ``unit``: the
+    SI unit when ``UNITS`` does not know the key (e.g. summary.json's ``units``)."""
+    unit = UNITS.get(key, unit or "")
     if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
         return None, unit
     scale = {"N/m": (1e6, "MN/m"), "N": (1e6, "MN"), "N m/m": (1e3, "kN m/m"),
