@@ -97,8 +97,11 @@ class ThermalCoupling:
         self.delta = layer_thickness(form.rp, alpha)
         self.strip = ThermalStrip(form.rp, top.X0[top.verts], form.penalties.h, self.delta,
                                   self.refine)
+        # P1 temperature, P1 sources and a velocity constant per triangle: with constant
+        # properties every volume term is a polynomial of degree <= 2 (no bonus order needed)
         self.field = TemperatureField(self.strip.mesh, self.props, self.bc,
-                                      inlet="left", top="top", outlet="right")
+                                      inlet="left", top="top", outlet="right",
+                                      volume_bonus=0 if self.props.is_constant() else 2)
         self._qs = GridFunction(H1(self.strip.mesh, order=1))
         self._qfs = GridFunction(H1(self.strip.mesh, order=1))
         self._lo, self._hi = Parameter(0.0), Parameter(0.0)    # the contact's x-range

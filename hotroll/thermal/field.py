@@ -58,7 +58,7 @@ class TemperatureField:
 
     def __init__(self, mesh, props: ThermalProperties, bc: ThermalBoundary, order: int = 1,
                  inlet: str = "in", top: str = "top|arc|exit", outlet: str = "out",
-                 supg: float = 1.0, lumped_mass: bool = False):
+                 supg: float = 1.0, lumped_mass: bool = False, volume_bonus: int = 2):
         from ngsolve import H1, L2, BitArray, GridFunction
 
         self.mesh, self.props, self.bc, self.order = mesh, props, bc, int(order)
@@ -77,8 +77,10 @@ class TemperatureField:
         self._tau_gf = GridFunction(L2(mesh, order=0))   # SUPG tau, one value per element
         self._tau_cf = None
         self._steady = None          # (inputs, forms, tau) of the last steady solve: reused
-        # quadrature: T^4 w on the top and the piecewise (IfPos) properties in the volume
-        self._bonus_dx, self._bonus_ds = 2, 3
+        # quadrature: T^4 w on the top and the piecewise (IfPos) properties in the volume;
+        # ``volume_bonus = 0`` where the volume terms are polynomials the default rule
+        # integrates exactly (P1, constant properties, P1 sources: the strip mesh; 1.8x faster)
+        self._bonus_dx, self._bonus_ds = int(volume_bonus), 3
 
     @property
     def values(self) -> np.ndarray:
