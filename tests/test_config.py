@@ -277,11 +277,11 @@ def test_thermal_case_round_trips_with_tables(base):
     assert case_from_toml(case.to_toml()) == case
 
 
-def test_thermal_transient_is_refused_until_coupled(base):
+def test_thermal_is_accepted_by_both_methods(base):
     data = {**base, "thermal": THERMAL,
             "material": {**base["material"], "density": 7600.0, "specific_heat": 650.0,
                          "conductivity": 30.0},
             "solver": {**base.get("solver", {}), "method": "transient"}}
-    assert 'solver.method: "transient" with a [thermal] section is not available' in problems(data)
+    assert case_from_dict(data).thermal is not None
     data["solver"]["method"] = "steady"
     assert case_from_dict(data).thermal is not None

@@ -79,7 +79,7 @@ class RollingModel:
     def v_reg(self) -> float:
         return self.friction.v_reg
 
-    def field_setup(self, mesh):
+    def field_setup(self, mesh, lagrangian: bool = False):
         """(StrainField or None, ThermalCoupling or None, the form's consistency K(eps, T)/K_ref
         as a CF, or 1.0): the fields a strain- or temperature-dependent flow stress needs
         (``discretisation/strain.py``, ``thermal/coupling.py``)."""
@@ -88,6 +88,15 @@ class RollingModel:
             from ..discretisation.strain import StrainField
 
             strain = StrainField(mesh, self.entry_strain)
+        if self.thermal is not None and lagrangian:     # carried with the moving mesh
+            from ..thermal.lagrangian import LagrangianThermal
+
+            props, bc, _ = self.thermal
+            coupling = LagrangianThermal(mesh, props, bc, K_ref=self.material.K,
+                                         m_ref=self.material.m, eps0=self.material.eps0,
+                                         flow=self.flow_stress, strain=strain,
+                                         entry_strain=self.entry_strain)
+            return strain, coupling, coupling.consistency()
         if self.thermal is not None:
             from ..thermal.coupling import ThermalCoupling
 
@@ -139,16 +148,15 @@ class TransientRun:
             self.ckpt.mkdir(parents=True, exist_ok=True)
             self.mesh.ngmesh.Save(str(self.ckpt / "mesh.vol"))
         reduced = NortonHoff(1.0, mat.m, mat.eps0)
-        self.strain, self.thermal, consistency = model.field_setup(self.mesh)
+        self.strain, self.thermal, consistency = model.field_setup(self.mesh, lagrangian=True)
         self.form = RollingForm(self.mesh, rp, reduced, model.friction, PenaltyTable(model.h),
                                 free_surface=settings.free_surface,
                                 tensions=model.reduced_tensions, consistency=consistency)
-        if self.thermal is not None:     # refused by the case validation (app/config.py)
-            raise ValueError("the transient scheme has no thermal coupling: use the steady "
-                             "solver (solver.method = 'steady') with [thermal]")
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.top = TopBoundary(self.mesh, V.ndof // 2)
+        if self.thermal is not None:     # the temperature carried with the material
+            self.thermal.attach(self.form, self.disp, self.top)
         self.d = self.disp.vec.FV().NumPy()
         self._det = ngsolve.GridFunction(ngsolve.L2(self.mesh, order=0))   # for _check_mesh
         # summary means: whole projection periods covering 3 h of roll travel; the steady test
@@ -208,6 +216,8 @@ class TransientRun:
         row = {"step": self.state.step, "time": self.state.time}
         row.update(Q.measure(self.form, self.top, self.d, self.model.material.K, self.model.h,
                              self.head_x()))
+        if self.thermal is not None:
+            row.update(self.thermal.measure(self.model.rp.axis_x, self.model.h))
         row.update({"iterations": self.last_stats.iterations,
                     "residual": self.last_stats.residual,
                     "solver_converged": self.last_stats.converged})
@@ -281,6 +291,8 @@ class TransientRun:
         nv_dofs = self.form.fes.components[0].ndof
         if self.strain is not None:   # the nodes are material points: eps += dt edot
             self.strain.integrate(self.form.problem.velocity, self.s.dt)
+        if self.thermal is not None:  # ... and keep their temperature: one implicit step
+            self.thermal.step(self.s.dt)
         self.d += self.s.dt * self.form.problem.gf.vec.FV().NumPy()[:nv_dofs]
         self.state.step += 1
         self.state.time += self.s.dt
@@ -329,6 +341,8 @@ class TransientRun:
         np.savez(tmp, disp=self.d, sol=self.form.problem.gf.vec.FV().NumPy(),
                  contact=self.top.vertex_contact,
                  strain=self.strain.values if self.strain is not None else np.zeros(0),
+                 temperature=(self.thermal.values if self.thermal is not None
+                              else np.zeros(0)),
                  a_f=self.form.a_f.Get(), step=st.step, time=st.time,
                  meta=json.dumps({"fingerprint": self.fingerprint, "status": st.status,
                                   "history": st.history, "settings": asdict(self.s)}))
@@ -358,6 +372,9 @@ class TransientRun:
                 self.top.vertex_contact[:] = z["contact"]
             if self.strain is not None and "strain" in z.files and z["strain"].size:
                 self.strain.values[:] = z["strain"]
+            if (self.thermal is not None and "temperature" in z.files
+                    and z["temperature"].size):
+                self.thermal.values[:] = z["temperature"]
             meta = json.loads(str(z["meta"]))
             self.state = TransientState(int(z["step"]), float(z["time"]), meta["history"],
                                         "running")

@@ -207,10 +207,6 @@ class Case(_Section):
         if self.mesh.h_far is not None and self.mesh.h_far < h:
             problems.append(f"mesh.h_far: must be >= mesh.h_contact ({h:g} m), "
                             f"got {self.mesh.h_far:g} m")
-        if self.thermal is not None and self.solver.method == "transient":
-            problems.append('solver.method: "transient" with a [thermal] section is not '
-                            'available yet (the temperature is coupled in the steady solver '
-                            'only); allowed with [thermal]: "steady"')
         if self.thermal is not None:
             problems += [f"material.{key}: missing, required with a [thermal] section "
                          f"({_fields(MaterialConfig)[key].description})"

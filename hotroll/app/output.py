@@ -124,7 +124,7 @@ def write_vtk(run, path: Path) -> Path:
     vtk = ngsolve.VTKOutput(run.mesh, coefs=coefs, names=names,
                             filename=str(Path(path).with_suffix("")), subdivision=1)
     vtk.Do()
-    if thermal is not None:                   # the temperature on its own strip mesh
+    if getattr(thermal, "strip", None) is not None:    # the temperature's own strip mesh
         ngsolve.VTKOutput(thermal.strip.mesh, coefs=[thermal.field.gf], names=["temperature"],
                           filename=str(Path(path).with_name("thermal")), subdivision=0).Do()
     return Path(path).with_suffix(".vtu")

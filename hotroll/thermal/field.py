@@ -66,7 +66,7 @@ class TemperatureField:
         self.supg = float(supg)   # scale of tau: 0 gives the plain Galerkin method (comparisons)
         if lumped_mass and self.order != 1:
             raise ValueError(f"lumped_mass needs order 1, got order {self.order}")
-        self.lumped = bool(lumped_mass)   # step(): vertex quadrature of storage and top terms
+        self.lumped = bool(lumped_mass)   # step(): vertex quadrature of the T terms
         self.space = H1(mesh, order=self.order, dirichlet=inlet)
         self.gf = GridFunction(self.space)
         self.gf.Set(bc.entry_temperature)
@@ -131,10 +131,12 @@ class TemperatureField:
             dtop = ds(self.top, bonus_intorder=self._bonus_ds)
         rad = bc.emissivity * SIGMA_SB
         a += (chi * bc.htc_contact * u + (1.0 - chi) * (bc.htc_air * u + rad * u ** 4)) * w * dtop
-        f += (chi * (bc.friction_heat_to_strip * CF(friction_flux)
-                     + bc.htc_contact * bc.roll_temperature)
+        f += (chi * bc.htc_contact * bc.roll_temperature
               + (1.0 - chi) * (bc.htc_air * bc.ambient_temperature
                                + rad * bc.ambient_temperature ** 4)) * w * dtop
+        # the friction heat by Gauss (it peaks at the contact's ends)
+        f += (chi * bc.friction_heat_to_strip * CF(friction_flux)) * w * ds(
+            self.top, bonus_intorder=self._bonus_ds)
 
     def _forms(self, velocity, heat_density, friction_flux, contact, dt=None):
         """Residual a(T; w) - f(w) of the steady (dt None) or the implicit-Euler equation."""
@@ -167,8 +169,10 @@ class TemperatureField:
             dm = self._vertex_rule_dx() if self.lumped else dvol
             a += vol * dvol
             a += p.enthalpy(u, ref) / dt * w * dm
-            f += (p.enthalpy(self._old, ref) / dt
-                  + bc.taylor_quinney * CF(heat_density)) * w * dm
+            f += p.enthalpy(self._old, ref) / dt * w * dm
+            # the source by Gauss even when the mass is lumped: the plastic power density
+            # varies within an element (a vertex rule put 10 % of it in the wrong place)
+            f += bc.taylor_quinney * CF(heat_density) * w * dvol
         self._top_terms(u, w, a, f, friction_flux, contact, lumped=dt is not None and self.lumped)
         return a, f
 
@@ -274,17 +278,10 @@ class TemperatureField:
         from ngsolve import CF, specialcf
 
         p, bc, T = self.props, self.bc, self.gf
-        chi, vel, n = CF(contact), CF(velocity), specialcf.normal(2)
+        vel, n = CF(velocity), specialcf.normal(2)
         H = p.enthalpy(T, bc.entry_temperature)
-        rad = bc.emissivity * SIGMA_SB * (T ** 4 - bc.ambient_temperature ** 4)
-        out = dict(
-            plastic_heat=bc.taylor_quinney * self._integrate(CF(heat_density)),
-            friction_heat_to_strip=bc.friction_heat_to_strip
-            * self._integrate(chi * CF(friction_flux), self.top),
-            heat_to_roll=self._integrate(chi * bc.htc_contact * (T - bc.roll_temperature),
-                                         self.top),
-            heat_to_air=self._integrate((1.0 - chi) * (bc.htc_air * (T - bc.ambient_temperature)
-                                                       + rad), self.top),
+        out = self.heat_flows(heat_density, friction_flux, contact)
+        out.update(
             advected_in=-self._integrate(H * (vel * n), self.inlet),
             advected_out=self._integrate(H * (vel * n), self.outlet),
             conducted_in=self._inlet_reaction(velocity, heat_density, friction_flux, contact))
@@ -293,6 +290,23 @@ class TemperatureField:
         scale = max(gain, abs(out["heat_to_roll"]) + abs(out["heat_to_air"]), 1e-300)
         out["heat_balance_error"] = abs(out["advected_out"] - out["advected_in"] - net) / scale
         return out
+
+    def heat_flows(self, heat_density, friction_flux, contact) -> dict:
+        """The sources and losses at the current T (W/m): plastic heat (beta q), the strip's
+        share of the friction heat, heat to the roll through the contact, to the air
+        (convection and radiation) through the free top."""
+        from ngsolve import CF
+
+        bc, T, chi = self.bc, self.gf, CF(contact)
+        rad = bc.emissivity * SIGMA_SB * (T ** 4 - bc.ambient_temperature ** 4)
+        return dict(
+            plastic_heat=bc.taylor_quinney * self._integrate(CF(heat_density)),
+            friction_heat_to_strip=bc.friction_heat_to_strip
+            * self._integrate(chi * CF(friction_flux), self.top),
+            heat_to_roll=self._integrate(chi * bc.htc_contact * (T - bc.roll_temperature),
+                                         self.top),
+            heat_to_air=self._integrate((1.0 - chi) * (bc.htc_air * (T - bc.ambient_temperature)
+                                                       + rad), self.top))
 
     def _inlet_reaction(self, velocity, heat_density, friction_flux, contact) -> float:
         """Sum of the steady residual over the inlet (Dirichlet) dofs, W/m: the heat the
