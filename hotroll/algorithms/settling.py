@@ -46,11 +46,11 @@ def summary_windows(h: float, u_roll: float, dt: float, project_every: int) -> t
     return period * periods, period * max(6, periods)
 
 
-def transit_time(rp, strain: bool) -> float:
-    """The earliest time a run may be steady: one contact transit l_c / U; with a carried
-    strain, material that entered the bite after the start must have left the gap, at the
-    entry speed (~ U h1/h0, with 20 % margin)."""
+def transit_time(rp, carried: bool) -> float:
+    """The earliest time a run may be steady: one contact transit l_c / U; with a field carried
+    by the material (strain, temperature), material that entered the bite after the start
+    must have left the gap, at the entry speed (~ U h1/h0, with 20 % margin)."""
     transit = rp.contact_length / rp.u_roll
-    if strain:
+    if carried:
         transit *= 1.2 * rp.half_entry / rp.half_exit
     return transit

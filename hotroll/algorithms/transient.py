@@ -226,7 +226,8 @@ class TransientRun:
     # --- steady state ----------------------------------------------------------------------------
     def is_steady(self) -> bool:
         rp = self.model.rp
-        return (self.state.time >= transit_time(rp, self.strain is not None)
+        carried = self.strain is not None or self.thermal is not None
+        return (self.state.time >= transit_time(rp, carried)
                 and steady_reached(self.state.history, self.steady_window, self.s.project_every,
                                    self.s.steady_tol, rp.bite_angle))
 

@@ -237,6 +237,14 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
     return summary
 
 
+def _nanmean(values) -> float:
+    """The mean of the finite values; NaN if there is none (the transient scheme's advected
+    flows, which a Lagrangian plate does not have)."""
+    vals = np.asarray(values, dtype=float)
+    vals = vals[np.isfinite(vals)]
+    return float(vals.mean()) if len(vals) else math.nan
+
+
 def summarise(case: Case, run, prof: dict, wall: float) -> dict:
     """The summary.json dictionary: last-window means and run figures."""
     from ..post import quantities as Q
@@ -307,7 +315,7 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "averaged_over_steps": len(solved),
         "unconverged_steps_in_window": len(window) - len(solved),
         "thermal": case.thermal is not None,
-        **{k: float(np.nanmean([r[k] for r in solved])) for k in THERMAL_AVERAGED
+        **{k: _nanmean([r[k] for r in solved]) for k in THERMAL_AVERAGED
            if case.thermal is not None},
         **({"thermal_dofs": last["thermal_dofs"], "thermal_layer": last["thermal_layer"]}
            if case.thermal is not None else {}),

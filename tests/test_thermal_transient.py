@@ -1,0 +1,46 @@
+"""The temperature carried with the material in the report's transient scheme (issue 16,
+hotroll/thermal/lagrangian.py): an adiabatic pass run to its steady state on the coarse
+Example 1 geometry, against the energy balance of the material that has passed the gap."""
+from __future__ import annotations
+
+import pytest
+
+from hotroll.app.runner import run_case
+
+from casebuild import build_case, example1_coarse
+
+RHO, C = 7600.0, 650.0
+T0 = 1373.15
+
+BASE = example1_coarse(
+    "transient_thermal", friction={"a_f": 3.0},
+    material={"K": 5.0e7, "m": 0.2, "density": RHO, "specific_heat": C, "conductivity": 30.0},
+    plate={"length": 1.0, "temperature": T0},
+    solver={"method": "transient", "end_time": 3.0, "threads": 1},
+    thermal={"htc_contact": 0.0, "roll_temperature": 350.0, "htc_air": 0.0,
+             "emissivity": 0.0})
+
+
+@pytest.fixture(scope="module")
+def adiabatic(tmp_path_factory):
+    return run_case(build_case(BASE), tmp_path_factory.mktemp("transient_adiabatic"))
+
+
+def test_adiabatic_transient_exit_rise(adiabatic):
+    """Nodes are material points and keep their temperature; each step adds beta q dt/(rho c)
+    (lumped implicit step). At the steady state the material in the exit band has taken all
+    the plastic and friction heat of the bite: the mixing-cup rise is (beta x plastic power +
+    f_s x friction power) / (rho c Q), Q the entry flux. Measured +1.2 % here (the summary
+    window's means of an oscillating transient; a hard Coulomb pass of
+    scripts/cases/thermal_pass.toml on h = 0.01: -0.16 %). The step's energy identity (the
+    lumped enthalpy change against the heat flows) closes (measured 6e-13: nothing leaves an
+    adiabatic plate, so only the plastic heat's quadrature is in it, 2.6e-4 from 0.9 x the
+    plastic power)."""
+    s = adiabatic
+    assert s["status"] == "steady" and s["method"] == "transient"
+    rise = (s["plastic_heat"] + s["friction_heat_to_strip"]) / (RHO * C * s["mass_flux_in"])
+    assert rise > 1.0                                  # a real heating
+    assert s["exit_temperature_mean"] - T0 == pytest.approx(rise, rel=0.03)
+    assert s["plastic_heat"] == pytest.approx(0.9 * s["plastic_power"], rel=1e-3)
+    assert s["heat_balance_error"] < 1e-3
+    assert s["heat_to_roll"] == 0.0 and s["heat_to_air"] == 0.0
