@@ -64,6 +64,7 @@ class ThermalCoupling:
         self.T.Set(bc.entry_temperature)
         self.T_mean = GridFunction(L2(mesh, order=0))   # each element's mean temperature, K
         self.T_mean.Set(bc.entry_temperature)
+        self._ratio = GridFunction(L2(mesh, order=0))   # K/K_ref per element (see consistency)
         self._rate2 = GridFunction(P1)        # e*^2 = eps0^2 + edot^2, lagged
         self._rate2.vec[:] = 1.0
         self.form = self.strip = self.field = None
@@ -71,12 +72,24 @@ class ThermalCoupling:
         # whether the law's rate exponent depends on the temperature (Hensel-Spittel m8)
         self.m_varies = flow is not None and (float(flow.rate_exponent(1000.0))
                                               != float(flow.rate_exponent(1500.0)))
+        # no strain field and one rate exponent: the ratio is a number per element, kept in a
+        # P0 field (the form then reads values, not the law's formula: half the residual's cost)
+        self._per_element = flow is not None and strain is None and not self.m_varies
+        self._set_ratio()
+
+    def _set_ratio(self) -> None:
+        if self._per_element:
+            T = self.T_mean.vec.FV().NumPy()
+            K = np.asarray(self.flow.consistency(self.entry_strain, T), dtype=float)
+            self._ratio.vec.FV().NumPy()[:] = K / self.K_ref
 
     def consistency(self):
         """K(eps, T)/K_ref at the elements' mean temperature (and the strain field), with the rate
         exponent correction of the module docstring; 1.0 for a temperature-free law."""
         if self.flow is None:
             return 1.0
+        if self._per_element:
+            return self._ratio
         from ngsolve import exp, log
 
         eps = self.strain.gf if self.strain is not None else self.entry_strain
@@ -126,6 +139,7 @@ class ThermalCoupling:
         """A uniform temperature T (K) on both meshes."""
         self.T.Set(float(T))
         self.T_mean.Set(float(T))
+        self._set_ratio()
         if self.field is not None:
             self.field.gf.Set(float(T))
 
@@ -259,6 +273,7 @@ class ThermalCoupling:
             mean[self._empty] = at(self._empty_logical)
         old = self.T_mean.vec.FV().NumPy().copy()
         self.T_mean.vec.FV().NumPy()[:] = mean
+        self._set_ratio()
         self._lag_rate()
         return float(np.max(np.abs(mean - old))) / float(np.max(np.abs(old)))
 
@@ -315,10 +330,8 @@ class ThermalCoupling:
 
     def strip_fields(self) -> dict[str, np.ndarray]:
         """The strip mesh as drawn: current vertex positions (m), triangles and T (K)."""
-        from ngsolve import VOL
-
-        tris = np.array([[v.nr for v in el.vertices] for el in self.strip.mesh.Elements(VOL)],
-                        dtype=int)
+        tris = np.asarray(self.strip.mesh.ngmesh.Elements2D().NumPy()["nodes"][:, :3],
+                          dtype=int) - 1         # netgen numbers the points from 1
         return {"points": self.strip.physical.copy(), "triangles": tris,
                 "temperature": self.field.values.copy()}
 
