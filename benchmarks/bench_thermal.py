@@ -26,8 +26,7 @@ sys.path.insert(0, str(ROOT / "scripts"))
 
 from _common import list_arg, print_table, write_table  # noqa: E402
 
-CASES = {"thermal_pass": ROOT / "scripts" / "cases" / "thermal_pass.toml",
-         "hot_strip_finishing_thermal": None}
+CASES = ["thermal_pass", "hot_strip_finishing_thermal"]   # bundled cases
 COLUMNS = ["case", "dofs", "strip_dofs", "iso_s", "coupled_s", "ratio", "iso_updates",
            "coupled_updates", "iso_newton", "coupled_newton", "roll_force_iso_MN",
            "roll_force_coupled_MN", "exit_T_mean_K", "exit_T_surface_K", "heat_balance_error"]
@@ -36,7 +35,7 @@ COLUMNS = ["case", "dofs", "strip_dofs", "iso_s", "coupled_s", "ratio", "iso_upd
 def _path(name: str) -> Path:
     from hotroll.app.examples import example_path
 
-    return CASES.get(name) or example_path(name)
+    return example_path(name)
 
 
 def _run(path: Path, threads: int, isothermal: bool) -> dict:

@@ -154,7 +154,7 @@ def run_suite(copy: Path) -> tuple[str, float]:
          "-p", "no:cacheprovider", "-o", "addopts=-m 'not slow'", "tests"],
         cwd=copy, env=env, capture_output=True, text=True)
     wall = time.perf_counter() - t0
-    failed = re.findall(r"^FAILED (\S+)", proc.stdout, re.M)
+    failed = re.findall(r"^(?:FAILED|ERROR) (\S+)", proc.stdout, re.M)
     if proc.returncode == 0:
         return "SURVIVED", wall
     return (failed[0] if failed else f"exit {proc.returncode}"), wall

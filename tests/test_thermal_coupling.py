@@ -1,5 +1,5 @@
 """The coupled steady pass (issue 16): the thermal figures of summary.json, contact.csv,
-top.csv and fields.npz against independent numbers, and the direction of the coupling. The case is scripts/cases/thermal_pass.toml (R = 0.3 m, 100 -> 80 mm,
+top.csv and fields.npz against independent numbers, and the direction of the coupling. The case is hotroll/app/examples/thermal_pass.toml (R = 0.3 m, 100 -> 80 mm,
 Hensel-Spittel with a temperature term, rho c = 7600 x 650 J/(m^3 K)), auto mesh."""
 from __future__ import annotations
 
@@ -10,9 +10,10 @@ import numpy as np
 import pytest
 
 from hotroll.app.config import load_case
+from hotroll.app.examples import example_path
 from hotroll.app.runner import run_case
 
-CASE = Path(__file__).resolve().parent.parent / "scripts" / "cases" / "thermal_pass.toml"
+CASE = example_path("thermal_pass")
 RHO_C = 7600.0 * 650.0
 T_ENTRY = 1373.15
 HARD_COULOMB = {"material.A": 1.5e9, "friction.law": "coulomb", "friction.mu": 0.3,

@@ -32,7 +32,7 @@ def test_adiabatic_transient_exit_rise(adiabatic):
     the plastic and friction heat of the bite: the mixing-cup rise is (beta x plastic power +
     f_s x friction power) / (rho c Q), Q the entry flux. Measured +1.2 % here (the summary
     window's means of an oscillating transient; a hard Coulomb pass of
-    scripts/cases/thermal_pass.toml on h = 0.01: -0.16 %). The step's energy identity (the
+    hotroll/app/examples/thermal_pass.toml on h = 0.01: -0.16 %). The step's energy identity (the
     lumped enthalpy change against the heat flows) closes (measured 6e-13: nothing leaves an
     adiabatic plate, so only the plastic heat's quadrature is in it, 2.6e-4 from 0.9 x the
     plastic power)."""
