@@ -44,3 +44,27 @@ def test_adiabatic_transient_exit_rise(adiabatic):
     assert s["plastic_heat"] == pytest.approx(0.9 * s["plastic_power"], rel=1e-3)
     assert s["heat_balance_error"] < 1e-3
     assert s["heat_to_roll"] == 0.0 and s["heat_to_air"] == 0.0
+
+
+def test_checkpoint_carries_the_temperature(tmp_path):
+    """The nodal temperatures are in the checkpoint: a run stopped after 3 steps, its
+    temperature changed, saved and loaded again, comes back with those temperatures (and a
+    case with another fingerprint starts from the entry temperature)."""
+    import numpy as np
+
+    from hotroll.algorithms.transient import TransientRun
+    from hotroll.app.runner import build_model
+
+    model, settings = build_model(build_case(BASE))
+    ckpt = tmp_path / "ckpt"
+    run = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint="A")
+    run.s.end_time = 3.5 * run.s.dt
+    run.run()
+    assert run.state.step == 3
+    assert run.thermal.values.max() > T0 + 1e-3          # three steps of deformation heat
+    run.thermal.values[:] += np.linspace(0.0, 5.0, run.thermal.values.size)
+    run.save_checkpoint()
+    again = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint="A")
+    assert np.array_equal(again.thermal.values, run.thermal.values)
+    other = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint="B")
+    assert other.thermal.values == pytest.approx(T0, rel=1e-12)
