@@ -141,3 +141,28 @@ def test_layer_thickness_and_first_row_by_hand():
     X, eta = strip.logical(strip.reference)
     assert X == pytest.approx(strip.logical_points[:, 0], abs=1e-12)
     assert eta == pytest.approx(strip.logical_points[:, 1], abs=1e-12)
+
+
+def test_element_temperature_has_the_mean_consistency_by_hand():
+    """The temperature a mechanics element takes from the strip vertices inside it is the one
+    whose consistency is their weighted mean: for Hensel-Spittel K ~ exp(m1 T),
+    T_e = ln(sum w exp(m1 T) / sum w) / m1, by hand; without a law the plain weighted mean.
+    Two elements: one chilled at its top (900 K on a third of its weight, 1300 K elsewhere),
+    one uniform."""
+    from hotroll.physics.flow_stress import HenselSpittel
+    from hotroll.thermal.coupling import ThermalCoupling
+
+    m1 = -0.0025
+    vals = np.array([900.0, 1300.0, 1300.0, 1250.0, 1250.0])
+    w = np.array([1.0, 1.0, 1.0, 2.0, 3.0])
+    owner = np.array([0, 0, 0, 1, 1])
+    ns = SimpleNamespace(mesh=SimpleNamespace(ne=2), _owner=owner, entry_strain=0.0,
+                         flow=HenselSpittel(A=1.5e8, m1=m1, m3=0.15))
+    T = ThermalCoupling._element_means(ns, vals, w)
+    expect0 = math.log((math.exp(m1 * 900.0) + 2.0 * math.exp(m1 * 1300.0)) / 3.0) / m1
+    assert T[0] == pytest.approx(expect0, rel=1e-9)     # 1144.6 K: harder than the mean 1166.7
+    assert T[0] < (900.0 + 2 * 1300.0) / 3.0
+    assert T[1] == pytest.approx(1250.0, rel=1e-12)
+    ns.flow = None
+    plain = ThermalCoupling._element_means(ns, vals, w)
+    assert plain == pytest.approx([(900.0 + 2600.0) / 3.0, 1250.0], rel=1e-12)
