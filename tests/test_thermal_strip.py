@@ -44,8 +44,9 @@ def test_graetz_series_on_the_strip_mesh():
     delta / 8, delta = sqrt(alpha l_c / U); columns l_c / 40 in the fine zone, growing
     outside), velocity curl psi of psi = U y, cooled through h = Bi k / H from where the roll
     would touch: the Graetz series with axial conduction (test_thermal.graetz_theta) from
-    there. Rolling-like, U H / alpha = 2000, Bi = 5. Measured max |theta error| 1.15e-3,
-    7.4e-4, 2.9e-4 (1.3e-4 at 8) at refinements 1, 2, 4: first order overall, rate 0.99 (SUPG's
+    there, over the strip's fine columns. Rolling-like, U H / alpha = 2000, Bi = 5. Measured
+    max |theta error| 1.15e-3, 6.0e-4, 2.9e-4 (1.3e-4 at 8) at refinements 1, 2, 4: first
+    order, rate 0.99 (SUPG's
     O(h) streamline diffusion; test_thermal.py's graded rectangle measures 1.8 with finer
     columns)."""
     from ngsolve import IfPos, x
@@ -55,10 +56,10 @@ def test_graetz_series_on_the_strip_mesh():
     bc = ThermalBoundary(T0, Tr, 300.0, bi * K / H, 0.0, 0.0)
     x0 = flat_pass(H, L, U, 4.0 * H).x_touch           # the cooling starts where a roll would
     cooled = IfPos(x - x0, 1.0, 0.0)
-    xs, ys = np.meshgrid(np.linspace(x0 + 0.05 * L, 0.8 * L, 15), np.linspace(0.0, H, 9))
+    xs, ys = np.meshgrid(np.linspace(x0 + 0.05 * L, 0.6 * L, 15), np.linspace(0.0, H, 9))
     # (upstream the top is insulated: T0 there up to the axial conduction's alpha / U = H/2000)
     exact = graetz_theta(xs.ravel() - x0, ys.ravel(), H, U, bi)
-    assert exact.min() < 0.75
+    assert exact.min() < 0.8          # a real cooling over the strip's fine columns
     errors = []
     for refine in (1.0, 2.0, 4.0):
         strip = plug_strip(H, L, U, 4.0 * H, refine)
