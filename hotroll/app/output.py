@@ -68,6 +68,7 @@ def vertex_fields(run) -> dict:
     import ngsolve
 
     from ..discretisation.forms import strain_rate
+    from ..discretisation.mesh import mesh_triangles
     from ..physics.material import edot_squared
 
     mesh, form, K = run.mesh, run.form, run.model.material.K
@@ -75,7 +76,7 @@ def vertex_fields(run) -> dict:
     ns = form.fes.components[0].ndof // 2
     sol = form.problem.gf.vec.FV().NumPy()
     pts = run.top.X0 + np.stack([run.d[:nv], run.d[ns:ns + nv]], -1)
-    tris = np.array([[v.nr for v in el.vertices] for el in mesh.Elements(ngsolve.VOL)], dtype=int)
+    tris = mesh_triangles(mesh)
     vel = np.stack([sol[:nv], sol[ns:ns + nv]], -1)
     pressure = K * form.problem.pressure.vec.FV().NumPy()[:nv]
     g = ngsolve.GridFunction(ngsolve.H1(mesh, order=1))

@@ -126,3 +126,10 @@ def build_steady_mesh(rp: RollPass, upstream: float, downstream: float, spec: Me
     x_lo = max(rp.x_touch - upstream, rp.x_touch - margin)
     x_hi = min(rp.axis_x + downstream, rp.axis_x + margin)
     return _graded_mesh(steady_geometry(rp, upstream, downstream), rp, spec, x_lo, x_hi)
+
+
+def mesh_triangles(mesh) -> np.ndarray:
+    """The triangles of an NGSolve mesh as vertex numbers (ne, 3), in element order (netgen's
+    element array; it numbers the points from 1)."""
+    nodes = mesh.ngmesh.Elements2D().NumPy()["nodes"][:, :3]
+    return np.asarray(nodes, dtype=int) - 1

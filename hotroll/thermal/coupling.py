@@ -22,16 +22,11 @@ the top for the roll-chill layer), the mechanics on theirs. Each coupling update
 
 Mechanics -> heat: the plastic power density s:eps_dot = K_ref mu eps_dot:eps_dot (W/m^3, the
 form's law, reduced stresses times K_ref) and the friction power per area K_ref k_f |v_s|^2
-(W/m^2) on the contact feed ``TemperatureField`` (``field.py``). For the laws with k = sigma/sqrt3
-(Coulomb's cap, Tresca), k enters the heat flux through its P1 projection (the surface has no
-volume gradient).
+(W/m^2) on the contact feed ``TemperatureField`` (``field.py``); for the laws with
+k = sigma/sqrt3 (Coulomb's cap, Tresca), k is the volume gradient's at the strip's points.
 
-Heat -> mechanics: the form's consistency is K(eps, T)/K_ref of the flow-stress law at the local
-temperature (and strain). The form has one rate exponent m_ref (the law's at the entry
-temperature); where the law's m(T) differs, the consistency carries the difference at the last
-strain rate e*: K_eff = K(eps, T) (3 e*^2)^((m(T) - m_ref)/2), e*^2 = eps0^2 + edot^2, so that
-K_eff 3^((m_ref+1)/2) e*^m_ref equals the law's stress at e* exactly; e* is updated with the
-temperature, and at the joint fixed point the stress is the law's everywhere.
+Heat -> mechanics: the form's consistency K(eps, T)/K_ref at the elements' temperatures, with
+the rate-exponent correction of ``feedback.FlowStressFeedback``.
 """
 from __future__ import annotations
 
@@ -39,14 +34,16 @@ import math
 
 import numpy as np
 
-from .field import SolveInfo, TemperatureField
+from ..discretisation.mesh import mesh_triangles
+from .feedback import FlowStressFeedback
+from .field import TemperatureField
 from .properties import ThermalBoundary, ThermalProperties
 from .strip_mesh import ThermalStrip, layer_thickness
 
 SUBSAMPLES = 4   # points per strip row interval for the flux integral along a column
 
 
-class ThermalCoupling:
+class ThermalCoupling(FlowStressFeedback):
     """The temperature of a steady rolling strip, its heat sources and its flow-stress
     feedback (module docstring)."""
 
@@ -55,23 +52,14 @@ class ThermalCoupling:
                  refine: float = 1.0):
         from ngsolve import H1, L2, GridFunction
 
-        self.mesh, self.props, self.bc = mesh, props, bc
-        self.K_ref, self.m_ref, self.eps0 = float(K_ref), float(m_ref), eps0
-        self.flow, self.strain, self.entry_strain = flow, strain, float(entry_strain)
+        super().__init__(mesh, props, bc, K_ref, m_ref, eps0, flow, strain, entry_strain)
         self.refine = float(refine)
-        P1 = H1(mesh, order=1)
-        self.T = GridFunction(P1)             # the temperature at the mechanics' vertices, K
+        self.T = GridFunction(H1(mesh, order=1))   # the temperature at the mechanics' vertices
         self.T.Set(bc.entry_temperature)
         self.T_mean = GridFunction(L2(mesh, order=0))   # each element's mean temperature, K
         self.T_mean.Set(bc.entry_temperature)
         self._ratio = GridFunction(L2(mesh, order=0))   # K/K_ref per element (see consistency)
-        self._rate2 = GridFunction(P1)        # e*^2 = eps0^2 + edot^2, lagged
-        self._rate2.vec[:] = 1.0
-        self.form = self.strip = self.field = None
-        self.last = SolveInfo(0, 0.0)
-        # whether the law's rate exponent depends on the temperature (Hensel-Spittel m8)
-        self.m_varies = flow is not None and (float(flow.rate_exponent(1000.0))
-                                              != float(flow.rate_exponent(1500.0)))
+        self.strip = self.field = None
         # no strain field and one rate exponent: the ratio is a number per element, kept in a
         # P0 field (the form then reads values, not the law's formula: half the residual's cost)
         self._per_element = flow is not None and strain is None and not self.m_varies
@@ -84,20 +72,8 @@ class ThermalCoupling:
             self._ratio.vec.FV().NumPy()[:] = K / self.K_ref
 
     def consistency(self):
-        """K(eps, T)/K_ref at the elements' mean temperature (and the strain field), with the rate
-        exponent correction of the module docstring; 1.0 for a temperature-free law."""
-        if self.flow is None:
-            return 1.0
-        if self._per_element:
-            return self._ratio
-        from ngsolve import exp, log
-
-        eps = self.strain.gf if self.strain is not None else self.entry_strain
-        ratio = self.flow.consistency(eps, self.T_mean) / self.K_ref
-        if self.m_varies:
-            ratio = ratio * exp(0.5 * (self.flow.rate_exponent(self.T_mean) - self.m_ref)
-                                * (math.log(3.0) + log(self._rate2)))
-        return ratio
+        """K(eps, T)/K_ref at the elements' mean temperature (``FlowStressFeedback``)."""
+        return self._ratio if self._per_element else self._consistency_at(self.T_mean)
 
     def attach(self, form, disp, top) -> None:
         """The form whose flow heats the strip (built with ``consistency()``), the mechanics'
@@ -130,10 +106,10 @@ class ThermalCoupling:
         # the mechanics element of each strip vertex; the elements with none take the
         # temperature at their centroid
         self._owner = np.array(self._pts["nr"], dtype=int)
-        tris = np.array([[v.nr for v in el.vertices] for el in self.mesh.Elements()], dtype=int)
         self._empty = np.setdiff1d(np.arange(self.mesh.ne), self._owner)
-        self._empty_logical = self.strip.logical(top.X0[tris[self._empty]].mean(axis=1))
-        self._strip_tris = self.strip_fields()["triangles"]
+        centroids = top.X0[mesh_triangles(self.mesh)[self._empty]].mean(axis=1)
+        self._empty_logical = self.strip.logical(centroids)
+        self._strip_tris = mesh_triangles(self.strip.mesh)
 
     def reset(self, T: float) -> None:
         """A uniform temperature T (K) on both meshes."""
@@ -144,12 +120,6 @@ class ThermalCoupling:
             self.field.gf.Set(float(T))
 
     # --- sources on the mechanics mesh -----------------------------------------------------
-    def _e2(self, u):
-        from ..discretisation.forms import strain_rate
-        from ..physics.material import edot_squared
-
-        return edot_squared(strain_rate(u))
-
     def sources(self):
         """(plastic power density W/m^3, friction power per area W/m^2 where in contact) of the
         mechanics' fields, as CFs to evaluate at volume points (k from the volume gradient)."""
@@ -160,7 +130,7 @@ class ThermalCoupling:
         f = self.form
         u = f.problem.velocity
         eps = strain_rate(u)
-        mu = f.material.viscosity(self._e2(u), m=f.m, K=f.consistency)
+        mu = f.material.viscosity(self._e2(), m=f.m, K=f.consistency)
         plastic = self.K_ref * mu * InnerProduct(eps, eps)
         s = f.slip(u)
         law = f.friction
@@ -241,14 +211,6 @@ class ThermalCoupling:
         return self.strip.velocity(), self._qs, self._qfs, self._chi
 
     # --- updates ---------------------------------------------------------------------------
-    def _lag_rate(self) -> None:
-        """e*^2 = eps0^2 + edot^2 of the current flow, P1; floored at eps0^2 (the projection
-        of a steep rate field overshoots below zero, and its log would be NaN)."""
-        if self.m_varies:
-            self._rate2.Set(self._e2(self.form.problem.velocity) + self.eps0**2)
-            vals = self._rate2.vec.FV().NumPy()
-            vals[:] = np.maximum(vals, self.eps0**2)
-
     def update_steady(self, tol: float = 1e-8, max_iter: int = 30) -> float:
         """The steady temperature of the current flow on the strip mesh, sampled back at the
         mechanics' vertices (and the lagged rate); returns the largest change of the elements'
@@ -322,17 +284,9 @@ class ThermalCoupling:
         g.Set(self.T_mean)
         return g.vec.FV().NumPy()[:self.mesh.nv].copy()
 
-    def contact_columns(self) -> dict[str, np.ndarray]:
-        """Vertex fields for the contact and top profiles: the temperature (K) and, on the
-        contact, the heat flux to the roll htc_contact (T - T_roll) (W/m^2)."""
-        T, bc = self.vertex_temperature(), self.bc
-        return {"temperature": T, "heat_flux_to_roll": bc.htc_contact * (T - bc.roll_temperature)}
-
     def strip_fields(self) -> dict[str, np.ndarray]:
         """The strip mesh as drawn: current vertex positions (m), triangles and T (K)."""
-        tris = np.asarray(self.strip.mesh.ngmesh.Elements2D().NumPy()["nodes"][:, :3],
-                          dtype=int) - 1         # netgen numbers the points from 1
-        return {"points": self.strip.physical.copy(), "triangles": tris,
+        return {"points": self.strip.physical.copy(), "triangles": self._strip_tris.copy(),
                 "temperature": self.field.values.copy()}
 
     def balance(self) -> dict:

@@ -19,32 +19,30 @@ import math
 
 import numpy as np
 
+from ..discretisation.mesh import mesh_triangles
 from .coupling import HEAT_FLOWS
+from .feedback import FlowStressFeedback
 from .field import SolveInfo, TemperatureField
 from .properties import ThermalBoundary, ThermalProperties
 
 
-class LagrangianThermal:
+class LagrangianThermal(FlowStressFeedback):
     """The strip temperature carried with the material of the transient scheme."""
 
     def __init__(self, mesh, props: ThermalProperties, bc: ThermalBoundary, K_ref: float,
                  m_ref: float, eps0: float, flow=None, strain=None, entry_strain: float = 0.0):
-        from ngsolve import H1, GridFunction
+        from ngsolve import H1, GridFunction, LinearForm
 
-        self.mesh, self.props, self.bc = mesh, props, bc
-        self.K_ref, self.m_ref, self.eps0 = float(K_ref), float(m_ref), eps0
-        self.flow, self.strain, self.entry_strain = flow, strain, float(entry_strain)
+        super().__init__(mesh, props, bc, K_ref, m_ref, eps0, flow, strain, entry_strain)
         self.field = TemperatureField(mesh, props, bc, inlet="in", top="top|arc|exit",
                                       outlet="out", lumped_mass=True)
         P1 = H1(mesh, order=1)
-        self._rate2 = GridFunction(P1)        # e*^2 = eps0^2 + edot^2, lagged
-        self._rate2.vec[:] = 1.0
         self._k = GridFunction(P1)            # k (reduced), P1: the top has no volume gradient
-        self.form = self._top = self._disp = None
-        self.last = SolveInfo(0, 0.0)
+        # each vertex's lumped area (the step's storage weights), assembled on the moved mesh
+        self._lump = LinearForm(P1)
+        self._lump += P1.TestFunction() * self.field._vertex_rule_dx()
+        self._top = self._disp = None
         self.step_balance = dict.fromkeys(("storage", "heat_balance_error"), math.nan)
-        self.m_varies = flow is not None and (float(flow.rate_exponent(1000.0))
-                                              != float(flow.rate_exponent(1500.0)))
 
     @property
     def values(self) -> np.ndarray:
@@ -52,18 +50,8 @@ class LagrangianThermal:
         return self.field.values
 
     def consistency(self):
-        """K(eps, T)/K_ref at the carried temperature (``coupling.ThermalCoupling``)."""
-        if self.flow is None:
-            return 1.0
-        from ngsolve import exp, log
-
-        T = self.field.gf
-        eps = self.strain.gf if self.strain is not None else self.entry_strain
-        ratio = self.flow.consistency(eps, T) / self.K_ref
-        if self.m_varies:
-            ratio = ratio * exp(0.5 * (self.flow.rate_exponent(T) - self.m_ref)
-                                * (math.log(3.0) + log(self._rate2)))
-        return ratio
+        """K(eps, T)/K_ref at the carried temperature (``FlowStressFeedback``)."""
+        return self._consistency_at(self.field.gf)
 
     def attach(self, form, disp, top) -> None:
         self.form, self._disp, self._top = form, disp, top
@@ -73,12 +61,11 @@ class LagrangianThermal:
         from ngsolve import InnerProduct
 
         from ..discretisation.forms import strain_rate
-        from ..physics.material import edot_squared
 
         f = self.form
         u = f.problem.velocity
         eps = strain_rate(u)
-        mu = f.material.viscosity(edot_squared(eps), m=f.m, K=f.consistency)
+        mu = f.material.viscosity(self._e2(), m=f.m, K=f.consistency)
         plastic = self.K_ref * mu * InnerProduct(eps, eps)
         s = f.slip(u)
         law = f.friction
@@ -93,21 +80,13 @@ class LagrangianThermal:
         """One implicit step on the current mesh (before the nodes move), and its energy
         identity: the lumped enthalpy change over dt against the heat flows at the new T
         (equal up to the quadrature of the top terms: vertex rule in the step, Gauss here)."""
-        from ngsolve import H1, LinearForm
-
         srcs = self.sources()
         old = self.field.values.copy()
         self.last = self.field.step(*srcs, dt)
-        if self.m_varies:
-            self._rate2.Set(self._e2() + self.eps0**2)
-            vals = self._rate2.vec.FV().NumPy()
-            vals[:] = np.maximum(vals, self.eps0**2)
-        space = H1(self.mesh, order=1)
-        lump = LinearForm(space)
-        lump += space.TestFunction() * self.field._vertex_rule_dx()
-        lump.Assemble()
+        self._lag_rate()
+        self._lump.Assemble()
         dH = self.props.enthalpy_values(self.field.values) - self.props.enthalpy_values(old)
-        storage = float(lump.vec.FV().NumPy() @ dH) / dt
+        storage = float(self._lump.vec.FV().NumPy() @ dH) / dt
         flows = self.field.heat_flows(*srcs[1:])
         gain = flows["plastic_heat"] + flows["friction_heat_to_strip"]
         loss = flows["heat_to_roll"] + flows["heat_to_air"]
@@ -127,25 +106,12 @@ class LagrangianThermal:
         """The temperature the flow stress takes: the nodal one here."""
         return self.vertex_temperature()
 
-    def contact_columns(self) -> dict[str, np.ndarray]:
-        T, bc = self.vertex_temperature(), self.bc
-        return {"temperature": T, "heat_flux_to_roll": bc.htc_contact * (T - bc.roll_temperature)}
-
     def strip_fields(self) -> dict[str, np.ndarray]:
         """The plate as drawn: current vertex positions (m), triangles and T (K)."""
-        from ngsolve import VOL
-
         top, d, nv = self._top, self._disp.vec.FV().NumPy(), self.mesh.nv
         pts = top.X0 + np.stack([d[:nv], d[top.n_scalar:top.n_scalar + nv]], -1)
-        tris = np.array([[v.nr for v in el.vertices] for el in self.mesh.Elements(VOL)],
-                        dtype=int)
-        return {"points": pts, "triangles": tris, "temperature": self.vertex_temperature()}
-
-    def _e2(self):
-        from ..discretisation.forms import strain_rate
-        from ..physics.material import edot_squared
-
-        return edot_squared(strain_rate(self.form.problem.velocity))
+        return {"points": pts, "triangles": mesh_triangles(self.mesh),
+                "temperature": self.vertex_temperature()}
 
     def measure(self, x_exit: float, h: float) -> dict:
         """The thermal figures of the current state (K, W/m): the mixing-cup mean over the plate
