@@ -6,10 +6,11 @@ pass, far below the mechanics' contact size (l_c / 12). Refining the mechanics m
 8x the isothermal solve (measured, docs/studies/thermal_mesh.md); a scalar P1 field on a mesh of
 its own costs little. This mesh is logical in (X, eta): X the reference abscissa of the
 mechanics mesh, eta = Y / H_ref(X) in [0, 1] with H_ref the reference mesh's top (straight
-between its vertices: the P2 displacement bends those chords onto the roll arc). Its rows are thin at the top (first cell delta / 8, growing by 1.2) and its columns fine
-over the contact, a quarter contact length either side (l_c / 40; growing by 1.3 outside:
-a fine zone reaching one contact length past the gap cost 30 % more strip DOFs and moved the
-heat to the air by 0.16 %, the rest by less than 1e-6). It is placed on the strip by the mechanics'
+between its vertices: the P2 displacement bends those chords onto the roll arc). Its rows
+are thin at the top (first cell delta / 8, growing by 1.2) and its columns fine over the
+contact, a quarter contact length either side (l_c / 40; growing by 1.3 outside: a fine zone
+reaching one contact length past the gap cost 30 % more strip DOFs and moved the heat to the
+air by 0.16 %, the rest by less than 1e-6). It is placed on the strip by the mechanics'
 displacement (``place``), so it follows the traced free surface; a point of the mechanics mesh
 is found in it by its logical coordinates (``logical``), with no search in deformed
 coordinates. Boundaries: ``bottom`` (symmetry line), ``left`` (inlet), ``right`` (outlet),
