@@ -44,6 +44,9 @@ def test_adiabatic_transient_exit_rise(adiabatic):
     assert s["plastic_heat"] == pytest.approx(0.9 * s["plastic_power"], rel=1e-3)
     assert s["heat_balance_error"] < 1e-3
     assert s["heat_to_roll"] == 0.0 and s["heat_to_air"] == 0.0
+    # the surface at the gap: heated by friction and shear, a nodal value of the field, so
+    # between the entry and the largest temperature
+    assert T0 < s["exit_temperature_surface"] <= s["max_temperature"] + 1e-9
 
 
 def test_checkpoint_carries_the_temperature(tmp_path):
