@@ -84,11 +84,14 @@ def test_thermal_layer_and_strip_size_by_hand(chilled):
     """thermal_layer = sqrt(alpha l_c / U): alpha = k / (rho c) = 30 / (7600 x 650) m^2/s, the
     projected contact length l_c = sqrt(2 R d - d^2) with the draft d = 10 mm per roll, U =
     omega R = 0.3 m/s (1.25 mm)."""
-    s, _ = chilled
+    s, out = chilled
     R, d = 0.3, 0.01
     lc = math.sqrt(2.0 * R * d - d * d)
     assert s["thermal_layer"] == pytest.approx(math.sqrt(30.0 / RHO_C * lc / 0.3), rel=1e-12)
     assert s["units"]["thermal_layer"] == "m"
+    # thermal_dofs: the strip mesh's vertices (P1), as written in thermal.npz
+    strip = np.load(out / "thermal.npz")
+    assert s["thermal_dofs"] == len(strip["points"]) == len(strip["temperature"])
 
 
 def test_temperature_along_the_contact_and_the_top(chilled):
