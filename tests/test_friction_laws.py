@@ -93,6 +93,32 @@ def test_laws_on_numbers():
     assert np.all(CoulombFriction(v_reg, mu=0.3).power_density(slip, pressure=p, k=k) >= 0)
 
 
+@pytest.mark.mutation
+@pytest.mark.parametrize("law", [CoulombFriction(1e-3, mu=0.3), TrescaFriction(1e-3, factor=0.8),
+                                 ViscoplasticFriction(1e-3, K=2.0, m=0.2)])
+def test_coefficient_partials_are_the_derivatives(law):
+    """Newton's friction tangent uses ``coefficient_partials``: central differences of the
+    coefficient in slip^2, pressure and k agree, across Coulomb's two rounded kinks (p near 0,
+    mu p near k) and sliding/sticking points."""
+    slip2 = np.array([1e-8, 4e-6, 1e-4, 0.09, 0.25, 1e-6, 2e-5])
+    p = np.array([1.0, 4.0, 2.0, -1.0, 3.0, 0.001, 2.99])    # mu p = k at p = 3
+    k = np.full_like(p, 0.9)
+    kw = dict(a_f=3.0, m=0.2)
+    d_s2, d_p, d_k = law.coefficient_partials(slip2, pressure=p, k=k, **kw)
+
+    def diff(arg, value):
+        h = 1e-6 * np.maximum(np.abs(value), 1e-6)
+        args = dict(slip2=slip2, pressure=p, k=k)
+        up = law.coefficient(**{**args, arg: value + h}, **kw)
+        down = law.coefficient(**{**args, arg: value - h}, **kw)
+        return (up - down) / (2 * h)
+
+    for analytic, arg, value in ((d_s2, "slip2", slip2), (d_p, "pressure", p), (d_k, "k", k)):
+        expected = diff(arg, value)
+        assert np.broadcast_to(analytic, expected.shape) == pytest.approx(
+            expected, rel=1e-5, abs=1e-7 * np.max(np.abs(expected)) + 1e-12), arg
+
+
 # --- through the rolling code -------------------------------------------------------------------
 @pytest.mark.mutation   # cheap enough for mutmut's selection (pyproject [tool.mutmut])
 def test_tresca_shear_is_factor_times_k(tresca):

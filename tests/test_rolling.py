@@ -384,18 +384,24 @@ def test_steady_domain_lengths_do_not_matter(tmp_path_factory, steady_slipping):
     assert s2["roll_force"] == pytest.approx(s1["roll_force"], rel=0.1)
 
 
-@pytest.mark.parametrize("hand", [True, False])
-def test_newton_jacobian_is_the_exact_linearisation(hand):
-    """The assembled Jacobian (Norton-Hoff tangent by hand + boundary terms by symbolic
-    differentiation, or the whole residual differentiated) equals NGSolve's automatic
-    linearisation of the residual, at a state with contact, friction and active penalties."""
+FRICTION_LAWS = {"viscoplastic": {}, "coulomb": {"friction.law": "coulomb", "friction.mu": 0.3},
+                 "tresca": {"friction.law": "tresca", "friction.factor": 0.8}}
+
+
+@pytest.mark.parametrize("hand,law", [(True, "viscoplastic"), (False, "viscoplastic"),
+                                      (True, "coulomb"), (True, "tresca")])
+def test_newton_jacobian_is_the_exact_linearisation(hand, law):
+    """The assembled Jacobian (Norton-Hoff and friction tangents by hand + the other boundary
+    terms by symbolic differentiation, or the whole residual differentiated) equals NGSolve's
+    automatic linearisation of the residual, at a state with contact, friction and active
+    penalties, for each friction law."""
     import numpy as np
 
     from hotroll.algorithms.steady import SteadyRun
     from hotroll.app.runner import build_model, steady_settings
     from hotroll.discretisation.forms import NonlinearProblem
 
-    case = _case(**{"solver.method": "steady"})
+    case = _case(**{"solver.method": "steady", **FRICTION_LAWS[law]})
     model, _ = build_model(case)
     run = SteadyRun(model, steady_settings(case), case.plate.length)
     run._cold_start()

@@ -178,15 +178,43 @@ class RollingForm:
         return vol * dx + self.boundary(u, w, v)
 
     def jacobian(self, w, u, p, v, q):
-        """Newton's Jacobian of (3.6) at w: the Norton-Hoff tangent by hand, the boundary terms
-        differentiated symbolically (w is the iterate's GridFunction component)."""
+        """Newton's Jacobian of (3.6) at w: the Norton-Hoff tangent and the friction tangent
+        by hand, the other boundary terms differentiated symbolically (w is the iterate's
+        GridFunction component)."""
         from ngsolve import dx
 
         vol = norton_hoff_tangent(self.material, self.m, w, u, p, v, q, K=self.consistency)
-        return vol * dx + self.boundary(w, w, v).Diff(w, u)
+        return (vol * dx + self.friction_tangent(w, u, v) * self.friction_measure()
+                + self.boundary(w, w, v, friction=False).Diff(w, u))
 
-    def boundary(self, u, w, v):
-        """Friction law, penalty terms (3.2), (3.3) and tensions on the boundary, coefficients at w."""
+    def friction_tangent(self, w, u, v):
+        """d/dw of the friction term chi k_f(w) s(w) (v.t) along u, by the chain rule through
+        the law's ``coefficient_partials`` (slip^2, pressure gamma (w.n), k of the strain rate)."""
+        from ngsolve import InnerProduct
+
+        from .forms import strain_rate
+        from ..physics.material import edot_squared
+
+        n, t = self.roll_frame()
+        law, s, s_u = self.friction, self.slip(w), u * t
+        pressure = self.pressure(w) if law.uses_pressure else None
+        k = self.shear_flow_stress(w) if law.uses_k else None
+        kw = dict(a_f=self.a_f, m=self.m, pressure=pressure, k=k)
+        kf = law.coefficient(s * s, **kw)
+        d_s2, d_p, d_k = law.coefficient_partials(s * s, **kw)
+        d_kf = d_s2 * 2.0 * s * s_u
+        if law.uses_pressure:      # p = gamma (w.n)
+            d_kf = d_kf + d_p * self.pressure(u)
+        if law.uses_k:             # k ~ (eps0^2 + e2)^(m/2), e2 = 2/3 eps(w):eps(w)
+            ew = strain_rate(w)
+            e2 = edot_squared(ew)
+            dk_de2 = k * self.m / (2.0 * (self.material.eps0**2 + e2))
+            d_kf = d_kf + d_k * dk_de2 * (4.0 / 3.0) * InnerProduct(ew, strain_rate(u))
+        return self.chi * (kf * s_u + s * d_kf) * (v * t)
+
+    def boundary(self, u, w, v, friction: bool = True):
+        """Friction law, penalty terms (3.2), (3.3) and tensions on the boundary, coefficients at w
+        (without the friction law if not ``friction``)."""
         from ngsolve import IfPos, ds, specialcf, x
 
         rp, pen = self.rp, self.penalties
@@ -194,7 +222,7 @@ class RollingForm:
         gam_s = pen.surface(x, rp.soft_zone)
         chi = self.chi
 
-        friction = chi * self.friction_coefficient(w) * self.slip(u) * (v * t)
+        friction_term = chi * self.friction_coefficient(w) * self.slip(u) * (v * t)
         contact = gam_s * (u * n) * (v * n)
 
         inlet = self.inlet_penalty(u, w) * v[0]
@@ -204,7 +232,7 @@ class RollingForm:
             free = free + gam_s * self.free_normal(u) * self.free_normal(v)
 
         nh = specialcf.normal(2)
-        return (friction * self.friction_measure()
-                + (chi * contact + (1.0 - chi) * free) * ds(TOP)
+        rest = ((chi * contact + (1.0 - chi) * free) * ds(TOP)
                 + (inlet - self.tension_back * (v * nh)) * ds("in")
                 + (outlet + gam_s * u[1] * v[1] - self.tension_front * (v * nh)) * ds("out"))
+        return friction_term * self.friction_measure() + rest if friction else rest

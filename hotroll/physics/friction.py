@@ -47,6 +47,18 @@ def smooth_minimum(a, b, delta):
     return 0.5 * (a + b - _sqrt((a - b) ** 2 + delta * delta))
 
 
+def smooth_positive_part_partials(a, delta):
+    """(d/da, d/ddelta) of ``smooth_positive_part``."""
+    root = _sqrt(a * a + delta * delta)
+    return 0.5 * (1.0 + a / root), 0.5 * delta / root
+
+
+def smooth_minimum_partials(a, b, delta):
+    """(d/da, d/db, d/ddelta) of ``smooth_minimum``."""
+    root = _sqrt((a - b) ** 2 + delta * delta)
+    return 0.5 * (1.0 - (a - b) / root), 0.5 * (1.0 + (a - b) / root), -0.5 * delta / root
+
+
 @dataclass(frozen=True)
 class _Law:
     v_reg: float  # regularisation velocity, m/s
@@ -60,9 +72,22 @@ class _Law:
         """Shear stress magnitude of a sliding contact (the rate-independent laws)."""
         raise NotImplementedError
 
+    def limit_partials(self, *, pressure=None, k=None):
+        """(d limit/d pressure, d limit/d k)."""
+        raise NotImplementedError
+
     def coefficient(self, slip2, *, a_f=None, m=None, pressure=None, k=None):
         """Secant coefficient k_f with T_tau = -k_f v_s (rate-independent laws)."""
         return self.limit(pressure=pressure, k=k) * (slip2 + self.v_reg**2) ** -0.5
+
+    def coefficient_partials(self, slip2, *, a_f=None, m=None, pressure=None, k=None):
+        """(d k_f/d slip2, d k_f/d pressure, d k_f/d k): the friction part of Newton's
+        Jacobian, written out (the symbolic derivative on the element boundaries cost 5 times
+        the rest of the Jacobian's assembly)."""
+        g = (slip2 + self.v_reg**2) ** -0.5
+        lim = self.limit(pressure=pressure, k=k)
+        d_p, d_k = self.limit_partials(pressure=pressure, k=k)
+        return -0.5 * lim * g * g * g, d_p * g, d_k * g
 
     def shear(self, slip, **kw):
         """Shear traction on the plate along the roll tangent, for a scalar slip velocity."""
@@ -89,6 +114,12 @@ class ViscoplasticFriction(_Law):
         K = self.K if K is None else K
         return a_f * K * (slip2 + self.v_reg**2) ** ((m - 1.0) / 2.0)
 
+    def coefficient_partials(self, slip2, *, a_f=None, m=None, pressure=None, k=None, K=None):
+        """(d k_f/d slip2, 0, 0): the law takes neither the pressure nor k."""
+        m = self.m if m is None else m
+        K = self.K if K is None else K
+        return a_f * K * (m - 1.0) / 2.0 * (slip2 + self.v_reg**2) ** ((m - 3.0) / 2.0), 0.0, 0.0
+
 
 @dataclass(frozen=True)
 class CoulombFriction(_Law):
@@ -109,6 +140,14 @@ class CoulombFriction(_Law):
         d = self.rounding * k
         return smooth_minimum(self.mu * smooth_positive_part(pressure, d / self.mu), k, d)
 
+    def limit_partials(self, *, pressure=None, k=None):
+        r, mu = self.rounding, self.mu
+        d = r * k
+        capped = mu * smooth_positive_part(pressure, d / mu)
+        p_a, p_delta = smooth_positive_part_partials(pressure, d / mu)
+        m_a, m_b, m_delta = smooth_minimum_partials(capped, k, d)
+        return m_a * mu * p_a, m_a * mu * p_delta * (r / mu) + m_b + m_delta * r
+
 
 @dataclass(frozen=True)
 class TrescaFriction(_Law):
@@ -121,3 +160,6 @@ class TrescaFriction(_Law):
 
     def limit(self, *, pressure=None, k=None):
         return self.factor * k
+
+    def limit_partials(self, *, pressure=None, k=None):
+        return 0.0, self.factor
