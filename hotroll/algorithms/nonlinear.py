@@ -148,19 +148,24 @@ def newton(
         _linear_step(form, problem, ws, stats, residual_ready, problem.a_jacobian)
         r0 = ws.norm(ws.r)
         ws.backup.data = problem.gf.vec
-        alpha = 1.0
+        # the Newton direction, not the damped step: a step cut by the line search is small
+        # without the iterate being converged
+        stats.update = ws.max_velocity(ws.du) / scale
+        # full_step: once the direction is below the tolerance, its full step is taken without
+        # the line search. There the residual's norm is at its floor (the near-rigid zones,
+        # whose viscosity is eps0^(m-1): a velocity change of 1e-7 U moves it), and the test
+        # r1 < r0 refused full steps of 1e-7 U for up to five iterations on the finishing pass
+        alpha, search = 1.0, not (full_step and stats.update <= tol)
         while True:
             problem.gf.vec.data = ws.backup - alpha * ws.du
             form.Apply(problem.gf.vec, ws.r)
             r1 = ws.norm(ws.r)
-            if r1 <= (1.0 - 1e-4 * alpha) * r0 or alpha <= min_step or r0 == 0.0:
+            if (not search or r1 <= (1.0 - 1e-4 * alpha) * r0 or alpha <= min_step
+                    or r0 == 0.0):
                 break
             alpha *= 0.5
         stats.iterations = it
         stats.residual = r1
-        # the Newton direction, not the damped step: a step cut by the line search is small
-        # without the iterate being converged
-        stats.update = ws.max_velocity(ws.du) / scale
         residual_ready = True
         if couple is not None and stats.update <= couple_below:
             if couple():

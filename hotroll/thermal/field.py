@@ -39,6 +39,7 @@ radiation), direct solves (UMFPACK).
 from __future__ import annotations
 
 import re
+from functools import cached_property
 from typing import NamedTuple
 
 import numpy as np
@@ -77,6 +78,7 @@ class TemperatureField:
         self._tau_gf = GridFunction(L2(mesh, order=0))   # SUPG tau, one value per element
         self._tau_cf = None
         self._steady = None          # (inputs, forms, tau) of the last steady solve: reused
+        self._kept_inverse = None    # (form, free dofs, UMFPACK inverse) of the last solve
         # quadrature: T^4 w on the top and the piecewise (IfPos) properties in the volume;
         # ``volume_bonus = 0`` where the volume terms are polynomials the default rule
         # integrates exactly (P1, constant properties, P1 sources: the strip mesh; 1.8x faster)
@@ -182,10 +184,14 @@ class TemperatureField:
         if self._tau_cf is not None and tau:
             self._tau_gf.Set(self._tau_cf)
 
-    def _newton(self, a, f, free, tol, max_iter) -> SolveInfo:
+    def _newton(self, a, f, free, tol, max_iter, chord: bool = False) -> SolveInfo:
+        """Newton's method on a(T; w) = f(w) from the current T; ``chord``: the Jacobian's
+        factors of the last solve of the same form instead of new ones (Newton-chord)."""
         vec = self.gf.vec
         res, du = vec.CreateVector(), vec.CreateVector()
         change = float("inf")
+        kept = self._kept_inverse
+        chord = chord and kept is not None and kept[0] is a and kept[1] is free
         for it in range(1, max_iter + 1):
             # tau depends on T only through the properties: with constants, once per solve,
             # and f with it
@@ -193,10 +199,11 @@ class TemperatureField:
             self._refresh(tau=fresh)
             if fresh:
                 f.Assemble()
-            a.AssembleLinearization(vec)
+            if not chord:
+                a.AssembleLinearization(vec)
             a.Apply(vec, res)
             res.data -= f.vec
-            du.data = a.mat.Inverse(free, inverse="umfpack") * res
+            du.data = (kept[2] if chord else self._inverse(a, free)) * res
             vec.data -= du
             step = float(np.max(np.abs(du.FV().NumPy())))
             change = step / max(float(np.max(np.abs(self.values))), 1e-300)
@@ -204,20 +211,44 @@ class TemperatureField:
                 break
         return SolveInfo(it, change)
 
+    def _inverse(self, a, free):
+        """UMFPACK's factors of ``a``'s matrix: kept for the same form and refactorised
+        (``Update``: the sparsity and the ordering stay) when it comes back."""
+        kept = self._kept_inverse
+        if kept is not None and kept[0] is a and kept[1] is free:
+            kept[2].Update()
+            return kept[2]
+        inv = a.mat.Inverse(free, inverse="umfpack")
+        self._kept_inverse = (a, free, inv)
+        return inv
+
     # --- solves --------------------------------------------------------------------------------
     def solve_steady(self, velocity, heat_density, friction_flux, contact, tol: float = 1e-8,
-                     max_iter: int = 30) -> SolveInfo:
+                     max_iter: int = 30, chord: bool = False) -> SolveInfo:
         """Steady rho c v.grad T - div(k grad T) = beta q on the current strip, T = T_entry on
         the inlet (SUPG, Newton from the current field). Returns (iterations, last max |dT| /
         max |T|); not converged if the change is still above ``tol``."""
+        self.values[self._fixed] = self._inlet_values
+        a, f = self._steady_forms(velocity, heat_density, friction_flux, contact)
+        return self._newton(a, f, self._free, tol, max_iter, chord=chord)
+
+    @cached_property
+    def _free(self):
+        return self.space.FreeDofs()
+
+    @cached_property
+    def _fixed(self) -> np.ndarray:
+        """The inlet's (Dirichlet) DOFs, a boolean mask."""
+        return ~np.array(list(self._free), dtype=bool)
+
+    @cached_property
+    def _inlet_values(self) -> np.ndarray:
+        """T = T_entry at the inlet's DOFs."""
         from ngsolve import BND, GridFunction
 
         inlet = GridFunction(self.space)
         inlet.Set(self.bc.entry_temperature, BND, definedon=self.mesh.Boundaries(self.inlet))
-        fixed = ~np.array(list(self.space.FreeDofs()), dtype=bool)
-        self.values[fixed] = inlet.vec.FV().NumPy()[fixed]
-        a, f = self._steady_forms(velocity, heat_density, friction_flux, contact)
-        return self._newton(a, f, self.space.FreeDofs(), tol, max_iter)
+        return inlet.vec.FV().NumPy()[self._fixed].copy()
 
     def _steady_forms(self, velocity, heat_density, friction_flux, contact):
         """The steady forms of these inputs, built once while the same objects come back
@@ -312,8 +343,7 @@ class TemperatureField:
         """Sum of the steady residual over the inlet (Dirichlet) dofs, W/m: the heat the
         discrete solution conducts in through the inlet face."""
         a, f = self._steady_forms(velocity, heat_density, friction_flux, contact)
-        fixed = ~np.array(list(self.space.FreeDofs()), dtype=bool)
-        return self._residual_sum(a, f, fixed)
+        return self._residual_sum(a, f, self._fixed)
 
     def face_mean(self, face: str, velocity) -> float:
         """Mixing-cup (flux-weighted) mean temperature int T v.n / int v.n over ``face`` (the
