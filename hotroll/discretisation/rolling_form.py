@@ -157,7 +157,7 @@ class RollingForm:
         """Integral of ``cf`` (with chi in it) over the contact, on ``friction_measure``."""
         from ngsolve import Integrate
 
-        return float(Integrate(cf * self.friction_measure(), self.mesh))
+        return float(Integrate(cf.Compile() * self.friction_measure(), self.mesh))
 
     def inlet_penalty(self, u, w):
         """(3.2a) per unit test v_x: gamma_in [v_x - |U_roll|]_+, active set taken at w."""

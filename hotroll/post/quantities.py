@@ -213,7 +213,7 @@ def contact_loss(profile: dict, normal_stress: np.ndarray, min_length: float) ->
 # --- integrals -------------------------------------------------------------------------------
 def integrals(form: RollingForm, K: float) -> dict:
     """Forces, torque and the power balance of (3.6) tested with v itself (all per unit width)."""
-    from ngsolve import BND, VOL, Integrate, IfPos, InnerProduct, specialcf, sqrt, x, y
+    from ngsolve import BND, CF, VOL, Integrate, IfPos, InnerProduct, specialcf, sqrt, x, y
 
     from ..discretisation.forms import strain_rate
     from ..physics.material import edot_squared
@@ -234,7 +234,7 @@ def integrals(form: RollingForm, K: float) -> dict:
     r = sqrt((x - cx) ** 2 + (y - cy) ** 2)
 
     def bnd(cf, region=top):
-        return float(Integrate(cf, mesh, BND, definedon=region))
+        return float(Integrate(CF(cf).Compile(), mesh, BND, definedon=region))
 
     inlet = form.inlet_penalty(u, u) * u[0]
     outlet = form.outlet_penalty(u, u) * u[0]
@@ -248,7 +248,7 @@ def integrals(form: RollingForm, K: float) -> dict:
     p = m.Get() + 1.0
     nh = specialcf.normal(2)
     out = {
-        "plastic_power": K * float(Integrate(mu * InnerProduct(eps, eps), mesh, VOL)),
+        "plastic_power": K * float(Integrate((mu * InnerProduct(eps, eps)).Compile(), mesh, VOL)),
         "friction_power": K * form.integrate_friction(chi * kf * s * s),
         "penalty_power": K * (free_pen + face_pen + contact_pen),
         "contact_penalty_power": K * contact_pen,
@@ -303,8 +303,8 @@ def force_balance(form: RollingForm, K: float) -> dict:
     nh = specialcf.normal(2)
 
     def force(term, region):
-        return [-K * float(Integrate(term[i], mesh, BND, definedon=mesh.Boundaries(region)))
-                for i in range(2)]
+        return [-K * float(Integrate(term[i].Compile(), mesh, BND,
+                                     definedon=mesh.Boundaries(region))) for i in range(2)]
 
     roll = np.add(force(chi * gam * (u * n) * n, TOP),
                   [-K * form.integrate_friction(chi * friction_term[i]) for i in range(2)])
