@@ -167,3 +167,25 @@ def test_element_temperature_has_the_mean_consistency_by_hand():
     ns.flow = None
     plain = ThermalCoupling._element_means(ns, vals, w)
     assert plain == pytest.approx([(900.0 + 2600.0) / 3.0, 1250.0], rel=1e-12)
+
+
+def test_structured_mesh_from_arrays_is_ngsolves():
+    """``structured_triangle_mesh`` (arrays) builds the same points, triangles (order and
+    orientation) and named boundaries as NGSolve's MakeStructured2DMesh mapped onto the axes."""
+    from ngsolve.meshes import MakeStructured2DMesh
+
+    from hotroll.discretisation.mesh import mesh_triangles, structured_triangle_mesh
+
+    X = np.sort(np.random.default_rng(3).uniform(0.0, 2.0, 9))
+    Y = np.array([0.0, 0.1, 0.5, 0.55, 1.0])
+    nx, ny = len(X) - 1, len(Y) - 1
+    ref = MakeStructured2DMesh(quads=False, nx=nx, ny=ny,
+                               mapping=lambda a, b: (X[int(round(a * nx))], Y[int(round(b * ny))]))
+    mesh = structured_triangle_mesh(X, Y)
+    assert np.array_equal([v.point for v in mesh.vertices], [v.point for v in ref.vertices])
+    assert np.array_equal(mesh_triangles(mesh), mesh_triangles(ref))
+    assert mesh.GetMaterials() == ref.GetMaterials()
+    for name in ("bottom", "right", "top", "left"):
+        segs = [[v.nr for v in el.vertices] for el in mesh.Boundaries(name).Elements()]
+        assert segs == [[v.nr for v in el.vertices] for el in ref.Boundaries(name).Elements()]
+        assert len(segs) == (nx if name in ("bottom", "top") else ny)

@@ -133,3 +133,35 @@ def mesh_triangles(mesh) -> np.ndarray:
     element array; it numbers the points from 1)."""
     nodes = mesh.ngmesh.Elements2D().NumPy()["nodes"][:, :3]
     return np.asarray(nodes, dtype=int) - 1
+
+
+def structured_triangle_mesh(X: np.ndarray, Y: np.ndarray):
+    """The tensor-product mesh of the axes X (nx+1) and Y (ny+1), each cell split into two
+    triangles: the same points, triangles and boundaries ("bottom", "right", "top", "left";
+    region "dom") as ``ngsolve.meshes.MakeStructured2DMesh(quads=False)`` with a mapping onto
+    the axes, vertex i + j (nx + 1) at (X[i], Y[j]), built from arrays (~15x faster)."""
+    import ngsolve
+    from netgen.meshing import Mesh as NetgenMesh
+
+    X, Y = np.asarray(X, dtype=float), np.asarray(Y, dtype=float)
+    nx, ny = len(X) - 1, len(Y) - 1
+    Xg, Yg = np.meshgrid(X, Y)
+    ngmesh = NetgenMesh(dim=2)
+    ngmesh.AddPoints(np.stack([Xg.ravel(), Yg.ravel(), np.zeros(Xg.size)], -1))
+    dom = ngmesh.AddRegion("dom", dim=2)
+    names = ("bottom", "right", "top", "left")
+    index = {name: ngmesh.AddRegion(name, dim=1) for name in names}
+    col, row = np.meshgrid(np.arange(nx), np.arange(ny))
+    base = (row * (nx + 1) + col).ravel()
+    lower = np.stack([base, base + 1, base + nx + 1], -1)
+    upper = np.stack([base + 1, base + nx + 2, base + nx + 1], -1)
+    ngmesh.AddElements(dim=2, index=dom, base=0,
+                       data=np.stack([lower, upper], 1).reshape(-1, 3).astype(np.int32))
+    i, j = np.arange(nx), np.arange(ny)
+    top = ny * (nx + 1)
+    segments = {"bottom": (i, i + 1), "right": (j * (nx + 1) + nx, (j + 1) * (nx + 1) + nx),
+                "top": (top + i + 1, top + i), "left": ((j + 1) * (nx + 1), j * (nx + 1))}
+    for name in names:
+        ngmesh.AddElements(dim=1, index=index[name], base=0,
+                           data=np.stack(segments[name], -1).astype(np.int32))
+    return ngsolve.Mesh(ngmesh)

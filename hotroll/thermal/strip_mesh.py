@@ -22,6 +22,8 @@ import math
 
 import numpy as np
 
+from ..discretisation.mesh import structured_triangle_mesh
+
 FIRST_CELL = 1.0 / 8.0     # first row at the top, in layer thicknesses delta
 ROW_GROWTH = 1.2           # row-to-row growth away from the top
 COLUMN_GROWTH = 1.3        # column growth outside the fine zone
@@ -77,7 +79,6 @@ class ThermalStrip:
         """``top_ref``: the reference top vertices of the mechanics mesh (N, 2), inlet to
         outlet; ``h`` its contact size; ``delta`` the layer thickness (``layer_thickness``)."""
         from ngsolve import CF, H1, GridFunction, VectorH1, grad
-        from ngsolve.meshes import MakeStructured2DMesh
 
         if not refine > 0.0:
             raise ValueError(f"refine = {refine!r}: must be > 0")
@@ -94,12 +95,10 @@ class ThermalStrip:
         largest = min(h / 2.0, h1 / 8.0) / refine / h1
         first = min(FIRST_CELL * self.delta / refine / h1, largest)
         self.eta = top_rows(first, largest)
-        nx, ny = len(self.X) - 1, len(self.eta) - 1
         X, eta = self.X, self.eta
-        self.mesh = MakeStructured2DMesh(
-            quads=False, nx=nx, ny=ny,
-            mapping=lambda a, b: (X[int(round(a * nx))], eta[int(round(b * ny))]))
-        # vertex i + j (nx + 1): column i, row j (MakeStructured2DMesh's numbering)
+        nx, ny = len(X) - 1, len(eta) - 1
+        self.mesh = structured_triangle_mesh(X, eta)
+        # vertex i + j (nx + 1): column i, row j
         self.shape = (ny + 1, nx + 1)
         Xg, Eg = np.meshgrid(X, eta)
         self.logical_points = np.stack([Xg.ravel(), Eg.ravel()], -1)
