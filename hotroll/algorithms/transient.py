@@ -151,7 +151,9 @@ class TransientRun:
         self.strain, self.thermal, consistency = model.field_setup(self.mesh, lagrangian=True)
         self.form = RollingForm(self.mesh, rp, reduced, model.friction, PenaltyTable(model.h),
                                 free_surface=settings.free_surface,
-                                tensions=model.reduced_tensions, consistency=consistency)
+                                tensions=model.reduced_tensions, consistency=consistency,
+                                rate_offset=self.thermal.rate_offset()
+                                if self.thermal is not None else None)
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.top = TopBoundary(self.mesh, V.ndof // 2)

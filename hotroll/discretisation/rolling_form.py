@@ -75,7 +75,7 @@ class RollingForm:
 
     def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: FrictionLaw,
                  penalties: PenaltyTable, free_surface: str, tensions: tuple = (0.0, 0.0),
-                 consistency=1.0):
+                 consistency=1.0, rate_offset=None):
         from ngsolve import FacetFESpace, GridFunction, Parameter
 
         self.mesh, self.rp = mesh, rp
@@ -86,6 +86,9 @@ class RollingForm:
         self.consistency = consistency
         self.fes = taylor_hood(mesh, dirichlety="sym")
         self.m = Parameter(material.m)      # set to 1 for the very first iterate (Section 3.4)
+        # the material's rate exponent: m, plus m(T) - m_ref (a CF) where a temperature-
+        # dependent law's exponent varies (thermal/feedback.py); the friction law keeps m
+        self.m_material = self.m if rate_offset is None else self.m + rate_offset
         self.a_f = Parameter(1.0)           # friction parameter, updated by (3.15) every step
         self.chi = GridFunction(FacetFESpace(mesh, order=0))  # 1 on contact edges
         # back / front tension over K (reduced, like every stress in the form)
@@ -133,7 +136,7 @@ class RollingForm:
         from ..physics.material import edot_squared
 
         e2 = edot_squared(strain_rate(w))
-        return self.material.sigma_ef_reg(e2, m=self.m, K=self.consistency) / 3.0**0.5
+        return self.material.sigma_ef_reg(e2, m=self.m_material, K=self.consistency) / 3.0**0.5
 
     def friction_coefficient(self, w):
         """The friction law's secant coefficient k_f at the velocity w (T_tau = -k_f v_s)."""
@@ -174,7 +177,8 @@ class RollingForm:
         """The residual form (3.6), coefficients at w (w = u: Newton; the last iterate: Picard)."""
         from ngsolve import dx
 
-        vol = norton_hoff_volume(self.material, self.m, u, p, w, v, q, K=self.consistency)
+        vol = norton_hoff_volume(self.material, self.m_material, u, p, w, v, q,
+                                 K=self.consistency)
         return vol * dx + self.boundary(u, w, v)
 
     def jacobian(self, w, u, p, v, q):
@@ -183,7 +187,8 @@ class RollingForm:
         GridFunction component)."""
         from ngsolve import dx
 
-        vol = norton_hoff_tangent(self.material, self.m, w, u, p, v, q, K=self.consistency)
+        vol = norton_hoff_tangent(self.material, self.m_material, w, u, p, v, q,
+                                  K=self.consistency)
         return (vol * dx + self.friction_tangent(w, u, v) * self.friction_measure()
                 + self.boundary(w, w, v, friction=False).Diff(w, u))
 
@@ -208,7 +213,7 @@ class RollingForm:
         if law.uses_k:             # k ~ (eps0^2 + e2)^(m/2), e2 = 2/3 eps(w):eps(w)
             ew = strain_rate(w)
             e2 = edot_squared(ew)
-            dk_de2 = k * self.m / (2.0 * (self.material.eps0**2 + e2))
+            dk_de2 = k * self.m_material / (2.0 * (self.material.eps0**2 + e2))
             d_kf = d_kf + d_k * dk_de2 * (4.0 / 3.0) * InnerProduct(ew, strain_rate(u))
         return self.chi * (kf * s_u + s * d_kf) * (v * t)
 

@@ -229,7 +229,7 @@ def integrals(form: RollingForm, K: float) -> dict:
     U = rp.u_roll
     eps = strain_rate(u)
     e2 = edot_squared(eps)
-    mu = form.material.viscosity(e2, m=m, K=form.consistency)
+    mu = form.material.viscosity(e2, m=form.m_material, K=form.consistency)
     cx, cy = rp.centre
     r = sqrt((x - cx) ** 2 + (y - cy) ** 2)
 
@@ -327,7 +327,7 @@ def force_balance(form: RollingForm, K: float) -> dict:
     # eps_xy = 0, so sigma_yy = -mu(4/3 eps_xx^2) eps_xx - p: an approximation that converges
     # with h, independent of the residual
     exx = Grad(u)[0, 0]
-    mu = form.material.viscosity(4.0 / 3.0 * exx * exx, m=form.m, K=form.consistency)
+    mu = form.material.viscosity(4.0 / 3.0 * exx * exx, m=form.m_material, K=form.consistency)
     sigma_yy = -mu * exx - problem.pressure
     sym_stress = -K * float(Integrate(sigma_yy, mesh, BND, definedon=mesh.Boundaries("sym")))
     total = np.add(np.add(roll, tops), np.add(np.add(face, tension), [0.0, sym_y]))

@@ -25,8 +25,8 @@ form's law, reduced stresses times K_ref) and the friction power per area K_ref 
 (W/m^2) on the contact feed ``TemperatureField`` (``field.py``); for the laws with
 k = sigma/sqrt3 (Coulomb's cap, Tresca), k is the volume gradient's at the strip's points.
 
-Heat -> mechanics: the form's consistency K(eps, T)/K_ref at the elements' temperatures, with
-the rate-exponent correction of ``feedback.FlowStressFeedback``.
+Heat -> mechanics: the form's consistency K(eps, T)/K_ref and rate exponent m(T) at the elements'
+temperatures (``feedback.FlowStressFeedback``).
 """
 from __future__ import annotations
 
@@ -60,22 +60,30 @@ class ThermalCoupling(FlowStressFeedback):
         self.T_mean = GridFunction(L2(mesh, order=0))   # each element's mean temperature, K
         self.T_mean.Set(bc.entry_temperature)
         self._ratio = GridFunction(L2(mesh, order=0))   # K/K_ref per element (see consistency)
+        self._offset = GridFunction(L2(mesh, order=0))  # m(T) - m_ref per element
         self.strip = self.field = None
         self._change = math.inf      # the last update's change (update_steady)
-        # no strain field and one rate exponent: the ratio is a number per element, kept in a
-        # P0 field (the form then reads values, not the law's formula: half the residual's cost)
-        self._per_element = flow is not None and strain is None and not self.m_varies
+        # no strain field: the ratio is a number per element, kept in a P0 field (the form
+        # then reads values, not the law's formula: half the residual's cost)
+        self._per_element = flow is not None and strain is None
         self._set_ratio()
 
     def _set_ratio(self) -> None:
+        """The P0 fields of the elements' temperatures: K/K_ref (without a strain field) and
+        the rate-exponent offset."""
+        T = self.T_mean.vec.FV().NumPy()
         if self._per_element:
-            T = self.T_mean.vec.FV().NumPy()
-            K = np.asarray(self.flow.consistency(self.entry_strain, T), dtype=float)
-            self._ratio.vec.FV().NumPy()[:] = K / self.K_ref
+            self._ratio.vec.FV().NumPy()[:] = np.asarray(self._consistency_at(T), dtype=float)
+        if self.m_varies:
+            self._offset.vec.FV().NumPy()[:] = np.asarray(self._rate_offset_at(T), dtype=float)
 
     def consistency(self):
         """K(eps, T)/K_ref at the elements' mean temperature (``FlowStressFeedback``)."""
         return self._ratio if self._per_element else self._consistency_at(self.T_mean)
+
+    def rate_offset(self):
+        """m(T) - m_ref at the elements' mean temperature, or None (``FlowStressFeedback``)."""
+        return self._offset if self.m_varies else None
 
     def attach(self, form, disp, top) -> None:
         """The form whose flow heats the strip (built with ``consistency()``), the mechanics'
@@ -142,7 +150,7 @@ class ThermalCoupling(FlowStressFeedback):
         f = self.form
         u = f.problem.velocity
         eps = strain_rate(u)
-        mu = f.material.viscosity(self._e2(), m=f.m, K=f.consistency)
+        mu = f.material.viscosity(self._e2(), m=f.m_material, K=f.consistency)
         plastic = self.K_ref * mu * InnerProduct(eps, eps)
         s = f.slip(u)
         law = f.friction
@@ -220,7 +228,7 @@ class ThermalCoupling(FlowStressFeedback):
     # --- updates ---------------------------------------------------------------------------
     def update_steady(self, tol: float = 1e-8, max_iter: int = 30) -> float:
         """The steady temperature of the current flow on the strip mesh, sampled back at the
-        mechanics' vertices (and the lagged rate); returns the largest change of the elements'
+        mechanics' vertices; returns the largest change of the elements'
         temperatures over the largest. ``max_iter = 1`` inside a fixed point that repeats
         until that change is small: one Newton step from the last temperature, whose error
         is then of the order of the change squared."""
@@ -248,7 +256,6 @@ class ThermalCoupling(FlowStressFeedback):
         old = self.T_mean.vec.FV().NumPy().copy()
         self.T_mean.vec.FV().NumPy()[:] = mean
         self._set_ratio()
-        self._lag_rate()
         self._change = float(np.max(np.abs(mean - old))) / float(np.max(np.abs(old)))
         return self._change
 

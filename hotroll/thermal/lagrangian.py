@@ -6,8 +6,8 @@ time step, after the flow is solved and before the nodes move, one implicit step
 ``TemperatureField.step`` advances it:
 (H(T) - H(T_old))/dt - div(k grad T) = beta q, with the top's contact and air terms. The
 mass is lumped (positive weights: no under- or overshoot at the chilled surface). The flow
-stress reads it through the same consistency K(eps, T)/K_ref as the steady coupling
-(``coupling.ThermalCoupling``).
+stress reads it through the same consistency K(eps, T)/K_ref and rate exponent m(T) as the
+steady coupling (``coupling.ThermalCoupling``).
 
 Resolution: the layer the roll chills is resolved only as far as the plate mesh resolves it.
 The steady solver puts the temperature on a strip mesh of its own
@@ -53,6 +53,10 @@ class LagrangianThermal(FlowStressFeedback):
         """K(eps, T)/K_ref at the carried temperature (``FlowStressFeedback``)."""
         return self._consistency_at(self.field.gf)
 
+    def rate_offset(self):
+        """m(T) - m_ref at the carried temperature, or None (``FlowStressFeedback``)."""
+        return self._rate_offset_at(self.field.gf) if self.m_varies else None
+
     def attach(self, form, disp, top) -> None:
         self.form, self._disp, self._top = form, disp, top
 
@@ -65,7 +69,7 @@ class LagrangianThermal(FlowStressFeedback):
         f = self.form
         u = f.problem.velocity
         eps = strain_rate(u)
-        mu = f.material.viscosity(self._e2(), m=f.m, K=f.consistency)
+        mu = f.material.viscosity(self._e2(), m=f.m_material, K=f.consistency)
         plastic = self.K_ref * mu * InnerProduct(eps, eps)
         s = f.slip(u)
         law = f.friction
@@ -83,7 +87,6 @@ class LagrangianThermal(FlowStressFeedback):
         srcs = self.sources()
         old = self.field.values.copy()
         self.last = self.field.step(*srcs, dt)
-        self._lag_rate()
         self._lump.Assemble()
         dH = self.props.enthalpy_values(self.field.values) - self.props.enthalpy_values(old)
         storage = float(self._lump.vec.FV().NumPy() @ dH) / dt
