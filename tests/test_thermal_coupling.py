@@ -226,3 +226,40 @@ def test_temperature_figure_shows_the_written_data(chilled, monkeypatch):
     assert any(abs(v - s["exit_temperature_mean"]) < 1e-9 for v in levels)
     assert any(abs(v - s["exit_temperature_surface"]) < 1e-9 for v in levels)
     assert any(np.allclose(y, contact["heat_flux_to_roll"] / 1e6) for _, y in lines(flux))
+
+
+def test_form_stress_is_the_law_with_a_temperature_dependent_rate_exponent():
+    """With Hensel-Spittel's m8 (m = m3 + m8 T_C), the form's Norton-Hoff stress K_ref K(eps,
+    T)/K_ref 3^((m(T)+1)/2) edot^m(T), its consistency and rate offset at each element's
+    temperature, is the law's sigma(eps, edot, T) at every point and rate, in a temperature
+    field from 900 to 1373 K (exponent 0.24 to 0.29 against m_ref 0.29)."""
+    from hotroll.algorithms.steady import SteadyRun
+    from hotroll.app.runner import build_model, steady_settings
+    from hotroll.discretisation.forms import strain_rate
+    from hotroll.physics.material import edot_squared
+
+    case = load_case(CASE).with_overrides(**{"material.m8": 1e-4, "material.m3": 0.15})
+    model, _ = build_model(case)
+    run = SteadyRun(model, steady_settings(case), case.plate.length)
+    run._cold_start()
+    form, th = run.form, run.thermal
+    law = model.flow_stress
+    assert th.m_varies and form.m_material is not form.m
+    # the elements' temperatures at random between 900 and 1373 K
+    rng = np.random.default_rng(7)
+    th.T_mean.vec.FV().NumPy()[:] = rng.uniform(900.0, T_ENTRY, th.T_mean.space.ndof)
+    th._set_ratio()
+    e2 = edot_squared(strain_rate(form.problem.velocity))
+    sigma = model.material.K * form.material.sigma_ef_reg(e2, m=form.m_material,
+                                                        K=form.consistency)
+    mesh = run.mesh
+    pts = [mesh(*el_centre) for el_centre in
+           (np.mean([mesh.vertices[v.nr].point for v in el.vertices], axis=0)
+            for el in list(mesh.Elements())[::3])]
+    got = np.array([sigma(p) for p in pts])
+    # the regularised rate (2.21): sqrt(eps0^2 + edot^2)
+    rate = np.sqrt(np.array([e2(p) for p in pts]) + model.material.eps0**2)
+    temp = np.array([th.T_mean(p) for p in pts])
+    assert len(pts) > 100 and np.ptp(temp) > 400.0 and np.ptp(np.log(rate)) > 3.0
+    expected = law.sigma(case.plate.entry_strain, rate, temp)
+    assert got == pytest.approx(np.asarray(expected), rel=1e-9)
