@@ -7,7 +7,8 @@ table keeps the median of the solver's wall times, the coupled / isothermal rati
 updates and Newton iterations of both, the DOFs (mechanics + strip mesh) and the thermal
 figures.
 
-    python benchmarks/bench_thermal.py                   # thermal_pass and the finishing pass
+    python benchmarks/bench_thermal.py                   # the six passes of CASES
+    python benchmarks/bench_thermal.py --cases hot_strip_finishing_thermal
     python benchmarks/bench_thermal.py --repeat 5 --threads 2
 """
 from __future__ import annotations
@@ -26,24 +27,38 @@ sys.path.insert(0, str(ROOT / "scripts"))
 
 from _common import list_arg, print_table, write_table  # noqa: E402
 
-CASES = ["thermal_pass", "hot_strip_finishing_thermal"]   # bundled cases
+FINISHING = "hot_strip_finishing_thermal"
+# name: (bundled case, overrides by section): the README's pass, the study case, and the
+# finishing pass with the other friction laws, a lower speed and a heavier reduction (so that
+# the ratio is not one Newton path's)
+CASES = {
+    "thermal_pass": ("thermal_pass", {}),
+    FINISHING: (FINISHING, {}),
+    "finishing_tresca": (FINISHING, {"friction": {"law": "tresca", "factor": 0.8}}),
+    "finishing_viscoplastic": (FINISHING, {"friction": {"law": "viscoplastic"}}),
+    "finishing_1.75m/s": (FINISHING, {"pass": {"roll_angular_velocity": 5.0}}),
+    "finishing_8.5-5.5mm": (FINISHING, {"pass": {"entry_thickness": 0.0085,
+                                                 "exit_thickness": 0.0055}}),
+}
 COLUMNS = ["case", "dofs", "strip_dofs", "iso_s", "coupled_s", "ratio", "iso_updates",
            "coupled_updates", "iso_newton", "coupled_newton", "roll_force_iso_MN",
            "roll_force_coupled_MN", "exit_T_mean_K", "exit_T_surface_K", "heat_balance_error"]
 
 
-def _path(name: str) -> Path:
-    from hotroll.app.examples import example_path
-
-    return example_path(name)
-
-
-def _run(path: Path, threads: int, isothermal: bool) -> dict:
-    """One cold `hotroll run` of ``path`` (without [thermal] if ``isothermal``)."""
+def _run(name: str, threads: int, isothermal: bool) -> dict:
+    """One cold `hotroll run` of case ``name`` (without [thermal] if ``isothermal``)."""
     import tomllib
 
+    from hotroll.app.examples import example_path
+
+    example, overrides = CASES[name]
     with tempfile.TemporaryDirectory() as tmp:
-        data = tomllib.loads(path.read_text())
+        data = tomllib.loads(example_path(example).read_text())
+        for section, values in overrides.items():
+            if section == "friction":     # a friction law replaces the section
+                data[section] = dict(values)
+            else:
+                data.setdefault(section, {}).update(values)
         if isothermal:                    # the same pass without its [thermal] section
             data.pop("thermal", None)
         data.setdefault("solver", {})["threads"] = threads
@@ -54,7 +69,7 @@ def _run(path: Path, threads: int, isothermal: bool) -> dict:
                str(Path(tmp) / "out")]
         proc = subprocess.run(cmd, capture_output=True, text=True)
         if proc.returncode != 0:
-            raise SystemExit(f"{path.name}: {proc.stderr.strip()[-300:]}")
+            raise SystemExit(f"{name}: {proc.stderr.strip()[-300:]}")
         return json.loads((Path(tmp) / "out" / "summary.json").read_text())
 
 
@@ -76,9 +91,10 @@ def _toml(data: dict) -> str:
 
 
 def one(name: str, repeat: int, threads: int) -> dict:
-    path = _path(name)
-    iso = [_run(path, threads, True) for _ in range(repeat)]
-    cpl = [_run(path, threads, False) for _ in range(repeat)]
+    iso, cpl = [], []
+    for _ in range(repeat):               # alternated: slow spells of the machine hit both
+        iso.append(_run(name, threads, True))
+        cpl.append(_run(name, threads, False))
     ti = statistics.median(s["wall_time_s"] for s in iso)
     tc = statistics.median(s["wall_time_s"] for s in cpl)
     s, i = cpl[-1], iso[-1]
@@ -99,7 +115,15 @@ def main(argv=None) -> int:
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--out", type=Path, default=HERE / "results" / "bench_thermal")
     args = p.parse_args(argv)
+    unknown = [name for name in args.cases if name not in CASES]
+    if unknown:
+        p.error(f"--cases: unknown {unknown}; allowed: {', '.join(CASES)}")
     rows = [one(name, args.repeat, args.threads) for name in args.cases]
+    rows.append({"case": "all (sum of medians)", "iso_s": sum(r["iso_s"] for r in rows),
+                 "coupled_s": sum(r["coupled_s"] for r in rows),
+                 "iso_newton": sum(r["iso_newton"] for r in rows),
+                 "coupled_newton": sum(r["coupled_newton"] for r in rows)})
+    rows[-1]["ratio"] = rows[-1]["coupled_s"] / rows[-1]["iso_s"]
     title = (f"Thermal coupling cost: median of {args.repeat} cold runs each, "
              f"{args.threads} threads")
     write_table(rows, COLUMNS, args.out, title=title,

@@ -284,7 +284,9 @@ class ThermalCoupling(FlowStressFeedback):
         falling = k_lo >= k_hi
         if not np.all(falling | (k_lo == k_hi)):
             return plain
-        for _ in range(60):
+        for _ in range(60):                   # to 1e-9 of the temperature (~30 halvings)
+            if np.max(hi - lo) <= 1e-9 * np.max(np.abs(hi)):
+                break
             mid = 0.5 * (lo + hi)
             above = K(mid) > target           # still too hard: go hotter
             lo, hi = np.where(above, mid, lo), np.where(above, hi, mid)
