@@ -138,13 +138,21 @@ class RollingForm:
         e2 = edot_squared(strain_rate(w))
         return self.material.sigma_ef_reg(e2, m=self.m_material, K=self.consistency) / 3.0**0.5
 
-    def friction_coefficient(self, w):
+    def friction_arguments(self, w, k=None) -> dict:
+        """The friction law's keyword arguments at the velocity w: a_f, m, and the pressure
+        and k = sigma_ef/sqrt3 where the law takes them (``k`` given: that CF instead, e.g. a
+        P1 field where the volume gradient is not at hand)."""
+        law = self.friction
+        if law.uses_k and k is None:
+            k = self.shear_flow_stress(w)
+        return dict(a_f=self.a_f, m=self.m,
+                    pressure=self.pressure(w) if law.uses_pressure else None,
+                    k=k if law.uses_k else None)
+
+    def friction_coefficient(self, w, k=None):
         """The friction law's secant coefficient k_f at the velocity w (T_tau = -k_f v_s)."""
         s = self.slip(w)
-        law = self.friction
-        return law.coefficient(s * s, a_f=self.a_f, m=self.m,
-                               pressure=self.pressure(w) if law.uses_pressure else None,
-                               k=self.shear_flow_stress(w) if law.uses_k else None)
+        return self.friction.coefficient(s * s, **self.friction_arguments(w, k))
 
     def friction_measure(self):
         """Where the friction term is integrated: the top boundary, or, for a law with k (which
@@ -202,11 +210,10 @@ class RollingForm:
 
         n, t = self.roll_frame()
         law, s, s_u = self.friction, self.slip(w), u * t
-        pressure = self.pressure(w) if law.uses_pressure else None
-        k = self.shear_flow_stress(w) if law.uses_k else None
-        kw = dict(a_f=self.a_f, m=self.m, pressure=pressure, k=k)
+        kw = self.friction_arguments(w)
         kf = law.coefficient(s * s, **kw)
         d_s2, d_p, d_k = law.coefficient_partials(s * s, **kw)
+        k = kw["k"]
         d_kf = d_s2 * 2.0 * s * s_u
         if law.uses_pressure:      # p = gamma (w.n)
             d_kf = d_kf + d_p * self.pressure(u)

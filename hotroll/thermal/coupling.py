@@ -88,7 +88,7 @@ class ThermalCoupling(FlowStressFeedback):
     def attach(self, form, disp, top) -> None:
         """The form whose flow heats the strip (built with ``consistency()``), the mechanics'
         displacement GridFunction and its ``TopBoundary``: builds the strip mesh."""
-        from ngsolve import H1, GridFunction, IfPos, Parameter, x
+        from ngsolve import CF, H1, GridFunction, IfPos, Parameter, x, y
 
         self.form, self._disp, self._top = form, disp, top
         T0 = self.bc.entry_temperature
@@ -122,8 +122,6 @@ class ThermalCoupling(FlowStressFeedback):
         self._strip_tris = mesh_triangles(self.strip.mesh)
         # the CFs evaluated at every update, built and compiled once (they read GridFunctions
         # and Parameters): 2-3x faster to evaluate than the plain expression trees
-        from ngsolve import CF, y
-
         u = form.problem.velocity
         plastic, friction = self.sources()
         self._position_cf = CF((x, y)).Compile()
@@ -143,21 +141,7 @@ class ThermalCoupling(FlowStressFeedback):
     def sources(self):
         """(plastic power density W/m^3, friction power per area W/m^2 where in contact) of the
         mechanics' fields, as CFs to evaluate at volume points (k from the volume gradient)."""
-        from ngsolve import InnerProduct
-
-        from ..discretisation.forms import strain_rate
-
-        f = self.form
-        u = f.problem.velocity
-        eps = strain_rate(u)
-        mu = f.material.viscosity(self._e2(), m=f.m_material, K=f.consistency)
-        plastic = self.K_ref * mu * InnerProduct(eps, eps)
-        s = f.slip(u)
-        law = f.friction
-        kf = law.coefficient(s * s, a_f=f.a_f, m=f.m,
-                             pressure=f.pressure(u) if law.uses_pressure else None,
-                             k=f.shear_flow_stress(u) if law.uses_k else None)
-        return plastic, self.K_ref * kf * s * s
+        return self._heat_sources()
 
     # --- mechanics -> strip ----------------------------------------------------------------
     def _find(self, ref: np.ndarray):

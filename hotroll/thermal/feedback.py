@@ -47,6 +47,22 @@ class FlowStressFeedback:
         """The form's rate-exponent offset (a CF), or None where the exponent is m_ref."""
         raise NotImplementedError
 
+    def _heat_sources(self, k=None):
+        """(plastic power density s:eps_dot = K_ref mu eps_dot:eps_dot, W/m^3, of the form's
+        own law; friction power per contact area K_ref k_f |v_s|^2, W/m^2) as CFs of the
+        form's fields; ``k``: RollingForm.friction_coefficient's."""
+        from ngsolve import InnerProduct
+
+        from ..discretisation.forms import strain_rate
+
+        f = self.form
+        u = f.problem.velocity
+        eps = strain_rate(u)
+        mu = f.material.viscosity(self._e2(), m=f.m_material, K=f.consistency)
+        s = f.slip(u)
+        return (self.K_ref * mu * InnerProduct(eps, eps),
+                self.K_ref * f.friction_coefficient(u, k) * s * s)
+
     def _e2(self):
         from ..discretisation.forms import strain_rate
         from ..physics.material import edot_squared

@@ -61,24 +61,13 @@ class LagrangianThermal(FlowStressFeedback):
         self.form, self._disp, self._top = form, disp, top
 
     def sources(self):
-        """(velocity, plastic power density W/m^3, friction power per area W/m^2, contact)."""
-        from ngsolve import InnerProduct
-
-        from ..discretisation.forms import strain_rate
-
+        """(velocity, plastic power density W/m^3, friction power per area W/m^2, contact); k
+        from a P1 field (the top's boundary integrals have no volume gradient)."""
         f = self.form
-        u = f.problem.velocity
-        eps = strain_rate(u)
-        mu = f.material.viscosity(self._e2(), m=f.m_material, K=f.consistency)
-        plastic = self.K_ref * mu * InnerProduct(eps, eps)
-        s = f.slip(u)
-        law = f.friction
-        if law.uses_k:
-            self._k.Set(f.shear_flow_stress(u))
-        kf = law.coefficient(s * s, a_f=f.a_f, m=f.m,
-                             pressure=f.pressure(u) if law.uses_pressure else None,
-                             k=self._k if law.uses_k else None)
-        return u, plastic, self.K_ref * kf * s * s, f.chi
+        if f.friction.uses_k:
+            self._k.Set(f.shear_flow_stress(f.problem.velocity))
+        plastic, friction = self._heat_sources(k=self._k)
+        return f.problem.velocity, plastic, friction, f.chi
 
     def step(self, dt: float) -> SolveInfo:
         """One implicit step on the current mesh (before the nodes move), and its energy
