@@ -74,6 +74,8 @@ class RollingModel:
     entry_strain: float = 0.0
     carries_strain: bool = True   # the law depends on the strain: a strain field is carried
     thermal: tuple | None = None  # (ThermalProperties, ThermalBoundary, strip mesh refinement)
+    strain_profile: object = None  # the inlet's strain over the half thickness (a
+                                   # process.profile.ThicknessProfile; steady solver), or None
 
     @property
     def v_reg(self) -> float:
@@ -87,7 +89,7 @@ class RollingModel:
         if self.flow_stress is not None and self.carries_strain:
             from ..discretisation.strain import StrainField
 
-            strain = StrainField(mesh, self.entry_strain)
+            strain = StrainField(mesh, self.entry_strain, profile=self.strain_profile)
         if self.thermal is not None and lagrangian:     # carried with the moving mesh
             from ..thermal.lagrangian import LagrangianThermal
 

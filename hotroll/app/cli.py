@@ -316,3 +316,59 @@ def meshes() -> None:
 
 if __name__ == "__main__":
     app()
+
+
+@app.command()
+def schedule(
+    schedule_file: Annotated[Path, typer.Argument(
+        help="Schedule file (TOML) or a bundled schedule's name (finishing_mill, ...).")],
+    out: OutOpt,
+    no_figures: Annotated[bool, typer.Option("--no-figures", help="Do not write figures.")] = False,
+    resume: ResumeOpt = True,
+) -> None:
+    """Roll a pass schedule: every pass from the previous exit state (thickness, temperature
+    and strain through the thickness), interpass cooling; OUT/schedule.csv, schedule.json,
+    schedule.png and one directory per pass."""
+    from hotroll.schedule import examples as sched_examples
+    from hotroll.schedule.config import load_schedule
+    from hotroll.schedule.run import ScheduleError, run_schedule
+
+    if not schedule_file.exists():
+        try:
+            schedule_file = sched_examples.schedule_path(str(schedule_file))
+        except FileNotFoundError as e:
+            raise _fail(f"schedule: {schedule_file} is neither a file nor a bundled schedule "
+                        f"({e})") from None
+    try:
+        sch = load_schedule(schedule_file)
+        if no_figures:
+            sch.output.figures = False
+    except CaseError as e:
+        raise _fail(str(e)) from None
+    console.print(Text(f"rolling {sch.name}: {len(sch.passes)} passes -> {out}", style="bold"))
+    try:
+        rows = run_schedule(sch, out, resume=resume,
+                            progress=lambda line: console.print(Text("  " + line)))
+    except ScheduleError as e:
+        err_console.print(Text(str(e), style="yellow"), soft_wrap=True)
+        raise typer.Exit(int(e.summary.get("exit_code") or 1)) from None
+    width = sch.strip.width
+    table = Table(title=escape(f"{sch.name}: schedule"))
+    heads = ["pass", "h0 -> h1 mm", "U m/s"]
+    heads += ["force MN", "torque kN m", "power MW"] if width else \
+        ["force MN/m", "torque kN m/m", "power MW/m"]
+    heads += ["T in/out K", "T surface K", "strain out", "FE solves", "s"]
+    for h in heads:
+        table.add_column(h, justify="left" if h == "pass" else "right")
+    for r in rows:
+        w = width or 1.0
+        table.add_row(
+            escape(r["name"]), f"{1e3 * r['entry_thickness']:.2f} -> {1e3 * r['exit_thickness']:.2f}",
+            f"{r['roll_surface_speed']:.3f}", f"{1e-6 * w * r['roll_force']:.3f}",
+            f"{1e-3 * w * r['roll_torque']:.1f}", f"{2e-6 * w * r['roll_power']:.3f}",
+            f"{r['entry_temperature_mean']:.1f} / {r['exit_temperature_mean']:.1f}",
+            f"{r['exit_temperature_surface']:.1f}", f"{r['exit_strain_mean']:.3f}",
+            str(r["fe_solves"]), f"{r['wall_time']:.1f}")
+    console.print(table)
+    console.print(f"table: {out / 'schedule.csv'}, figure: {out / 'schedule.png'} "
+                  f"(power: both rolls)")

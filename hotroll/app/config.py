@@ -99,6 +99,25 @@ class PassConfig(_Section):
         return self.roll_pass().bite_angle
 
 
+def check_profile(key: str, v: Any) -> Any:
+    """A through-thickness profile [[eta, value], ...] (``process.profile``): eta from 0 to 1,
+    temperatures > 0 K, strains >= 0; ValueError with what is wrong."""
+    from ..process.profile import ProfileError, ThicknessProfile
+
+    if v is None:
+        return None
+    try:
+        prof = ThicknessProfile.from_pairs(v)
+    except ProfileError as e:
+        raise ValueError(str(e)) from None
+    low = min(prof.values)
+    if key == "temperature_profile" and low <= 0.0:
+        raise ValueError(f"temperatures must be > 0 K, got {low:g} K")
+    if key == "strain_profile" and low < 0.0:
+        raise ValueError(f"strains must be >= 0, got {low:g}")
+    return [tuple(p) for p in prof.pairs()]
+
+
 class PlateConfig(_Section):
     length: float = _field(
         ..., "initial plate length, at least 3 x the projected contact length", "m", "> 0", gt=0)
@@ -110,6 +129,33 @@ class PlateConfig(_Section):
     free_surface: Literal["traced", "constrained"] = _field(
         "traced", "free tops before and after the bite: traction-free streamlines (traced) or "
         "held flat by the penalty (3.2d) (constrained)", "", '"traced" or "constrained"')
+    temperature_profile: list[tuple[float, float]] | None = _field(
+        None, "entry temperature through the half thickness, [[eta, T], ...] with eta = "
+        "y / half thickness from 0 (centre) to 1 (surface), linear between (omit: uniform "
+        "plate.temperature; needs [thermal] and the steady method)", "K",
+        "pairs with eta increasing strictly from 0 to 1 and T > 0")
+    strain_profile: list[tuple[float, float]] | None = _field(
+        None, "entry strain through the half thickness, [[eta, strain], ...] as "
+        "temperature_profile (omit: uniform plate.entry_strain; steady method)", "",
+        "pairs with eta increasing strictly from 0 to 1 and strain >= 0")
+
+    @field_validator("temperature_profile", "strain_profile")
+    @classmethod
+    def _profile(cls, v: Any, info) -> Any:
+        return check_profile(info.field_name, v)
+
+    @property
+    def mean_entry_strain(self) -> float:
+        """The strain profile's section mean, or entry_strain."""
+        prof = self.entry_profiles()[1]
+        return self.entry_strain if prof is None else prof.mean()
+
+    def entry_profiles(self):
+        """(temperature, strain) ``ThicknessProfile`` or None each."""
+        from ..process.profile import ThicknessProfile
+
+        return tuple(None if p is None else ThicknessProfile.from_pairs(p)
+                     for p in (self.temperature_profile, self.strain_profile))
 
 
 class MeshConfig(_Section):
@@ -212,6 +258,14 @@ class Case(_Section):
                          f"({_fields(MaterialConfig)[key].description})"
                          for key in ("density", "specific_heat", "conductivity")
                          if getattr(self.material, key) is None]
+        for key in ("temperature_profile", "strain_profile"):
+            if getattr(self.plate, key) is not None and self.solver.method != "steady":
+                problems.append(f"plate.{key}: needs solver.method = \"steady\" (the report's "
+                                f"scheme starts from a uniform plate), got "
+                                f"\"{self.solver.method}\"")
+        if self.plate.temperature_profile is not None and self.thermal is None:
+            problems.append("plate.temperature_profile: needs a [thermal] section (an isothermal "
+                            "run has one temperature, plate.temperature)")
         if problems:
             raise _Problems(problems)
         return self

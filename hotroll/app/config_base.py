@@ -20,11 +20,12 @@ PosFloat = Annotated[float, Field(gt=0)]
 class CaseError(ValueError):
     """Invalid case description; ``problems`` holds one ``section.key: ...`` line each."""
 
-    def __init__(self, problems: list[str] | str, source: str | None = None):
+    def __init__(self, problems: list[str] | str, source: str | None = None,
+                 what: str = "case description"):
         self.problems = [problems] if isinstance(problems, str) else list(problems)
         self.source = source
         n = len(self.problems)
-        head = f"{source or 'case'}: invalid case description ({n} problem{'s' * (n != 1)})"
+        head = f"{source or 'case'}: invalid {what} ({n} problem{'s' * (n != 1)})"
         super().__init__("\n".join([head] + [f"  {p}" for p in self.problems]))
 
 

@@ -56,8 +56,9 @@ class ThermalConfig(_Section):
         1.0, "the temperature's strip mesh finer by this factor (rows and columns; for "
         "convergence studies)", "", "in [0.25, 16]", ge=0.25, le=16)
 
-    def boundary(self, entry_temperature: float):
-        """The solver's boundary data (``hotroll.thermal.properties.ThermalBoundary``)."""
+    def boundary(self, entry_temperature: float, entry_profile=None):
+        """The solver's boundary data (``hotroll.thermal.properties.ThermalBoundary``);
+        ``entry_profile``: the inlet's T(eta) (``process.profile.ThicknessProfile``)."""
         from ..thermal.properties import ThermalBoundary
 
         return ThermalBoundary(
@@ -65,4 +66,4 @@ class ThermalConfig(_Section):
             ambient_temperature=self.ambient_temperature, htc_contact=self.htc_contact,
             htc_air=self.htc_air, emissivity=self.emissivity,
             friction_heat_to_strip=self.friction_heat_to_strip,
-            taylor_quinney=self.taylor_quinney)
+            taylor_quinney=self.taylor_quinney, entry_profile=entry_profile)

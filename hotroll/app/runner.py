@@ -43,7 +43,7 @@ def reference_material(case: Case):
         raise CaseError(f"plate.temperature: the flow-stress law's rate exponent is {m:.4g} at "
                         f"{T:g} K; it must be in (0, 1] (allowed temperatures for this law: "
                         f"{getattr(flow, 'admissible_temperature_range', lambda: '?')()} K)")
-    K_ref = float(flow.consistency(case.plate.entry_strain, T))
+    K_ref = float(flow.consistency(case.plate.mean_entry_strain, T))
     return NortonHoff(K_ref, m, case.material.eps0), flow
 
 
@@ -58,7 +58,7 @@ def exit_strain(case: Case, run) -> dict:
     2 h1) (the downstream length, where it is rigid); report's scheme, the material past
     X_roll + 2h that was ahead of the bite at the start (it has crossed the whole arc)."""
     rp, pa = case.pass_.roll_pass(), case.pass_
-    homog = case.plate.entry_strain + 2.0 / math.sqrt(3.0) * math.log(
+    homog = case.plate.mean_entry_strain + 2.0 / math.sqrt(3.0) * math.log(
         pa.entry_thickness / pa.exit_thickness)
     field = getattr(run, "strain", None)
     if field is None:
@@ -87,18 +87,20 @@ def build_model(case: Case):
     spec = MeshSpec(h=h, fine_length=rp.contact_length + rp.u_roll * end_time + 6 * h,
                     h_far=case.mesh.h_far, grading=case.mesh.grading)
     material, flow = reference_material(case)
+    t_profile, e_profile = case.plate.entry_profiles()
     model = RollingModel(rp, case.plate.length, material,
                          case.friction.law_object(rp.u_roll, material.m), spec,
                          back_tension=case.pass_.back_tension,
                          front_tension=case.pass_.front_tension,
                          flow_stress=flow if strain_dependent(flow) or case.thermal else None,
                          temperature=case.plate.temperature,
-                         entry_strain=case.plate.entry_strain,
+                         entry_strain=case.plate.mean_entry_strain,
                          carries_strain=strain_dependent(flow),
                          thermal=(case.material.thermal_properties(),
-                                  case.thermal.boundary(case.plate.temperature),
+                                  case.thermal.boundary(case.plate.temperature, t_profile),
                                   case.thermal.mesh_refinement)
-                         if case.thermal else None)
+                         if case.thermal else None,
+                         strain_profile=e_profile)
     settings = TransientSettings(
         dt=case.dt, end_time=end_time, nonlinear=sv.nonlinear, tol=sv.tolerance,
         max_it=sv.max_iterations, steady_tol=sv.steady_tolerance, max_steps=sv.max_steps,
@@ -227,6 +229,14 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
                                 if summary.get("contact_length") else None)
     summary.update(width_totals(summary, case.pass_.width))
     summary["temperature"] = case.plate.temperature
+    from ..post.profiles import exit_profiles
+
+    profile = exit_profiles(run)
+    summary["exit_profile"] = profile      # eta, temperature (K), strain (-) at the outlet
+    if profile is not None:
+        write_csv(out / "exit_profile.csv",
+                  {k: np.asarray(v if v is not None else [math.nan] * len(profile["eta"]))
+                   for k, v in profile.items()})
     from ..thermal.coupling import THERMAL_UNITS
 
     summary["units"] = {k: u for k, u in (UNITS | THERMAL_UNITS).items() if k in summary}

@@ -21,13 +21,22 @@ import numpy as np
 class StrainField:
     """P1 strain on a (moving) mesh, with its steady transport and transient update."""
 
-    def __init__(self, mesh, entry_strain: float, inlet: str = "in"):
+    def __init__(self, mesh, entry_strain: float, inlet: str = "in", profile=None):
+        """``profile``: the inlet's strain over eta = y / (the inlet's highest y) in the
+        undeformed mesh (a ``process.profile.ThicknessProfile``), or None: ``entry_strain``."""
         from ngsolve import H1, GridFunction
 
         self.mesh, self.entry = mesh, float(entry_strain)
         self.space = H1(mesh, order=1, dirichlet=inlet)
         self.gf = GridFunction(self.space)
-        self.gf.vec[:] = self.entry
+        self._inlet = np.full(self.space.ndof, self.entry)
+        if profile is not None:
+            fixed = ~np.array(list(self.space.FreeDofs()), dtype=bool)
+            y = np.asarray(mesh.ngmesh.Coordinates())[: mesh.nv, 1][fixed]
+            self._inlet[fixed] = profile(y / np.max(y))
+            self.entry = float(profile.mean())
+            self._inlet[~fixed] = self.entry
+        self.gf.vec.FV().NumPy()[:] = self._inlet
         self._edot = GridFunction(H1(mesh, order=1))
 
     @property
@@ -58,7 +67,7 @@ class StrainField:
         f += self._rate(velocity) * test * dx
         a.Assemble()
         f.Assemble()
-        self.gf.vec[:] = self.entry          # Dirichlet values on the inlet
+        self.values[:] = self._inlet          # Dirichlet values on the inlet
         r = f.vec.CreateVector()
         r.data = f.vec - a.mat * self.gf.vec
         self.gf.vec.data += a.mat.Inverse(self.space.FreeDofs(), inverse="umfpack") * r

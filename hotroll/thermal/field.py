@@ -243,9 +243,17 @@ class TemperatureField:
 
     @cached_property
     def _inlet_values(self) -> np.ndarray:
-        """T = T_entry at the inlet's DOFs."""
+        """T = T_entry at the inlet's DOFs, or the entry profile T(eta) at eta = y / (the
+        inlet's highest y) in the undeformed mesh (P1: the DOFs are the vertices)."""
         from ngsolve import BND, GridFunction
 
+        profile = self.bc.entry_profile
+        if profile is not None:
+            if self.order != 1:
+                raise ValueError("an entry temperature profile needs the P1 temperature")
+            y = np.asarray(self.mesh.ngmesh.Coordinates())[: self.mesh.nv, 1]
+            y_in = y[self._fixed[: self.mesh.nv]]
+            return np.asarray(profile(y_in / np.max(y_in)), dtype=float)
         inlet = GridFunction(self.space)
         inlet.Set(self.bc.entry_temperature, BND, definedon=self.mesh.Boundaries(self.inlet))
         return inlet.vec.FV().NumPy()[self._fixed].copy()

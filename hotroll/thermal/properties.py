@@ -190,6 +190,8 @@ class ThermalBoundary:
     emissivity: float             # of the free surface, radiating to the ambient
     friction_heat_to_strip: float = 0.5   # share of the friction power entering the strip
     taylor_quinney: float = 0.9           # share of the plastic power turned into heat
+    entry_profile: object = None          # a ThicknessProfile of the inlet's T(eta), K, or
+                                          # None: entry_temperature everywhere on the inlet
 
     def __post_init__(self):
         rules = {"entry_temperature": (0.0, True, None, "K"),

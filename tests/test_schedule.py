@@ -1,0 +1,157 @@
+"""Pass schedules (issue 17, hotroll/schedule): the state handed from pass to pass, the tandem
+mill's constant mass flux, the strain's accumulation, the transport's cooling against the
+slab's eigenfunction series from the handed-over profile, resume, and bad input.
+
+One coarse two-pass schedule (tests/data/two_pass_schedule.toml, about 4 s) is rolled once
+per module."""
+from __future__ import annotations
+
+import json
+import math
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from hotroll.app.config import CaseError
+from hotroll.schedule.config import load_schedule, schedule_from_dict
+from hotroll.schedule.run import run_schedule
+
+from casebuild import shared_scope
+
+DATA = Path(__file__).with_name("data") / "two_pass_schedule.toml"
+
+
+@pytest.fixture(scope=shared_scope)
+def rolled(tmp_path_factory):
+    out = tmp_path_factory.mktemp("schedule")
+    sch = load_schedule(DATA)
+    rows = run_schedule(sch, out)
+    return sch, rows, json.loads((out / "schedule.json").read_text()), out
+
+
+def _case(out: Path, row: dict) -> dict:
+    return tomllib.loads((out / row["case"] / "case.toml").read_text())
+
+
+def _summary(out: Path, row: dict) -> dict:
+    return json.loads((out / row["case"] / "summary.json").read_text())
+
+
+def test_the_next_pass_enters_with_the_exit_state(rolled):
+    """Pass 2's case file: its entry thickness is pass 1's exit thickness, its temperature
+    profile the transported one, its strain profile pass 1's exit strain times the retained
+    share (0.5), all to the digit."""
+    sch, rows, record, out = rolled
+    first, second = _case(out, rows[0]), _case(out, rows[1])
+    assert second["pass"]["entry_thickness"] == first["pass"]["exit_thickness"] == 0.08
+    after = record["profiles"][0]["after_transport"]
+    assert np.allclose(second["plate"]["temperature_profile"], after["temperature_profile"],
+                       rtol=1e-14, atol=0)
+    exit_strain = np.asarray(record["profiles"][0]["exit"]["strain_profile"])
+    got = np.asarray(second["plate"]["strain_profile"])
+    assert np.allclose(got[:, 0], exit_strain[:, 0])
+    assert np.allclose(got[:, 1], 0.5 * exit_strain[:, 1], rtol=1e-14, atol=0)
+    assert rows[1]["entry_strain_mean"] == pytest.approx(0.5 * rows[0]["exit_strain_mean"],
+                                                         rel=1e-12)
+
+
+def test_mass_flux_is_the_same_in_both_stands(rolled):
+    """mill.speeds = "mass_flow": stand 2's roll speed makes its flux stand 1's (within the
+    1e-3 tolerance); checked independently as (exit speed x exit thickness) of stand 1 against
+    (entry speed x entry thickness) of stand 2, each from its own run's velocities."""
+    sch, rows, record, out = rolled
+    s1, s2 = _summary(out, rows[0]), _summary(out, rows[1])
+    q1 = s1["exit_velocity"] * 0.5 * rows[0]["exit_thickness"]
+    q2 = s2["entry_velocity"] * 0.5 * rows[1]["entry_thickness"]
+    assert abs(q2 / q1 - 1.0) < 2e-3
+    assert abs(rows[1]["mass_flux"] / s1["mass_flux_out"] - 1.0) <= sch.mill.mass_flow_tolerance
+    # the second stand runs faster than volume constancy at zero slip difference would ask
+    assert rows[1]["roll_surface_speed"] > rows[0]["roll_surface_speed"]
+    assert rows[1]["fe_solves"] >= 2 and rows[0]["fe_solves"] == 1
+
+
+def test_strain_accumulates_pass_by_pass(rolled):
+    """Each pass adds at least the homogeneous 2/sqrt3 ln(h0/h1) and at most 25 % more
+    (redundant shear); the handed-over profile's mean is the run's own exit strain (the band
+    mean over the rigid exit strip) within 1 %."""
+    sch, rows, record, out = rolled
+    for r in rows:
+        inc = 2.0 / math.sqrt(3.0) * math.log(r["entry_thickness"] / r["exit_thickness"])
+        added = r["exit_strain_mean"] - r["entry_strain_mean"]
+        assert inc <= added <= 1.25 * inc
+        assert r["exit_strain_mean"] == pytest.approx(_summary(out, r)["exit_strain"], rel=1e-2)
+    assert rows[0]["entry_strain_mean"] == pytest.approx(0.05)
+
+
+def _series_mean(eta, T, bi: float, fo: float, T_amb: float, terms: int = 80) -> float:
+    """Mean of the slab's temperature after Fo from the initial profile T(eta), surface
+    h (T - T_amb), insulated centre: theta = sum c_n exp(-z_n^2 Fo) cos(z_n eta), z tan z = Bi,
+    c_n the projection of theta_0 on cos(z_n eta) (Carslaw and Jaeger 3.11)."""
+    fine = np.linspace(0.0, 1.0, 20001)
+    theta0 = np.interp(fine, eta, T) - T_amb
+    mean = 0.0
+    for i in range(terms):
+        z = brentq(lambda z: z * math.tan(z) - bi, i * math.pi + 1e-12,
+                   i * math.pi + math.pi / 2 - 1e-12)
+        phi = np.cos(z * fine)
+        c = np.trapezoid(theta0 * phi, fine) / np.trapezoid(phi * phi, fine)
+        mean += c * math.exp(-z * z * fo) * math.sin(z) / z
+    return T_amb + mean
+
+
+def test_transport_cooling_matches_the_slab_series(rolled):
+    """The transport (20 s, h = 200 W/(m^2 K), no radiation, constant properties) from pass 1's
+    outlet profile: the mean after it against the series from the same profile, within 1 % of
+    the drop (the drop about 20 K)."""
+    sch, rows, record, out = rolled
+    prof = np.asarray(record["profiles"][0]["exit"]["temperature_profile"])
+    H = 0.5 * rows[0]["exit_thickness"]
+    k, rho_c = 30.0, 7600.0 * 650.0
+    bi, fo = 200.0 * H / k, k / rho_c * 20.0 / H**2
+    exact = _series_mean(prof[:, 0], prof[:, 1], bi, fo, 293.15)
+    start = rows[0]["outlet_temperature_mean"]
+    got = rows[0]["next_entry_temperature_mean"]
+    assert start - exact > 10.0
+    assert abs(got - exact) < 0.01 * (start - exact)
+    assert rows[0]["transport_balance_error"] < 1e-8
+
+
+def test_a_finished_schedule_resumes_without_solving(rolled, tmp_path):
+    """Rolled again into the same directory: no FE solve, the same table."""
+    sch, rows, record, out = rolled
+    again = run_schedule(sch, out)
+    assert [r["fe_solves"] for r in again] == [0, 0]
+    for a, b in zip(rows, again):
+        assert a["roll_force"] == b["roll_force"]
+        assert a["next_entry_temperature_mean" if "transport_duration" in a else "roll_torque"] \
+            == b["next_entry_temperature_mean" if "transport_duration" in b else "roll_torque"]
+
+
+def _data() -> dict:
+    return tomllib.loads(DATA.read_text())
+
+
+@pytest.mark.parametrize("change,field", [
+    (lambda d: d["pass"][0].pop("transport"), "pass[1].transport"),
+    (lambda d: d["pass"][1].update(exit_thickness=0.09), "pass[2].exit_thickness"),
+    (lambda d: d["pass"][1].update(roll_surface_speed=1.0), "pass[2]: no roll speed"),
+    (lambda d: d["pass"][0].pop("roll_angular_velocity"), "pass[1]: give exactly one"),
+    (lambda d: d["pass"][0]["transport"].update(distance=3.0), "transport: give exactly one"),
+    (lambda d: d["pass"][0]["transport"].update(strain_retained=1.5),
+     "pass[1].transport.strain_retained"),
+    (lambda d: d["strip"].update(temperature_profile=[[0.1, 1300.0], [1.0, 1200.0]]),
+     "strip.temperature_profile"),
+    (lambda d: d["pass"][0].update(roll_radius=0.01), "pass[1].roll_radius"),
+    (lambda d: d.pop("thermal"), "thermal"),
+    (lambda d: d["solver"].update(method="transient"), "solver.method"),
+    (lambda d: d["pass"][1].update(gap=0.06), "pass[2].gap"),
+])
+def test_bad_schedules_name_the_field(change, field):
+    d = _data()
+    change(d)
+    with pytest.raises(CaseError) as e:
+        schedule_from_dict(d, "schedule.toml")
+    assert field in str(e.value)
