@@ -1,0 +1,309 @@
+"""hotroll as PyRolL's model of flat roll passes (issue 17): ``import hotroll.pyroll``.
+
+Importing this module registers hook functions with pyroll-core (3.1), as any PyRolL plugin:
+for a ``RollPass`` whose groove is a ``FlatGroove`` the roll force, the roll torque, the
+forward slip, the neutral angle, the exit velocity, the exit strain and the exit temperature
+come from one steady thermo-mechanical hotroll solve of the pass; other passes return None
+and are left to PyRolL's other plugins. With ``Config.TRANSPORT_COOLING`` a ``Transport``
+cools the strip's mean temperature with hotroll's interpass model (``thermal/interpass.py``).
+
+PyRolL's conventions (docs/notes/pyroll-api.md): SI, heights are full thicknesses, the roll
+force is the force on one roll over the whole width (N), the torque that of one roll (N m),
+temperatures in K, tensions are stresses (Pa).
+
+What the FE pass takes from PyRolL:
+- geometry and speed: ``in_profile.height``, ``gap``, ``in_profile.width``,
+  ``roll.working_radius``, ``roll.working_velocity``; tensions ``back_tension``,
+  ``front_tension``;
+- the strip: ``in_profile.temperature``, ``in_profile.strain``; the flow stress
+  ``in_profile.flow_stress_function`` (e.g. pyroll-freiberg-flow-stress) as a Hensel-Spittel
+  law fitted over the pass's range (``physics/flow_stress_fit.py``; the fit's error is in
+  ``RollPass.hotroll_result``), or else the hotroll grade ``in_profile.material`` names;
+  ``density``, ``specific_heat_capacity``, ``thermal_conductivity`` (else ``Config``);
+- friction ``RollPass.coulomb_friction_coefficient`` (else ``Config.FRICTION``), roll
+  temperature ``Roll.temperature`` and ``Roll.contact_heat_transfer_coefficient`` (the names
+  pyroll-integral-thermal uses; else ``Config.THERMAL``).
+
+PyRolL evaluates the force once and the torque about four times per iteration of
+``Unit.solve``, and re-solves every unit on every iteration of a ``PassSequence``: the FE
+solve is cached on the pass, keyed on its case (inputs rounded: temperatures to 0.01 K,
+strains to 1e-6, lengths to 1 um), and a changed input starts from the previous solution
+(``app/sweep.py``). ``STATS`` counts the FE solves and cache hits.
+"""
+from __future__ import annotations
+
+import math
+import tempfile
+from pathlib import Path
+
+try:
+    from pyroll.core import FlatGroove, Hook, RollPass, Transport, Unit, root_hooks
+except ImportError as e:      # pragma: no cover - the extra is not installed
+    raise ImportError("hotroll.pyroll needs pyroll-core: pip install 'hotroll[pyroll]'") from e
+
+from .app.config import Case, case_from_dict
+
+
+class Config:
+    """The plugin's defaults, used where PyRolL's objects do not give a value."""
+
+    FRICTION: dict = {"law": "coulomb", "mu": 0.3}
+    MESH: dict = {}                   # the pass cases' [mesh], e.g. {"h_contact": 0.001}
+    SOLVER: dict = {"threads": 2}
+    THERMAL: dict = {"htc_contact": 2.0e4, "roll_temperature": 353.15, "htc_air": 20.0,
+                     "emissivity": 0.8, "ambient_temperature": 293.15}
+    PROPERTIES: dict = {"density": 7600.0, "specific_heat": 650.0, "conductivity": 28.0}
+    OUTPUT_DIR: Path | None = None    # each FE run into OUTPUT_DIR/<label>; None: a temp dir
+    TRANSPORT_COOLING: bool = True
+    PLATE_CONTACT_LENGTHS: float = 5.0
+
+
+#: FE solves, cache hits and warm starts since import (or ``reset_stats()``).
+STATS = {"fe_solves": 0, "cache_hits": 0, "warm_starts": 0}
+
+
+def reset_stats() -> None:
+    for k in STATS:
+        STATS[k] = 0
+
+
+def _declare(cls, name: str, doc: str) -> None:
+    """A hook that another plugin may already have declared (same name, same meaning)."""
+    if not isinstance(cls.__dict__.get(name), Hook) and not isinstance(getattr(cls, name, None),
+                                                                        Hook):
+        setattr(cls, name, Hook[float]())
+
+
+_declare(RollPass, "coulomb_friction_coefficient", "Coulomb's friction coefficient mu")
+_declare(RollPass.Roll, "contact_heat_transfer_coefficient", "strip-roll HTC, W/(m^2 K)")
+_declare(Transport, "convection_heat_transfer_coefficient", "convection to air, W/(m^2 K)")
+_declare(Transport, "relative_radiation_coefficient", "emissivity")
+RollPass.hotroll_result = Hook[dict]()
+"""hotroll's summary of the pass (summary.json's figures, per unit width, SI) with the
+flow-stress fit (``flow_stress_fit``) and the case (``case_toml``)."""
+
+
+def is_flat(rp) -> bool:
+    return isinstance(getattr(rp.roll, "groove", None), FlatGroove)
+
+
+def _value(obj, name: str, default):
+    """A hook's value if it can be computed, else ``default``."""
+    try:
+        return getattr(obj, name) if obj.has_value(name) else default
+    except (AttributeError, ValueError):
+        return default
+
+
+def _material(rp, T0: float, e0: float, h0: float, h1: float, U: float, lc: float):
+    """([material] table, fit description): the in profile's flow-stress function fitted, or
+    the hotroll grade its material names."""
+    ip = rp.in_profile
+    func = _value(ip, "flow_stress_function", None)
+    if func is not None:
+        from .physics.flow_stress_fit import fit_hensel_spittel
+
+        inc = 2.0 / math.sqrt(3.0) * math.log(h0 / h1)
+        rate = U / lc * inc
+        fit = fit_hensel_spittel(func, (e0, e0 + 1.5 * inc), (0.05 * rate, 4.0 * rate),
+                                 (max(T0 - 250.0, 300.0), T0 + 60.0))
+        table = {"law": "hensel-spittel", **{k: v for k, v in fit.law.params().items()
+                                              if k not in ("m4", "m6", "m9")}}
+        return table, {"source": "in_profile.flow_stress_function", "max_rel_error":
+                       fit.max_rel_error, "strain": fit.strain, "strain_rate": fit.strain_rate,
+                       "temperature": fit.temperature}
+    from .physics.grades import list_grades
+
+    names = _value(ip, "material", None)
+    names = [names] if isinstance(names, str) else list(names or [])
+    known = {g.lower(): g for g in list_grades()}
+    for n in names:
+        if str(n).lower() in known:
+            return {"law": "hensel-spittel", "grade": known[str(n).lower()]}, {
+                "source": f"hotroll grade {known[str(n).lower()]}"}
+    raise ValueError(f"hotroll.pyroll: pass {rp.label!r}: the in profile has no "
+                     f"flow_stress_function and its material {names} is no hotroll grade "
+                     f"({', '.join(list_grades())})")
+
+
+def _roll_speed(rp) -> float:
+    """The roll's surface speed at the working radius (m/s) from what the user set on the roll
+    (not through PyRolL's pass velocity, which depends on the neutral angle hotroll gives)."""
+    roll = rp.roll
+    R = float(roll.working_radius)
+    if roll.has_set("working_velocity"):
+        return float(roll.working_velocity)
+    if roll.has_set("rotational_frequency"):
+        return 2.0 * math.pi * float(roll.rotational_frequency) * R
+    if roll.has_set("surface_velocity"):
+        return float(roll.surface_velocity) * R / float(roll.nominal_radius)
+    raise ValueError(f"hotroll.pyroll: pass {rp.label!r}: give the roll a rotational_frequency "
+                     f"(1/s), surface_velocity or working_velocity (m/s)")
+
+
+def pass_case(rp) -> tuple[Case, dict]:
+    """The hotroll case of a flat PyRolL roll pass and its flow-stress description."""
+    ip = rp.in_profile
+    R = float(rp.roll.working_radius)
+    h0, h1 = round(float(ip.height), 6), round(float(rp.height), 6)
+    U = _roll_speed(rp)
+    T0 = round(float(ip.temperature), 2)
+    e0 = round(float(_value(ip, "strain", 0.0)), 6)
+    lc = math.sqrt(R * 0.5 * (h0 - h1))
+    material, fit = _material(rp, T0, e0, h0, h1, U, lc)
+    props = Config.PROPERTIES
+    material.update(density=float(_value(ip, "density", props["density"])),
+                    specific_heat=float(_value(ip, "specific_heat_capacity",
+                                               props["specific_heat"])),
+                    conductivity=float(_value(ip, "thermal_conductivity",
+                                              props["conductivity"])))
+    mu = _value(rp, "coulomb_friction_coefficient", None)
+    thermal = dict(Config.THERMAL)
+    thermal["roll_temperature"] = float(_value(rp.roll, "temperature",
+                                               thermal["roll_temperature"]))
+    thermal["htc_contact"] = float(_value(rp.roll, "contact_heat_transfer_coefficient",
+                                          thermal["htc_contact"]))
+    d = {
+        "name": str(rp.label or "pass"),
+        "pass": {"roll_radius": R, "entry_thickness": h0, "exit_thickness": h1,
+                 "roll_angular_velocity": U / R, "width": round(float(ip.width), 6),
+                 "back_tension": float(_value(rp, "back_tension", 0.0)),
+                 "front_tension": float(_value(rp, "front_tension", 0.0))},
+        "plate": {"length": Config.PLATE_CONTACT_LENGTHS * lc, "temperature": T0,
+                  "entry_strain": e0},
+        "material": material,
+        "friction": {"law": "coulomb", "mu": float(mu)} if mu is not None
+        else dict(Config.FRICTION),
+        "mesh": dict(Config.MESH),
+        "solver": {"method": "steady", **Config.SOLVER},
+        "output": {"figures": False, "vtk": False},
+        "thermal": thermal,
+    }
+    return case_from_dict(d), fit
+
+
+def solve(rp) -> dict:
+    """hotroll's summary of a flat pass: cached on the pass, keyed on its case; a changed
+    case starts from the previous solution where the mesh is the same."""
+    from .app.runner import run_case
+    from .app.sweep import Sweep
+
+    case, fit = pass_case(rp)
+    key = case.to_toml()
+    cache = rp.__dict__.setdefault("_hotroll_cache", {})
+    if key in cache:
+        STATS["cache_hits"] += 1
+        return cache[key]
+    sweep = rp.__dict__.setdefault("_hotroll_sweep", Sweep())
+    if Config.OUTPUT_DIR is not None:
+        out = Path(Config.OUTPUT_DIR) / case.name
+    else:
+        tmp = rp.__dict__.setdefault("_hotroll_tmp", tempfile.TemporaryDirectory())
+        out = Path(tmp.name) / case.name
+    summary = run_case(case, out, resume=False, sweep=sweep)
+    STATS["fe_solves"] += 1
+    STATS["warm_starts"] += summary.get("warm_start_from") is not None
+    if summary.get("exit_code") != 0:
+        raise RuntimeError(f"hotroll.pyroll: pass {rp.label!r} ended with exit code "
+                           f"{summary.get('exit_code')} (status {summary.get('status')}); "
+                           f"its output is in {out}")
+    T_out, e_out = _outlet_means(case, summary)
+    summary = dict(summary, flow_stress_fit=fit, case_toml=key, output_dir=str(out),
+                   outlet_temperature_mean=T_out, outlet_strain_mean=e_out)
+    cache[key] = summary
+    return summary
+
+
+def _outlet_means(case: Case, s: dict) -> tuple[float, float]:
+    """(temperature K, strain) means of the profile at the FE strip's outlet (the temperature
+    by its heat content)."""
+    import numpy as np
+
+    from .thermal.interpass import enthalpy_mean
+
+    prof = s["exit_profile"]
+    eta = np.asarray(prof["eta"])
+    w = np.zeros_like(eta)
+    w[:-1] += 0.5 * np.diff(eta)
+    w[1:] += 0.5 * np.diff(eta)
+    T = enthalpy_mean(case.material.thermal_properties(), np.asarray(prof["temperature"]), w)
+    e = (float(w @ np.asarray(prof["strain"])) / float(w.sum())
+         if prof.get("strain") is not None else s["homogeneous_exit_strain"])
+    return T, e
+
+
+@RollPass.hotroll_result
+def hotroll_result(self: RollPass):
+    return solve(self) if is_flat(self) else None
+
+
+@RollPass.roll_force(tryfirst=True)
+def roll_force(self: RollPass):
+    if not is_flat(self):
+        return None
+    s = solve(self)
+    return s["roll_force"] * self.in_profile.width
+
+
+@RollPass.Roll.roll_torque(tryfirst=True)
+def roll_torque(self: RollPass.Roll):
+    rp = self.roll_pass
+    if not is_flat(rp):
+        return None
+    return solve(rp)["roll_torque"] * rp.in_profile.width
+
+
+@RollPass.forward_slip_ratio(tryfirst=True)
+def forward_slip_ratio(self: RollPass):
+    return solve(self)["forward_slip"] if is_flat(self) else None
+
+
+@RollPass.Roll.neutral_angle(tryfirst=True)
+def neutral_angle(self: RollPass.Roll):
+    """PyRolL's sign: negative towards the entry (hotroll's is positive there)."""
+    rp = self.roll_pass
+    return -solve(rp)["neutral_angle"] if is_flat(rp) else None
+
+
+@RollPass.OutProfile.velocity(tryfirst=True)
+def out_velocity(self: RollPass.OutProfile):
+    rp = self.roll_pass
+    return solve(rp)["exit_velocity"] if is_flat(rp) else None
+
+
+@RollPass.OutProfile.temperature(tryfirst=True)
+def out_temperature(self: RollPass.OutProfile):
+    rp = self.roll_pass
+    return solve(rp)["outlet_temperature_mean"] if is_flat(rp) else None
+
+
+@RollPass.OutProfile.strain(tryfirst=True)
+def out_strain(self: RollPass.OutProfile):
+    rp = self.roll_pass
+    return solve(rp)["outlet_strain_mean"] if is_flat(rp) else None
+
+
+@Transport.OutProfile.temperature
+def transport_temperature(self: Transport.OutProfile):
+    """hotroll's interpass cooling of a uniform strip at the in profile's mean temperature:
+    1D conduction, convection and radiation (``thermal/interpass.cool``)."""
+    if not Config.TRANSPORT_COOLING:
+        return None
+    from .thermal.interpass import cool
+    from .thermal.properties import ThermalProperties
+
+    tr = self.transport
+    ip = tr.in_profile
+    props = Config.PROPERTIES
+    p = ThermalProperties(float(_value(ip, "density", props["density"])),
+                          float(_value(ip, "specific_heat_capacity", props["specific_heat"])),
+                          float(_value(ip, "thermal_conductivity", props["conductivity"])))
+    htc = float(_value(tr, "convection_heat_transfer_coefficient", Config.THERMAL["htc_air"]))
+    eps = float(_value(tr, "relative_radiation_coefficient", Config.THERMAL["emissivity"]))
+    ambient = float(_value(tr, "environment_temperature", Config.THERMAL["ambient_temperature"]))
+    res = cool([0.0], [float(ip.temperature)], 0.5 * float(ip.height), float(tr.duration), p,
+               htc, eps, ambient)
+    return res.mean
+
+
+root_hooks.add(Unit.OutProfile.temperature)
