@@ -268,7 +268,14 @@ class SteadyRun:
 
     def _warm(self, warm: WarmStart, vec: np.ndarray, target: float) -> None:
         """Start from a neighbour's state: its shape and a_f, its velocity scaled to this roll
-        speed and its (reduced) pressure by the Norton-Hoff rate factor (U/U_warm)^m."""
+        speed and its (reduced) pressure by the Norton-Hoff rate factor (U/U_warm)^m; or from
+        a similar pass on another mesh (``transfer.SimilarPass``)."""
+        if hasattr(warm, "apply"):
+            warm.apply(self, vec)
+            self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else self._estimate_a_f())
+            self._update_strain()
+            self._update_thermal()
+            return
         if warm.mesh_key != self.mesh_key or warm.solution.shape != vec.shape:
             raise ValueError("warm start: the neighbour was solved on another mesh")
         if warm.free_surface != self.s.free_surface:

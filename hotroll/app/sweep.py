@@ -53,7 +53,10 @@ def distance(a: dict[str, float], b: dict[str, float]) -> float:
 @dataclass
 class Sweep:
     solved: list = field(default_factory=list)   # (case name, parameters, WarmStart)
+    similar: bool = False     # start a case on a new mesh from the last solved pass (schedules)
+    history: bool = True      # measure after every coupling update (history.csv), else the end
     _kept: tuple | None = None                   # (form key, SteadyRun) of the last solve
+    _last: tuple | None = None                   # (case name, SteadyRun) last solved
 
     def steady_run(self, case: Case, model):
         """The previous run when only parameters differ, else a new SteadyRun."""
@@ -68,15 +71,22 @@ class Sweep:
         else:
             run = SteadyRun(model, settings, case.plate.length)
         self._kept = (key, run)
+        run.record = self.history
         return run
 
     def nearest(self, case: Case, run):
         """(name, WarmStart) of the nearest solved case on ``run``'s mesh with the same
-        free-surface model, or (None, None)."""
+        free-surface model; else, with ``similar`` on, the last solved pass mapped onto this
+        one (``algorithms/transfer.SimilarPass``); else (None, None)."""
         p = parameters(case)
         same = [(distance(p, q), name, w) for name, q, w in self.solved
                 if w.mesh_key == run.mesh_key and w.free_surface == run.s.free_surface]
         if not same:
+            last = self._last
+            if self.similar and last is not None and last[1].s.free_surface == run.s.free_surface:
+                from ..algorithms.transfer import SimilarPass
+
+                return last[0], SimilarPass(last[1], last[0])
             return None, None
         _, name, warm = min(same, key=lambda t: t[0])
         return name, warm
@@ -85,3 +95,4 @@ class Sweep:
         """Remember a converged Newton solve (its settled a_f and free surface)."""
         if run.result.stats and run.result.stats[-1].converged:
             self.solved.append((case.name, parameters(case), run.warm_start()))
+            self._last = (case.name, run)

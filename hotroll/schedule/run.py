@@ -155,9 +155,10 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
     state, rows, profiles = entry_state(sch), [], []
     flux = None                                    # the tandem's mass flux (half strip)
     t_start = time.perf_counter()
+    # each pass starts from the last one solved; history.csv keeps the final state only
+    sweep = Sweep(similar=True, history=False)
     for k, p in enumerate(sch.passes):
         t0 = time.perf_counter()
-        sweep = Sweep()
         omega = None
         if sch.mill.speeds == "mass_flow" and k > 0:
             f_guess = rows[-1]["forward_slip"]
