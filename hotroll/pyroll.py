@@ -27,8 +27,9 @@ What the FE pass takes from PyRolL:
 PyRolL evaluates the force once and the torque about four times per iteration of
 ``Unit.solve``, and re-solves every unit on every iteration of a ``PassSequence``: the FE
 solve is cached on the pass, keyed on its case (inputs rounded: temperatures to 0.01 K,
-strains to 1e-6, lengths to 1 um), and a changed input starts from the previous solution
-(``app/sweep.py``). ``STATS`` counts the FE solves and cache hits.
+strains to 1e-6, lengths to 1 um); a pass whose inputs changed starts from its previous
+solution, a new pass from the last pass solved, mapped onto its mesh (``app/sweep.py``,
+``algorithms/transfer.py``). ``STATS`` counts the FE solves and cache hits.
 """
 from __future__ import annotations
 
@@ -62,7 +63,13 @@ class Config:
 STATS = {"fe_solves": 0, "cache_hits": 0, "warm_starts": 0}
 
 
+_SWEEP = None    # the solved passes (app/sweep.py), shared by all passes
+
+
 def reset_stats() -> None:
+    """Zero ``STATS`` and forget the solved passes (the next pass starts cold)."""
+    global _SWEEP
+    _SWEEP = None
     for k in STATS:
         STATS[k] = 0
 
@@ -194,7 +201,10 @@ def solve(rp) -> dict:
     if key in cache:
         STATS["cache_hits"] += 1
         return cache[key]
-    sweep = rp.__dict__.setdefault("_hotroll_sweep", Sweep())
+    global _SWEEP
+    if _SWEEP is None:     # a pass starts from its own last solve, else from the last pass
+        _SWEEP = Sweep(similar=True, history=False)
+    sweep = _SWEEP
     if Config.OUTPUT_DIR is not None:
         out = Path(Config.OUTPUT_DIR) / case.name
     else:

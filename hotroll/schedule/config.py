@@ -62,6 +62,9 @@ class MillConfig(_Section):
         "given", "roll speeds: each pass's own (given), or the first pass's and the others "
         "from the constant mass flux of a tandem mill (mass_flow)", "",
         '"given" or "mass_flow"')
+    start_from_previous: bool = _field(
+        True, "start each pass's Newton from the previous pass mapped onto its mesh "
+        "(algorithms/transfer.py; false: from the slab guess, cold)", "", "true or false")
     mass_flow_tolerance: float = _field(
         1e-3, "mass_flow: relative flux difference between stands at which a stand's speed "
         "is accepted", "", "in (0, 0.1]", gt=0, le=0.1)

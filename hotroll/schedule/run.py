@@ -144,8 +144,10 @@ def _last_speed(pdir: Path) -> float | None:
 
 
 def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
-                 progress: Callable[[str], None] | None = None) -> list[dict]:
-    """Roll the schedule into ``out``; returns the table's rows (module docstring)."""
+                 progress: Callable[[str], None] | None = None,
+                 figure: bool = True) -> list[dict]:
+    """Roll the schedule into ``out``; returns the table's rows (module docstring).
+    ``figure``: schedule.png (each pass's own figures follow its [output] figures)."""
     from ..app.runner import run_case
     from ..app.sweep import Sweep
 
@@ -156,7 +158,7 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
     flux = None                                    # the tandem's mass flux (half strip)
     t_start = time.perf_counter()
     # each pass starts from the last one solved; history.csv keeps the final state only
-    sweep = Sweep(similar=True, history=False)
+    sweep = Sweep(similar=sch.mill.start_from_previous, history=False)
     for k, p in enumerate(sch.passes):
         t0 = time.perf_counter()
         omega = None
@@ -199,7 +201,7 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
         rows.append(row)
         say(_line(row))
         _write(sch, out, rows, profiles, time.perf_counter() - t_start)
-    if sch.output.figures:
+    if figure:
         from .plots import plot_schedule
 
         plot_schedule(rows, out / "schedule.png", width=sch.strip.width)
