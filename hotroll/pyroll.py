@@ -229,17 +229,16 @@ def _outlet_means(case: Case, s: dict) -> tuple[float, float]:
     by its heat content)."""
     import numpy as np
 
+    from .process.profile import ThicknessProfile
     from .thermal.interpass import enthalpy_mean
 
     prof = s["exit_profile"]
-    eta = np.asarray(prof["eta"])
-    w = np.zeros_like(eta)
-    w[:-1] += 0.5 * np.diff(eta)
-    w[1:] += 0.5 * np.diff(eta)
-    T = enthalpy_mean(case.material.thermal_properties(), np.asarray(prof["temperature"]), w)
-    e = (float(w @ np.asarray(prof["strain"])) / float(w.sum())
+    T = ThicknessProfile(tuple(prof["eta"]), tuple(prof["temperature"]))
+    T_mean = enthalpy_mean(case.material.thermal_properties(), np.asarray(T.values),
+                           T.weights())
+    e = (ThicknessProfile(tuple(prof["eta"]), tuple(prof["strain"])).mean()
          if prof.get("strain") is not None else s["homogeneous_exit_strain"])
-    return T, e
+    return T_mean, e
 
 
 @RollPass.hotroll_result

@@ -78,6 +78,7 @@ def test_a_strain_profile_is_carried_along_the_streamlines():
 def test_profile_arithmetic():
     p = ThicknessProfile.from_pairs([[0.0, 1.0], [0.5, 3.0], [1.0, 3.0]])
     assert p.mean() == pytest.approx(0.5 * 2.0 + 0.5 * 3.0)
+    assert p.weights().tolist() == [0.25, 0.5, 0.25]
     assert p([0.25, 2.0, -1.0]).tolist() == [2.0, 3.0, 1.0]
     assert p.scaled(2.0).mean() == pytest.approx(2 * p.mean())
     assert ThicknessProfile.uniform(4.0).is_uniform and not p.is_uniform

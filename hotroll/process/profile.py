@@ -56,6 +56,14 @@ class ThicknessProfile:
         """The values at eta (clipped into [0, 1])."""
         return np.interp(np.clip(np.asarray(eta, dtype=float), 0.0, 1.0), self.eta, self.values)
 
+    def weights(self) -> np.ndarray:
+        """Trapezoid weights of the values over eta (they sum to 1)."""
+        d = np.diff(np.asarray(self.eta))
+        w = np.zeros(len(self.eta))
+        w[:-1] += 0.5 * d
+        w[1:] += 0.5 * d
+        return w
+
     def mean(self) -> float:
         """The section mean int_0^1 value d eta (exact for the piecewise-linear profile)."""
         e, v = np.asarray(self.eta), np.asarray(self.values)

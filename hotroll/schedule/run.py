@@ -77,12 +77,7 @@ def _enthalpy_mean(sch: Schedule, T: ThicknessProfile) -> float:
 
     if T.is_uniform:
         return T.values[0]
-    eta = np.asarray(T.eta)
-    w = np.zeros_like(eta)
-    d = np.diff(eta)
-    w[:-1] += 0.5 * d
-    w[1:] += 0.5 * d
-    return enthalpy_mean(sch.material.thermal_properties(), np.asarray(T.values), w)
+    return enthalpy_mean(sch.material.thermal_properties(), np.asarray(T.values), T.weights())
 
 
 def exit_state(sch: Schedule, case, summary: dict) -> StripState:
