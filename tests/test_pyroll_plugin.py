@@ -134,3 +134,21 @@ def test_a_grooved_pass_is_left_to_other_plugins():
     assert not hp.is_flat(rp)
     for hook in (hp.roll_force, hp.forward_slip_ratio):
         assert hook.function(rp) is None
+
+
+def test_a_flow_stress_function_is_fitted_and_used(sequence, tmp_path):
+    """The in profile's flow_stress_function (here hotroll's S355J2 law as a plain Python
+    function, PyRolL's convention for an explicit hook: a function of the profile returning
+    it) is fitted over the pass's range (error < 1 %, the fit has no e^(m4/eps) term) and
+    rolls R1 within 1 % of the force the grade itself gives."""
+    from hotroll.physics.grades import get_grade
+
+    law = get_grade("S355J2").law()
+    ip = pr.Profile.box(height=0.1, width=WIDTH, temperature=1373.15, strain=0.0,
+                        flow_stress_function=lambda profile: law.sigma, **PROPS)
+    rp = _flat("R1fit", 0.08, 0.3)
+    rp.solve(ip)
+    fit = rp.hotroll_result["flow_stress_fit"]
+    assert fit["source"] == "in_profile.flow_stress_function"
+    assert fit["max_rel_error"] < 0.01
+    assert rp.roll_force == pytest.approx(sequence[0].units[0].roll_force, rel=0.01)

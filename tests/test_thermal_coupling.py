@@ -263,3 +263,21 @@ def test_form_stress_is_the_law_with_a_temperature_dependent_rate_exponent():
     assert len(pts) > 100 and np.ptp(temp) > 400.0 and np.ptp(np.log(rate)) > 3.0
     expected = law.sigma(case.plate.entry_strain, rate, temp)
     assert got == pytest.approx(np.asarray(expected), rel=1e-9)
+
+
+def test_a_law_without_temperature_settles_with_the_heat_field(tmp_path):
+    """Norton-Hoff (no T in the law) with [thermal]: the element temperatures are the plain
+    means (K is the same at every T: the bisection of the K-mean would follow the rounding and
+    the coupling never settled, found rolling a Norton-Hoff schedule), the run settles, and
+    its force is the isothermal run's (the temperature does not enter the law) to 1e-6."""
+    over = {"material.law": "norton-hoff", "material.A": None, "material.m1": None,
+            "material.m3": None, "material.K": 5.0e7, "material.m": 0.15,
+            "friction.law": "coulomb", "friction.mu": 0.3, "friction.a_f": None,
+            "mesh.h_contact": 0.008}
+    case = load_case(CASE).with_overrides(**over)
+    coupled = run_case(case, tmp_path / "coupled")
+    iso = run_case(case.with_overrides(thermal=None), tmp_path / "iso")
+    assert coupled["exit_code"] == 0 and coupled["status"] == "steady"
+    assert coupled["roll_force"] == pytest.approx(iso["roll_force"], rel=1e-6)
+    fields = np.load(tmp_path / "coupled" / "fields.npz")
+    assert np.all(np.isfinite(fields["flow_temperature"]))

@@ -222,6 +222,8 @@ def _pass_problem(k: int, problem: str) -> str:
         return f"pass[{k + 1}]." + problem[len("pass."):]
     if problem.startswith("plate."):
         return f"pass[{k + 1}] (its entry strip) " + problem
+    if problem.startswith("mesh."):          # the mesh rules depend on the pass's size
+        return f"{problem} (in pass[{k + 1}])"
     return problem
 
 

@@ -207,9 +207,13 @@ class ScheduleError(RuntimeError):
     """A pass that did not converge: the schedule stops there (the passes before are kept)."""
 
     def __init__(self, k: int, name: str, summary: dict):
+        from ..app.outcome import EXIT_CODES
+
         self.k, self.name, self.summary = k, name, summary
-        super().__init__(f"pass {k + 1} ({name}) ended with exit code {summary.get('exit_code')}"
-                         f" (status {summary.get('status')}); the schedule stops there")
+        code = summary.get("exit_code")
+        super().__init__(f"pass {k + 1} ({name}) ended with exit code {code}: "
+                         f"{EXIT_CODES.get(code, '?')} (status {summary.get('status')}); the "
+                         f"schedule stops there, the passes before it are written")
 
 
 def _pass_row(sch, k, case, s, entry_T, entry_e, solves, iterations, wall) -> dict:

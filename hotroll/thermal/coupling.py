@@ -265,8 +265,13 @@ class ThermalCoupling(FlowStressFeedback):
         np.maximum.at(hi, owner, vals)
         lo, hi = np.where(np.isfinite(lo), lo, plain), np.where(np.isfinite(hi), hi, plain)
         k_lo, k_hi = K(lo), K(hi)
+        # K the same at both ends (a law without T, or one element's uniform temperature):
+        # any T between would do, and the bisection would follow the rounding: the plain mean
+        flat = np.abs(k_lo - k_hi) <= 1e-12 * np.abs(k_hi)
+        if np.all(flat):
+            return plain
         falling = k_lo >= k_hi
-        if not np.all(falling | (k_lo == k_hi)):
+        if not np.all(falling | flat):
             return plain
         for _ in range(60):                   # to 1e-9 of the temperature (~30 halvings)
             if np.max(hi - lo) <= 1e-9 * np.max(np.abs(hi)):
@@ -274,7 +279,7 @@ class ThermalCoupling(FlowStressFeedback):
             mid = 0.5 * (lo + hi)
             above = K(mid) > target           # still too hard: go hotter
             lo, hi = np.where(above, mid, lo), np.where(above, hi, mid)
-        return 0.5 * (lo + hi)
+        return np.where(flat, plain, 0.5 * (lo + hi))
 
     # --- figures ---------------------------------------------------------------------------
     def vertex_temperature(self) -> np.ndarray:
