@@ -368,5 +368,54 @@ def schedule(
                   f"{out / 'schedule.png'}")
 
 
+
+@app.command()
+def study(
+    study_file: Annotated[Path, typer.Argument(help="Study file (TOML): [base] and [vary].")],
+    out: OutOpt,
+    scheduler: Annotated[Optional[str], typer.Option(
+        help="Address of a running dask scheduler (default: DASK_SCHEDULER_ADDRESS, else a "
+             "local cluster).")] = None,
+    workers: Annotated[Optional[int], typer.Option(
+        help="Local cluster: worker processes (default: one per core, one thread each).")] = None,
+    serial: Annotated[bool, typer.Option("--serial", help="No cluster: the groups one after "
+                                         "another in this process.")] = False,
+) -> None:
+    """Run every combination of a study's [vary] lists on dask.distributed into OUT/cases/;
+    the table OUT/study.csv and OUT/study.parquet (a column per varied key). Finished cases
+    are read back when run again. Exit code: 0, or 64 + the number of failed cases (max 63)."""
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from hotroll.study.config import load_study
+    from hotroll.study.run import FAILED, run_study
+
+    try:
+        st, base = load_study(study_file)
+    except CaseError as e:
+        raise _fail(str(e)) from None
+    n = len(st.combinations())
+    console.print(Text(f"study {st.name}: {n} cases -> {out}", style="bold"))
+    with Progress(TextColumn("{task.description}"), BarColumn(), TextColumn(
+            "{task.completed}/{task.total}"), TimeElapsedColumn(), TextColumn("{task.fields[info]}"),
+            console=console) as bar:
+        task = bar.add_task("cases", total=n, info="")
+
+        def progress(p: dict) -> None:
+            eta = p["remaining_s"]
+            bar.update(task, completed=p["done"], info=f"failed {p['failed']}, about "
+                       f"{eta:.0f} s left" if eta == eta else f"failed {p['failed']}")
+
+        rows = run_study(st, base, out, scheduler=scheduler, workers=workers, serial=serial,
+                         progress=progress)
+    failed = [r for r in rows if r["status"] in FAILED]
+    for r in failed:
+        err_console.print(Text(f"{r['case']}: {r['status']}: {r['reason']}", style="yellow"),
+                          soft_wrap=True)
+    console.print(f"{len(rows) - len(failed)} of {len(rows)} cases done; table "
+                  f"{out / 'study.csv'} and {out / 'study.parquet'}")
+    if failed:
+        raise typer.Exit(64 + min(len(failed), 63))
+
+
 if __name__ == "__main__":
     app()

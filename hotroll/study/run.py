@@ -1,0 +1,184 @@
+"""Running a study on dask.distributed (issue 18): the cases in groups, a table of results.
+
+The valid cases, in the order of their combinations (neighbours next to each other), are cut
+into contiguous groups, about two per worker; a group is one task: its cases run one after
+another in one worker process, each starting from the nearest case the group has solved
+(``app/sweep.py``). The same groups run in the same order serially (``serial=True``) or on a
+cluster, so both give the same table to the digit. A task whose worker dies is run again by
+dask elsewhere; the cases it had finished are read back (each case's directory is its
+checkpoint: ``summary.json`` beside the ``case.toml`` it was solved for), as they are when the
+study is run again.
+
+Each case writes ``DIR/cases/<label>/``; the table ``DIR/study.csv`` and ``DIR/study.parquet``
+(one row per combination: its index and label, a column per varied key named as the key, the
+status, the exit code, the reason of a failure, the summary's scalar fields) is rewritten
+atomically after every finished group.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+import traceback
+from pathlib import Path
+from typing import Callable
+
+from ..app.output import write_csv
+from .config import Study, StudyCase, expand
+
+#: status of a row: "done", "not_converged" (the run ended with a non-zero exit code),
+#: "bad_input" (the case schema refused the combination), "error" (an exception).
+FAILED = ("not_converged", "bad_input", "error")
+
+
+def groups(cases: list[StudyCase], workers: int) -> list[list[StudyCase]]:
+    """Contiguous groups of the valid cases, about two per worker."""
+    valid = [c for c in cases if c.case is not None]
+    if not valid:
+        return []
+    n = min(len(valid), max(1, 2 * workers))
+    size = math.ceil(len(valid) / n)
+    return [valid[i:i + size] for i in range(0, len(valid), size)]
+
+
+def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
+    """Solve a group's cases in this process (a dask task); one row per case."""
+    from ..app.config import case_from_dict
+    from ..app.runner import run_case
+    from ..app.sweep import Sweep
+
+    sweep = Sweep(history=False) if warm else None
+    rows = []
+    for item in items:
+        case = case_from_dict(item["case"])
+        cdir = Path(out) / "cases" / item["label"]
+        row = {"index": item["index"], "case": item["label"], **item["values"]}
+        try:
+            summary = _finished(case, cdir)
+            resumed = summary is not None
+            if summary is None:
+                summary = run_case(case, cdir, resume=False, sweep=sweep)
+            code = int(summary.get("exit_code", 1))
+            row.update(status="done" if code == 0 else "not_converged", exit_code=code,
+                       reason=None if code == 0 else _reason(summary), resumed=resumed)
+            row.update(_scalars(summary))
+        except Exception as e:  # noqa: BLE001 - a case's failure is its row, not the study's
+            row.update(status="error", exit_code=1, reason=f"{type(e).__name__}: {e}",
+                       resumed=False)
+            (cdir).mkdir(parents=True, exist_ok=True)
+            (cdir / "error.txt").write_text(traceback.format_exc())
+        rows.append(row)
+    return rows
+
+
+def _finished(case, cdir: Path) -> dict | None:
+    """The summary of a case solved before for the same case file, else None."""
+    s, c = cdir / "summary.json", cdir / "case.toml"
+    if s.exists() and c.exists() and c.read_text() == case.to_toml():
+        return json.loads(s.read_text())
+    return None
+
+
+def _reason(summary: dict) -> str:
+    from ..app.outcome import EXIT_CODES
+
+    code = summary.get("exit_code")
+    text = f"{EXIT_CODES.get(code, '?')} (status {summary.get('status')})"
+    return text + (f": {summary['failure']}" if summary.get("failure") else "")
+
+
+def _scalars(summary: dict) -> dict:
+    """The summary's scalar fields (numbers, text, booleans), not its lists and tables."""
+    skip = ("case_name", "exit_code", "status")
+    return {k: v for k, v in summary.items() if k not in skip
+            and (v is None or isinstance(v, (int, float, str, bool)))}
+
+
+def _payload(group: list[StudyCase]) -> list[dict]:
+    return [{"index": c.index, "label": c.label, "values": c.values, "case": c.case.to_dict()}
+            for c in group]
+
+
+def run_study(study: Study, base: dict, out: Path, *, scheduler: str | None = None,
+              workers: int | None = None, serial: bool = False,
+              progress: Callable[[dict], None] | None = None) -> list[dict]:
+    """Run every combination (module docstring); returns the table's rows by index.
+    ``scheduler``: an existing dask scheduler's address (else ``DASK_SCHEDULER_ADDRESS``, else
+    a local cluster of ``workers`` processes, one per core, one thread each)."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    cases = expand(study, base)
+    rows = {c.index: {"index": c.index, "case": c.label, **c.values, "status": "bad_input",
+                      "exit_code": 2, "reason": c.problem, "resumed": False}
+            for c in cases if c.case is None}
+    scheduler = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")
+    workers = workers or os.cpu_count() or 1
+    work = groups(cases, workers)
+    total, t0 = len(cases), time.perf_counter()
+
+    def done(new: list[dict]) -> None:
+        for r in new:
+            rows[r["index"]] = r
+        write_table(out, [rows[i] for i in sorted(rows)])
+        if progress:
+            progress(_progress(rows, total, t0))
+
+    done([])
+    if serial:
+        for g in work:
+            done(run_group(_payload(g), str(out), study.run.warm_start))
+    else:
+        from distributed import Client, LocalCluster, as_completed
+
+        cluster = None
+        if scheduler is None:
+            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                   dashboard_address=None)
+        try:
+            with Client(scheduler or cluster) as client:
+                futures = [client.submit(run_group, _payload(g), str(out.resolve()),
+                                         study.run.warm_start, pure=False) for g in work]
+                for fut in as_completed(futures):
+                    done(fut.result())
+        finally:
+            if cluster is not None:
+                cluster.close()
+    return [rows[i] for i in sorted(rows)]
+
+
+def _progress(rows: dict, total: int, t0: float) -> dict:
+    n_done = len(rows)
+    failed = sum(r["status"] in FAILED for r in rows.values())
+    elapsed = time.perf_counter() - t0
+    solved = sum(not r.get("resumed") and r["status"] != "bad_input" for r in rows.values())
+    rate = solved / elapsed if solved and elapsed > 0 else float("nan")
+    left = total - n_done
+    return {"done": n_done, "failed": failed, "total": total, "elapsed": elapsed,
+            "remaining_s": left / rate if rate == rate and rate > 0 else float("nan")}
+
+
+def write_table(out: Path, rows: list[dict]) -> None:
+    """study.csv and study.parquet, atomically (the columns: the union of the rows' keys)."""
+    keys = list(dict.fromkeys(k for r in rows for k in r))
+    table = [{k: r.get(k) for k in keys} for r in rows]
+    write_csv(out / "study.csv", table)
+    _write_parquet(out / "study.parquet", keys, table)
+
+
+def _write_parquet(path: Path, keys: list[str], rows: list[dict]) -> None:
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    cols = {}
+    for k in keys:
+        vals = [r.get(k) for r in rows]
+        kinds = {type(v) for v in vals if v is not None}
+        if kinds <= {int, float} and kinds:
+            vals = [None if v is None else float(v) for v in vals] if float in kinds else vals
+        elif len(kinds) > 1:
+            vals = [None if v is None else str(v) for v in vals]
+        cols[k] = vals
+    tmp = path.with_name(path.name + ".tmp")
+    pq.write_table(pa.table(cols), tmp)
+    os.replace(tmp, path)

@@ -1,0 +1,157 @@
+"""Studies on dask.distributed (hotroll/study, issue 18, first part): a local cluster of two
+worker processes, and a scheduler and worker started on their own and given by address, give
+the same table as the serial run, to the digit; a combination the
+case schema refuses is a row with its reason, not a failed study; a finished study is read
+back without solving; the table's columns are the varied keys; bad study files are named."""
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+import pytest
+
+from hotroll.app.config import CaseError
+from hotroll.study.config import load_study
+from hotroll.study.run import run_study
+
+BASE = """name = "ex1c"
+[pass]
+roll_radius = 0.6
+entry_thickness = 0.5
+exit_thickness = 0.4
+roll_angular_velocity = 1.0471975511965976
+[plate]
+length = 1.0
+[material]
+K = 1.0
+m = 0.2
+[mesh]
+h_contact = 0.02
+[solver]
+method = "steady"
+[output]
+figures = false
+vtk = false
+"""
+
+STUDY = """name = "m_speed"
+[base]
+file = "base.toml"
+[vary]
+"material.m" = [0.15, 0.25]
+"pass.exit_thickness" = [0.4, 0.45, 0.55]
+"""
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    d = tmp_path_factory.mktemp("study")
+    (d / "base.toml").write_text(BASE)
+    (d / "study.toml").write_text(STUDY)
+    return d
+
+
+@pytest.fixture(scope="module")
+def serial(files):
+    study, base = load_study(files / "study.toml")
+    return run_study(study, base, files / "serial", serial=True, workers=2)
+
+
+def test_a_local_cluster_gives_the_serial_table(files, serial):
+    """Two worker processes (one thread each) against the same groups in this process: the
+    same rows, every number equal (the groups and their warm starts are the same)."""
+    study, base = load_study(files / "study.toml")
+    rows = run_study(study, base, files / "dask", workers=2)
+    assert len(rows) == len(serial) == 6
+    for a, b in zip(serial, rows):
+        assert a.keys() == b.keys()
+        for k in a:
+            if k in ("wall_time_s",):
+                continue
+            va, vb = a[k], b[k]
+            assert va == vb or (isinstance(va, float) and math.isnan(va) and math.isnan(vb)), k
+
+
+def test_a_refused_combination_is_a_row_with_its_reason(serial):
+    """Exit thickness 0.55 m > the entry's 0.5 m: refused by the case schema, named; the other
+    cases ran (a converged Example 1 pass at h = 0.02: roll force 0.5 N/m order, K = 1)."""
+    bad = [r for r in serial if r["pass.exit_thickness"] == 0.55]
+    good = [r for r in serial if r["pass.exit_thickness"] != 0.55]
+    assert len(bad) == 2 and all(r["status"] == "bad_input" for r in bad)
+    assert all("pass.exit_thickness" in r["reason"] for r in bad)
+    assert all(r["status"] == "done" and r["exit_code"] == 0 for r in good)
+    # a lighter reduction needs less force at the same m
+    for m in (0.15, 0.25):
+        f = {r["pass.exit_thickness"]: r["roll_force"] for r in good if r["material.m"] == m}
+        assert f[0.45] < f[0.4]
+
+
+def test_the_table_has_a_column_per_varied_key(files, serial):
+    import pyarrow.parquet as pq
+
+    with open(files / "serial" / "study.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert [float(r["material.m"]) for r in rows] == [0.15] * 3 + [0.25] * 3
+    table = pq.read_table(files / "serial" / "study.parquet").to_pydict()
+    assert table["roll_force"][0] == pytest.approx(float(rows[0]["roll_force"]), rel=1e-15)
+    assert table["status"] == [r["status"] for r in rows]
+
+
+def test_a_finished_study_is_read_back(files, serial):
+    study, base = load_study(files / "study.toml")
+    again = run_study(study, base, files / "serial", serial=True, workers=2)
+    assert all(r["resumed"] for r in again if r["status"] == "done")
+    assert [r.get("roll_force") for r in again] == [r.get("roll_force") for r in serial]
+
+
+@pytest.mark.parametrize("text,field", [
+    ('name = "x"\n[vary]\n"material.m" = [0.1]\n', "base"),
+    ('[base]\nfile = "base.toml"\n[vary]\n', "vary"),
+    ('[base]\nfile = "base.toml"\n[vary]\nm = [0.1]\n', "vary"),
+    ('[base]\nfile = "base.toml"\nexample = "1"\n[vary]\n"material.m" = [0.1]\n', "base"),
+    ('[base]\nfile = "base.toml"\n[vary]\n"material.m" = [0.1, 0.2]\n"material.K" = [1.0]\n'
+     '[run]\ncombine = "zip"\n', "vary"),
+    ('[base]\nfile = "nothing.toml"\n[vary]\n"material.m" = [0.1]\n', "base.file"),
+])
+def test_bad_study_files_name_the_field(files, tmp_path, text, field):
+    (tmp_path / "base.toml").write_text(BASE)
+    (tmp_path / "s.toml").write_text(text)
+    with pytest.raises(CaseError) as e:
+        load_study(tmp_path / "s.toml")
+    assert field in str(e.value)
+
+
+def test_an_existing_cluster_gives_the_serial_table(files, serial, tmp_path):
+    """A scheduler and a worker started on their own (`dask scheduler`, `dask worker` on
+    loopback, as on a cluster) and given by address: the serial table again."""
+    import json
+    import subprocess
+    import sys
+    import time
+
+    bindir = Path(sys.executable).parent
+    sfile = tmp_path / "scheduler.json"
+    env = dict(__import__("os").environ, NGS_NUM_THREADS="1")
+    sched = subprocess.Popen([str(bindir / "dask"), "scheduler", "--host", "127.0.0.1",
+                              "--port", "0", "--no-dashboard", "--scheduler-file", str(sfile)],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+    worker = None
+    try:
+        for _ in range(300):
+            if sfile.exists() and sfile.stat().st_size:
+                break
+            time.sleep(0.1)
+        address = json.loads(sfile.read_text())["address"]
+        worker = subprocess.Popen([str(bindir / "dask"), "worker", address, "--nworkers", "1",
+                                   "--nthreads", "1", "--no-dashboard"],
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+        study, base = load_study(files / "study.toml")
+        rows = run_study(study, base, tmp_path / "remote", scheduler=address, workers=2)
+        assert [r.get("roll_force") for r in rows] == [r.get("roll_force") for r in serial]
+        assert [r["status"] for r in rows] == [r["status"] for r in serial]
+    finally:
+        for p in (worker, sched):
+            if p is not None:
+                p.terminate()
+                p.wait(timeout=30)
