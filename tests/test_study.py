@@ -39,7 +39,7 @@ STUDY = """name = "m_speed"
 [base]
 file = "base.toml"
 [vary]
-"material.m" = [0.15, 0.25]
+"material.m" = [0.15, 0.2, 0.25]
 "pass.exit_thickness" = [0.4, 0.45, 0.55]
 """
 
@@ -63,7 +63,9 @@ def test_a_local_cluster_gives_the_serial_table(files, serial):
     same rows, every number equal (the groups and their warm starts are the same)."""
     study, base = load_study(files / "study.toml")
     rows = run_study(study, base, files / "dask", workers=2)
-    assert len(rows) == len(serial) == 6
+    assert len(rows) == len(serial) == 9
+    # groups of two neighbours (6 valid cases, 2 workers): the second of each starts warm
+    assert sum(r.get("warm_start_from") is not None for r in serial) == 3
     for a, b in zip(serial, rows):
         assert a.keys() == b.keys()
         for k in a:
@@ -78,11 +80,11 @@ def test_a_refused_combination_is_a_row_with_its_reason(serial):
     cases ran (a converged Example 1 pass at h = 0.02: roll force 0.5 N/m order, K = 1)."""
     bad = [r for r in serial if r["pass.exit_thickness"] == 0.55]
     good = [r for r in serial if r["pass.exit_thickness"] != 0.55]
-    assert len(bad) == 2 and all(r["status"] == "bad_input" for r in bad)
+    assert len(bad) == 3 and all(r["status"] == "bad_input" for r in bad)
     assert all("pass.exit_thickness" in r["reason"] for r in bad)
     assert all(r["status"] == "done" and r["exit_code"] == 0 for r in good)
     # a lighter reduction needs less force at the same m
-    for m in (0.15, 0.25):
+    for m in (0.15, 0.2, 0.25):
         f = {r["pass.exit_thickness"]: r["roll_force"] for r in good if r["material.m"] == m}
         assert f[0.45] < f[0.4]
 
@@ -92,7 +94,7 @@ def test_the_table_has_a_column_per_varied_key(files, serial):
 
     with open(files / "serial" / "study.csv") as fh:
         rows = list(csv.DictReader(fh))
-    assert [float(r["material.m"]) for r in rows] == [0.15] * 3 + [0.25] * 3
+    assert [float(r["material.m"]) for r in rows] == [0.15] * 3 + [0.2] * 3 + [0.25] * 3
     table = pq.read_table(files / "serial" / "study.parquet").to_pydict()
     assert table["roll_force"][0] == pytest.approx(float(rows[0]["roll_force"]), rel=1e-15)
     assert table["status"] == [r["status"] for r in rows]
@@ -155,3 +157,47 @@ def test_an_existing_cluster_gives_the_serial_table(files, serial, tmp_path):
             if p is not None:
                 p.terminate()
                 p.wait(timeout=30)
+
+
+def test_killed_and_run_again_ends_with_the_uninterrupted_table(files, serial, tmp_path):
+    """`hotroll study --serial` killed (SIGKILL) each time one more case has finished (in the
+    middle of the next) and run again until it ends by itself: the same table as the
+    uninterrupted run (every figure to 1e-9: a resumed group starts its next case from the
+    saved state of the last, warm_state.npz)."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    out = tmp_path / "killed"
+    cmd = [sys.executable, "-m", "hotroll.app.cli", "study", str(files / "study.toml"), "--out",
+           str(out), "--serial", "--workers", "2"]
+    env = dict(os.environ, NGS_NUM_THREADS="1")
+
+    def finished() -> int:
+        return len(list(out.glob("cases/*/summary.json")))
+
+    kills, ended = 0, False
+    for _ in range(10):
+        before = finished()
+        proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                env=env)
+        while proc.poll() is None and finished() == before:
+            time.sleep(0.02)
+        if proc.poll() is None:
+            time.sleep(0.05)                 # into the next case
+            os.kill(proc.pid, signal.SIGKILL)
+            proc.wait(timeout=60)
+            kills += 1
+        else:
+            ended = True
+            break
+    assert ended and kills >= 2
+    with open(out / "study.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert [r["status"] for r in rows] == [r["status"] for r in serial]
+    for a, b in zip(serial, rows):
+        if a["status"] == "done":
+            for k in ("roll_force", "roll_torque", "forward_slip", "neutral_angle"):
+                assert float(b[k]) == pytest.approx(a[k], rel=1e-9), (a["case"], k)

@@ -1,13 +1,14 @@
 """Running a study on dask.distributed (issue 18): the cases in groups, a table of results.
 
-The valid cases, in the order of their combinations (neighbours next to each other), are cut
-into contiguous groups, about two per worker; a group is one task: its cases run one after
-another in one worker process, each starting from the nearest case the group has solved
-(``app/sweep.py``). The same groups run in the same order serially (``serial=True``) or on a
+The valid cases, those on one mesh next to each other, are cut into contiguous groups, about
+two per worker; a group is one task: its cases run one after another in one worker process,
+each starting from the nearest case the group has solved on its mesh, else from the last one
+mapped onto its mesh (``app/sweep.py``, ``algorithms/transfer.py``). The same groups run in the same order serially (``serial=True``) or on a
 cluster, so both give the same table to the digit. A task whose worker dies is run again by
 dask elsewhere; the cases it had finished are read back (each case's directory is its
-checkpoint: ``summary.json`` beside the ``case.toml`` it was solved for), as they are when the
-study is run again.
+checkpoint: ``summary.json`` beside the ``case.toml`` it was solved for, and the final state
+the group's next case starts from, ``warm_state.npz``), as they are when the study is run
+again: a study killed at any moment and run again ends with the table of an uninterrupted run.
 
 Each case writes ``DIR/cases/<label>/``; the table ``DIR/study.csv`` and ``DIR/study.parquet``
 (one row per combination: its index and label, a column per varied key named as the key, the
@@ -33,8 +34,13 @@ FAILED = ("not_converged", "bad_input", "error")
 
 
 def groups(cases: list[StudyCase], workers: int) -> list[list[StudyCase]]:
-    """Contiguous groups of the valid cases, about two per worker."""
-    valid = [c for c in cases if c.case is not None]
+    """Groups of the valid cases, about two per worker; the cases on one mesh next to each
+    other (ordered by ``sweep.form_key``, then by their combination), so that a group's case
+    starts from its neighbour on the same mesh where it can."""
+    from ..app.sweep import form_key
+
+    valid = sorted((c for c in cases if c.case is not None),
+                   key=lambda c: (form_key(c.case), c.index))
     if not valid:
         return []
     n = min(len(valid), max(1, 2 * workers))
@@ -48,8 +54,8 @@ def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
     from ..app.runner import run_case
     from ..app.sweep import Sweep
 
-    sweep = Sweep(history=False) if warm else None
-    rows = []
+    sweep = Sweep(similar=True, history=False) if warm else None
+    rows, pending = [], None
     for item in items:
         case = case_from_dict(item["case"])
         cdir = Path(out) / "cases" / item["label"]
@@ -58,7 +64,19 @@ def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
             summary = _finished(case, cdir)
             resumed = summary is not None
             if summary is None:
+                if pending is not None:        # the last case was read back: its run too
+                    sweep._last = (pending[0].name, restore_run(*pending))
+                    pending = None
                 summary = run_case(case, cdir, resume=False, sweep=sweep)
+                if sweep is not None and sweep.solved and sweep.solved[-1][0] == case.name:
+                    save_warm(cdir / WARM_FILE, sweep.solved[-1][2])
+            elif sweep is not None and (cdir / WARM_FILE).exists():
+                # the state it ended in, for the group's next case (as if solved just now)
+                from ..app.sweep import parameters
+
+                warm_state = load_warm(cdir / WARM_FILE)
+                sweep.solved.append((case.name, parameters(case), warm_state))
+                pending = (case, warm_state)
             code = int(summary.get("exit_code", 1))
             row.update(status="done" if code == 0 else "not_converged", exit_code=code,
                        reason=None if code == 0 else _reason(summary), resumed=resumed)
@@ -70,6 +88,48 @@ def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
             (cdir / "error.txt").write_text(traceback.format_exc())
         rows.append(row)
     return rows
+
+
+#: A solved case's final state (velocity-pressure vector, strip shape, a_f): a resumed group
+#: starts its next case from it, as the uninterrupted group did.
+WARM_FILE = "warm_state.npz"
+
+
+def save_warm(path: Path, warm) -> None:
+    import numpy as np
+
+    sh = warm.shape
+    tmp = path.with_name(path.stem + ".tmp.npz")
+    np.savez(tmp, solution=warm.solution, x_c=sh.x_c, entry_x=sh.entry_x, entry_y=sh.entry_y,
+             exit_x=sh.exit_x, exit_y=sh.exit_y, a_f=warm.a_f, m=warm.m, u_roll=warm.u_roll,
+             mesh_key=warm.mesh_key, free_surface=warm.free_surface)
+    os.replace(tmp, path)
+
+
+def load_warm(path: Path):
+    import numpy as np
+
+    from ..algorithms.steady import WarmStart
+    from ..process.free_surface import StripShape
+
+    z = np.load(path)
+    shape = StripShape(float(z["x_c"]), z["entry_x"], z["entry_y"], z["exit_x"], z["exit_y"])
+    return WarmStart(z["solution"], shape, float(z["a_f"]), float(z["m"]), float(z["u_roll"]),
+                     str(z["mesh_key"]), str(z["free_surface"]))
+
+
+def restore_run(case, warm):
+    """A solved case's ``SteadyRun`` rebuilt from its case and final state (mesh, solution,
+    strip shape): the start of a next case on another mesh (``transfer.SimilarPass``)."""
+    from ..algorithms.steady import SteadyRun
+    from ..app.runner import build_model, steady_settings
+
+    model, _ = build_model(case)
+    run = SteadyRun(model, steady_settings(case), case.plate.length)
+    run.form.problem.gf.vec.FV().NumPy()[:] = warm.solution
+    run.shape = warm.shape.copy()
+    run._set_shape()
+    return run
 
 
 def _finished(case, cdir: Path) -> dict | None:
