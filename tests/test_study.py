@@ -1,4 +1,4 @@
-"""Studies on dask.distributed (hotroll/study, issue 18, first part): a local cluster of two
+"""Studies on dask.distributed (hotroll/studies, issue 18, first part): a local cluster of two
 worker processes, and a scheduler and worker started on their own and given by address, give
 the same table as the serial run, to the digit; a combination the
 case schema refuses is a row with its reason, not a failed study; a finished study is read
@@ -12,8 +12,8 @@ from pathlib import Path
 import pytest
 
 from hotroll.app.config import CaseError
-from hotroll.study.config import load_study
-from hotroll.study.run import run_study
+from hotroll.studies.config import load_study
+from hotroll.studies.run import run_study
 
 BASE = """name = "ex1c"
 [pass]

@@ -386,8 +386,8 @@ def study(
     are read back when run again. Exit code: 0, or 64 + the number of failed cases (max 63)."""
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
-    from hotroll.study.config import load_study
-    from hotroll.study.run import FAILED, run_study
+    from hotroll.studies.config import load_study
+    from hotroll.studies.run import FAILED, run_study
 
     try:
         st, base = load_study(study_file)
