@@ -78,7 +78,9 @@ def _declare(cls, name: str, doc: str) -> None:
     """A hook that another plugin may already have declared (same name, same meaning)."""
     if not isinstance(cls.__dict__.get(name), Hook) and not isinstance(getattr(cls, name, None),
                                                                         Hook):
-        setattr(cls, name, Hook[float]())
+        hook = Hook[float]()
+        hook.__doc__ = doc
+        setattr(cls, name, hook)
 
 
 _declare(RollPass, "coulomb_friction_coefficient", "Coulomb's friction coefficient mu")

@@ -1,0 +1,116 @@
+"""The command line's batch commands (``hotroll schedule``, ``hotroll study``), registered on
+``cli.app`` when ``cli`` imports this module."""
+
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+from rich.markup import escape
+from rich.table import Table
+from rich.text import Text
+
+from hotroll.app.cli import OutOpt, ResumeOpt, _fail, app, console, err_console
+from hotroll.app.config import CaseError
+
+
+@app.command()
+def schedule(
+    schedule_file: Annotated[Path, typer.Argument(
+        help="Schedule file (TOML) or a bundled schedule's name (finishing_mill, ...).")],
+    out: OutOpt,
+    no_figures: Annotated[bool, typer.Option("--no-figures", help="Do not write figures.")] = False,
+    resume: ResumeOpt = True,
+) -> None:
+    """Roll a pass schedule: every pass from the previous exit state (thickness, temperature
+    and strain through the thickness), interpass cooling; OUT/schedule.csv, schedule.json,
+    schedule.png and one directory per pass."""
+    from hotroll.schedule import examples as sched_examples
+    from hotroll.schedule.config import load_schedule
+    from hotroll.schedule.run import ScheduleError, run_schedule
+
+    if not schedule_file.exists():
+        try:
+            schedule_file = sched_examples.schedule_path(str(schedule_file))
+        except FileNotFoundError as e:
+            raise _fail(f"schedule: {schedule_file} is neither a file nor a bundled schedule "
+                        f"({e})") from None
+    try:
+        sch = load_schedule(schedule_file)
+        if no_figures:
+            sch.output.figures = False
+    except CaseError as e:
+        raise _fail(str(e)) from None
+    console.print(Text(f"rolling {sch.name}: {len(sch.passes)} passes -> {out}", style="bold"))
+    try:
+        rows = run_schedule(sch, out, resume=resume, figure=not no_figures,
+                            progress=lambda line: console.print(Text("  " + line)))
+    except ScheduleError as e:
+        err_console.print(Text(str(e), style="yellow"), soft_wrap=True)
+        raise typer.Exit(int(e.summary.get("exit_code") or 1)) from None
+    width = sch.strip.width
+    table = Table(title=escape(f"{sch.name}: schedule"))
+    heads = ["pass", "h mm", "U m/s", "F MN" if width else "F MN/m",
+             "M kNm" if width else "M kNm/m", "T out K", "strain", "FE", "s"]
+    for h in heads:
+        table.add_column(h, justify="left" if h == "pass" else "right")
+    for r in rows:
+        w = width or 1.0
+        table.add_row(
+            escape(r["name"]), f"{1e3 * r['entry_thickness']:.1f}>{1e3 * r['exit_thickness']:.1f}",
+            f"{r['roll_surface_speed']:.2f}", f"{1e-6 * w * r['roll_force']:.2f}",
+            f"{1e-3 * w * r['roll_torque']:.0f}", f"{r['exit_temperature_mean']:.1f}",
+            f"{r['exit_strain_mean']:.3f}", str(r["fe_solves"]), f"{r['wall_time']:.1f}")
+    console.print(table)
+    console.print(f"force and torque per roll{', whole width' if width else ''}; exit "
+                  f"temperature: mixing-cup mean after the gap; all columns (power, surface "
+                  f"temperature, transports) in {out / 'schedule.csv'}; figure "
+                  f"{out / 'schedule.png'}")
+
+
+
+@app.command()
+def study(
+    study_file: Annotated[Path, typer.Argument(help="Study file (TOML): [base] and [vary].")],
+    out: OutOpt,
+    scheduler: Annotated[Optional[str], typer.Option(
+        help="Address of a running dask scheduler (default: DASK_SCHEDULER_ADDRESS, else a "
+             "local cluster).")] = None,
+    workers: Annotated[Optional[int], typer.Option(
+        help="Local cluster: worker processes (default: one per core, one thread each).")] = None,
+    serial: Annotated[bool, typer.Option("--serial", help="No cluster: the groups one after "
+                                         "another in this process.")] = False,
+) -> None:
+    """Run every combination of a study's vary lists on dask.distributed into OUT/cases/;
+    the table OUT/study.csv and OUT/study.parquet (a column per varied key). Finished cases
+    are read back when run again. Exit code: 0, or 64 + the number of failed cases (max 63)."""
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from hotroll.studies.config import load_study
+    from hotroll.studies.run import FAILED, run_study
+
+    try:
+        st, base = load_study(study_file)
+    except CaseError as e:
+        raise _fail(str(e)) from None
+    n = len(st.combinations())
+    console.print(Text(f"study {st.name}: {n} cases -> {out}", style="bold"))
+    with Progress(TextColumn("{task.description}"), BarColumn(), TextColumn(
+            "{task.completed}/{task.total}"), TimeElapsedColumn(), TextColumn("{task.fields[info]}"),
+            console=console) as bar:
+        task = bar.add_task("cases", total=n, info="")
+
+        def progress(p: dict) -> None:
+            eta = p["remaining_s"]
+            bar.update(task, completed=p["done"], info=f"failed {p['failed']}, about "
+                       f"{eta:.0f} s left" if eta == eta else f"failed {p['failed']}")
+
+        rows = run_study(st, base, out, scheduler=scheduler, workers=workers, serial=serial,
+                         progress=progress)
+    failed = [r for r in rows if r["status"] in FAILED]
+    for r in failed:
+        err_console.print(Text(f"{r['case']}: {r['status']}: {r['reason']}", style="yellow"),
+                          soft_wrap=True)
+    console.print(f"{len(rows) - len(failed)} of {len(rows)} cases done; table "
+                  f"{out / 'study.csv'} and {out / 'study.parquet'}")
+    if failed:
+        raise typer.Exit(64 + min(len(failed), 63))
