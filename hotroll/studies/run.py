@@ -20,6 +20,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import socket
 import time
 import traceback
 from pathlib import Path
@@ -59,11 +60,14 @@ def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
     for item in items:
         case = case_from_dict(item["case"])
         cdir = Path(out) / "cases" / item["label"]
-        row = {"index": item["index"], "case": item["label"], **item["values"]}
+        row = {"index": item["index"], "case": item["label"], **item["values"],
+               "worker": f"{socket.gethostname()}:{os.getpid()}"}
         try:
             summary = _finished(case, cdir)
             resumed = summary is not None
             if summary is None:
+                cdir.mkdir(parents=True, exist_ok=True)
+                (cdir / "worker.txt").write_text(row["worker"] + "\n")   # who is solving it
                 if pending is not None:        # the last case was read back: its run too
                     sweep._last = (pending[0].name, restore_run(*pending))
                     pending = None
