@@ -27,7 +27,7 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(ROOT / "scripts"))
 
-from _common import print_table, write_table  # noqa: E402
+from _common import print_table, to_toml, write_table  # noqa: E402
 
 COLUMNS = ["pass", "h0_h1_mm", "U_m_s", "force_MN_m", "fe_solves", "newton", "s",
            "cold_fe_solves", "cold_newton", "cold_s"]
@@ -41,7 +41,7 @@ def _run(schedule: Path, threads: int, cold: bool) -> tuple[float, dict]:
     data.setdefault("output", {}).update(figures=False, vtk=False)
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "schedule.toml"
-        path.write_text(_toml(data))
+        path.write_text(to_toml(data))
         t0 = time.perf_counter()
         proc = subprocess.run([sys.executable, "-m", "hotroll.app.cli", "schedule", str(path),
                                "--out", str(Path(tmp) / "out"), "--no-figures"],
@@ -50,28 +50,6 @@ def _run(schedule: Path, threads: int, cold: bool) -> tuple[float, dict]:
         if proc.returncode != 0:
             raise SystemExit(f"schedule failed: {proc.stderr.strip()[-400:]}")
         return wall, json.loads((Path(tmp) / "out" / "schedule.json").read_text())
-
-
-def _toml(data: dict, prefix: str = "") -> str:
-    def value(v):
-        if isinstance(v, bool):
-            return "true" if v else "false"
-        if isinstance(v, str):
-            return json.dumps(v)
-        if isinstance(v, list):
-            return "[" + ", ".join(value(x) for x in v) + "]"
-        return repr(v)
-    out = [f"{k} = {value(v)}" for k, v in data.items()
-           if not isinstance(v, (dict, list)) or (isinstance(v, list) and not
-                                                   (v and isinstance(v[0], dict)))]
-    for k, v in data.items():
-        name = f"{prefix}{k}"
-        if isinstance(v, dict):
-            out += [f"\n[{name}]", _toml(v, name + ".")]
-        elif isinstance(v, list) and v and isinstance(v[0], dict):
-            for item in v:
-                out += [f"\n[[{name}]]", _toml(item, name + ".")]
-    return "\n".join(out)
 
 
 def main(argv=None) -> int:

@@ -25,7 +25,7 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(ROOT / "scripts"))
 
-from _common import list_arg, print_table, write_table  # noqa: E402
+from _common import list_arg, print_table, to_toml, write_table  # noqa: E402
 
 FINISHING = "hot_strip_finishing_thermal"
 # name: (bundled case, overrides by section): the README's pass, the study case, and the
@@ -64,30 +64,13 @@ def _run(name: str, threads: int, isothermal: bool) -> dict:
         data.setdefault("solver", {})["threads"] = threads
         data.setdefault("output", {}).update(figures=False, vtk=False)
         case = Path(tmp) / "case.toml"
-        case.write_text(_toml(data))
+        case.write_text(to_toml(data))
         cmd = [sys.executable, "-m", "hotroll.app.cli", "run", str(case), "--out",
                str(Path(tmp) / "out")]
         proc = subprocess.run(cmd, capture_output=True, text=True)
         if proc.returncode != 0:
             raise SystemExit(f"{name}: {proc.stderr.strip()[-300:]}")
         return json.loads((Path(tmp) / "out" / "summary.json").read_text())
-
-
-def _toml(data: dict) -> str:
-    """A case dict back to TOML (tables of scalars and lists: all a case has)."""
-    def value(v):
-        if isinstance(v, bool):
-            return "true" if v else "false"
-        if isinstance(v, str):
-            return json.dumps(v)
-        if isinstance(v, list):
-            return "[" + ", ".join(value(x) for x in v) + "]"
-        return repr(v)
-    lines = [f"{k} = {value(v)}" for k, v in data.items() if not isinstance(v, dict)]
-    for sec, table in data.items():
-        if isinstance(table, dict):
-            lines += [f"\n[{sec}]"] + [f"{k} = {value(v)}" for k, v in table.items()]
-    return "\n".join(lines) + "\n"
 
 
 def one(name: str, repeat: int, threads: int) -> dict:

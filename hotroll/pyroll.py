@@ -112,15 +112,23 @@ def _material(rp, T0: float, e0: float, h0: float, h1: float, U: float, lc: floa
     if func is not None:
         from .physics.flow_stress_fit import fit_hensel_spittel
 
-        inc = 2.0 / math.sqrt(3.0) * math.log(h0 / h1)
-        rate = U / lc * inc
-        fit = fit_hensel_spittel(func, (e0, e0 + 1.5 * inc), (0.05 * rate, 4.0 * rate),
-                                 (max(T0 - 250.0, 300.0), T0 + 60.0))
-        table = {"law": "hensel-spittel", **{k: v for k, v in fit.law.params().items()
-                                              if k not in ("m4", "m6", "m9")}}
-        return table, {"source": "in_profile.flow_stress_function", "max_rel_error":
-                       fit.max_rel_error, "strain": fit.strain, "strain_rate": fit.strain_rate,
-                       "temperature": fit.temperature}
+        # PyRolL asks a pass for its hooks dozens of times: the fit (343 calls of the
+        # function, ~4 ms) once per pass and box
+        fits = rp.__dict__.setdefault("_hotroll_fits", {})
+        box = (T0, e0, h0, h1, U, lc)
+        if box not in fits:
+            inc = 2.0 / math.sqrt(3.0) * math.log(h0 / h1)
+            rate = U / lc * inc
+            fit = fit_hensel_spittel(func, (e0, e0 + 1.5 * inc), (0.05 * rate, 4.0 * rate),
+                                     (max(T0 - 250.0, 300.0), T0 + 60.0))
+            table = {"law": "hensel-spittel", **{k: v for k, v in fit.law.params().items()
+                                                  if k not in ("m4", "m6", "m9")}}
+            fits[box] = (table, {"source": "in_profile.flow_stress_function",
+                                 "max_rel_error": fit.max_rel_error, "strain": fit.strain,
+                                 "strain_rate": fit.strain_rate,
+                                 "temperature": fit.temperature})
+        table, info = fits[box]
+        return dict(table), dict(info)
     from .physics.grades import list_grades
 
     names = _value(ip, "material", None)

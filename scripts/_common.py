@@ -6,6 +6,7 @@ finished outputs and survives a failing case, and tables written as CSV and Mark
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import time
 import traceback
@@ -162,6 +163,30 @@ def fmt(v: Any) -> str:
     if isinstance(v, float):
         return f"{v:.5g}"
     return str(v)
+
+
+def to_toml(data: dict, prefix: str = "") -> str:
+    """A case or schedule dict back to TOML: scalars and lists, tables, arrays of tables
+    (with their sub-tables), the benchmarks' edited copies of the bundled files."""
+    def value(v):
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, str):
+            return json.dumps(v)
+        if isinstance(v, list):
+            return "[" + ", ".join(value(x) for x in v) + "]"
+        return repr(v)
+    out = [f"{k} = {value(v)}" for k, v in data.items()
+           if not isinstance(v, (dict, list)) or (isinstance(v, list) and not
+                                                   (v and isinstance(v[0], dict)))]
+    for k, v in data.items():
+        name = f"{prefix}{k}"
+        if isinstance(v, dict):
+            out += [f"\n[{name}]", to_toml(v, name + ".")]
+        elif isinstance(v, list) and v and isinstance(v[0], dict):
+            for item in v:
+                out += [f"\n[[{name}]]", to_toml(item, name + ".")]
+    return "\n".join(out)
 
 
 def markdown(rows: Sequence[dict], columns: Sequence[str]) -> str:

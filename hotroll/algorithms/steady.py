@@ -272,22 +272,21 @@ class SteadyRun:
         a similar pass on another mesh (``transfer.SimilarPass``)."""
         if hasattr(warm, "apply"):
             warm.apply(self, vec)
-            self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else self._estimate_a_f())
-            self._update_strain()
-            self._update_thermal()
-            return
-        if warm.mesh_key != self.mesh_key or warm.solution.shape != vec.shape:
-            raise ValueError("warm start: the neighbour was solved on another mesh")
-        if warm.free_surface != self.s.free_surface:
-            raise ValueError(f"warm start: the neighbour has {warm.free_surface!r} free tops, "
-                             f"this case {self.s.free_surface!r}")
-        ratio = self.model.rp.u_roll / warm.u_roll
-        nv = self.form.problem.n_velocity_dofs()
-        vec[:nv] = ratio * warm.solution[:nv]
-        vec[nv:] = ratio**target * warm.solution[nv:]
-        self.shape = warm.shape.copy()
-        self._set_shape()
-        self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else warm.a_f)
+            a_f = self._estimate_a_f() if self.s.a_f is None else None
+        else:
+            if warm.mesh_key != self.mesh_key or warm.solution.shape != vec.shape:
+                raise ValueError("warm start: the neighbour was solved on another mesh")
+            if warm.free_surface != self.s.free_surface:
+                raise ValueError(f"warm start: the neighbour has {warm.free_surface!r} free "
+                                 f"tops, this case {self.s.free_surface!r}")
+            ratio = self.model.rp.u_roll / warm.u_roll
+            nv = self.form.problem.n_velocity_dofs()
+            vec[:nv] = ratio * warm.solution[:nv]
+            vec[nv:] = ratio**target * warm.solution[nv:]
+            self.shape = warm.shape.copy()
+            self._set_shape()
+            a_f = warm.a_f
+        self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else a_f)
         self._update_strain()
         self._update_thermal()
 

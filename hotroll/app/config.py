@@ -282,17 +282,7 @@ class Case(_Section):
 
     def with_overrides(self, **dotted: Any) -> Case:
         """New validated Case with ``{"section.key": value}`` replaced (None = automatic)."""
-        data = self.to_dict()
-        for key, value in dotted.items():
-            parts = key.split(".")
-            parts[0] = "pass" if parts[0] == "pass_" else parts[0]
-            node = data
-            for p in parts[:-1]:
-                node = node.setdefault(p, {})
-                if not isinstance(node, dict):
-                    raise CaseError(f"{key}: '{p}' is not a section")
-            node[parts[-1]] = value
-        return case_from_dict(data)
+        return case_from_dict(set_dotted(self.to_dict(), dotted))
 
     def to_toml(self) -> str:
         """TOML text that round-trips through :func:`case_from_toml`."""
@@ -308,6 +298,20 @@ class Case(_Section):
 
 
 # --------------------------------------------------------------------------- I/O
+
+
+def set_dotted(data: dict, dotted: dict[str, Any]) -> dict:
+    """``data`` (a case dict, TOML names) with ``{"section.key": value}`` set in place."""
+    for key, value in dotted.items():
+        parts = key.split(".")
+        parts[0] = "pass" if parts[0] == "pass_" else parts[0]
+        node = data
+        for p in parts[:-1]:
+            node = node.setdefault(p, {})
+            if not isinstance(node, dict):
+                raise CaseError(f"{key}: '{p}' is not a section")
+        node[parts[-1]] = value
+    return data
 
 
 def case_from_dict(d: Any, source: str | None = None) -> Case:

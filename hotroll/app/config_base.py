@@ -50,3 +50,34 @@ class _Section(BaseModel):
 
 def _fields(model: type[BaseModel]) -> dict[str, FieldInfo]:
     return {(f.alias or n): f for n, f in model.model_fields.items()}
+
+
+def problem_lines(err) -> list[str]:
+    """pydantic's errors (a ``ValidationError``) as ``section.key: message`` lines, a model
+    validator's own lines (``_Problems``) as they are; an item k of a list of tables named
+    ``pass`` (a schedule's passes) as ``pass[k+1]``. For the files besides the case
+    (schedules, studies); the case has its own (``config._problems``)."""
+    out = []
+    for e in err.errors():
+        exc = (e.get("ctx") or {}).get("error")
+        if isinstance(exc, _Problems):
+            loc = e["loc"]
+            if len(loc) >= 2 and loc[0] == "pass" and isinstance(loc[1], int):
+                out += [f"pass[{loc[1] + 1}].{q}" for q in exc.problems]
+            else:
+                out += exc.problems
+            continue
+        loc = [str(x) for x in e["loc"]]
+        if len(loc) >= 2 and loc[0] == "pass" and loc[1].isdigit():
+            loc = [f"pass[{int(loc[1]) + 1}]"] + loc[2:]
+        msg = e["msg"]
+        if e["type"] == "extra_forbidden":
+            msg = "unknown key"
+        elif e["type"] == "missing":
+            msg = "missing required key"
+        else:
+            ctx = e.get("ctx") or {}
+            msg = f"{msg[0].lower()}{msg[1:]}, got {e.get('input')!r}" if ctx or "input" in e \
+                else msg
+        out.append(f"{'.'.join(loc)}: {msg}")
+    return out

@@ -151,6 +151,17 @@ def fingerprint(case: Case) -> str:
     return hashlib.sha256(repr(sorted(flat(d).items())).encode()).hexdigest()[:16]
 
 
+def finished_summary(case: Case, out: Path) -> dict | None:
+    """The summary of a run of this very case (``out/case.toml`` the same text) that wrote
+    ``out/summary.json``, else None: the finished run a schedule or a study reads back."""
+    import json
+
+    s, c = Path(out) / "summary.json", Path(out) / "case.toml"
+    if s.exists() and c.exists() and c.read_text() == case.to_toml():
+        return json.loads(s.read_text())
+    return None
+
+
 def run_case(case: Case, out: Path, *, resume: bool = True,
              progress: Callable[[dict], None] | None = None, sweep=None) -> dict:
     """Run one case and write summary.json, contact.csv, top.csv, history.csv, fields, figures.

@@ -28,7 +28,7 @@ from pydantic import Field, ValidationError, field_validator, model_validator
 
 from ..app.config import (Case, CaseError, FrictionConfig, MaterialConfig, MeshConfig,
                           OutputConfig, SolverConfig, case_from_dict, check_profile)
-from ..app.config_base import PosFloat, _field, _Problems, _Section
+from ..app.config_base import PosFloat, _field, _Problems, _Section, problem_lines
 from ..app.config_thermal import ThermalConfig
 
 #: The plate length of each pass's steady strip, in contact lengths.
@@ -234,7 +234,7 @@ def schedule_from_dict(d: Any, source: str | None = None) -> Schedule:
     try:
         sch = Schedule.model_validate(d)
     except ValidationError as e:
-        raise CaseError(_schedule_problems(e), source, "schedule") from None
+        raise CaseError(problem_lines(e), source, "schedule") from None
     try:
         sch.check_cases()
     except CaseError as e:
@@ -253,31 +253,3 @@ def load_schedule(path: str | Path) -> Schedule:
         raise CaseError(f"TOML syntax error: {e}", str(path), "schedule") from None
     data.setdefault("name", path.stem)
     return schedule_from_dict(data, str(path))
-
-
-def _schedule_problems(err: ValidationError) -> list[str]:
-    """pydantic's errors as ``section.key: message`` (``pass[k].key`` for the passes)."""
-    out = []
-    for e in err.errors():
-        exc = (e.get("ctx") or {}).get("error")
-        if isinstance(exc, _Problems):
-            loc = e["loc"]
-            if len(loc) >= 2 and loc[0] == "pass" and isinstance(loc[1], int):
-                out += [f"pass[{loc[1] + 1}].{q}" for q in exc.problems]
-            else:
-                out += exc.problems
-            continue
-        loc = [str(x) for x in e["loc"]]
-        if len(loc) >= 2 and loc[0] == "pass" and loc[1].isdigit():
-            loc = [f"pass[{int(loc[1]) + 1}]"] + loc[2:]
-        msg = e["msg"]
-        if e["type"] == "extra_forbidden":
-            msg = "unknown key"
-        elif e["type"] == "missing":
-            msg = "missing required key"
-        else:
-            ctx = e.get("ctx") or {}
-            msg = f"{msg[0].lower()}{msg[1:]}, got {e.get('input')!r}" if ctx or "input" in e \
-                else msg
-        out.append(f"{'.'.join(loc)}: {msg}")
-    return out

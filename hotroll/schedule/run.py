@@ -16,8 +16,6 @@ units and the profiles handed on) and ``schedule.png``.
 """
 from __future__ import annotations
 
-import json
-import math
 import time
 from pathlib import Path
 from typing import Callable
@@ -118,12 +116,12 @@ def transport(sch: Schedule, k: int, state: StripState, exit_velocity: float):
 
 
 def _reuse(case, out: Path) -> dict | None:
-    """A finished pass's summary when its case file is the same (resume), else None."""
-    s, c = out / "summary.json", out / "case.toml"
-    if s.exists() and c.exists() and c.read_text() == case.to_toml():
-        summary = json.loads(s.read_text())
-        if summary.get("exit_code") == 0 and summary.get("exit_profile"):
-            return summary
+    """A finished, converged pass's summary when its case file is the same (resume)."""
+    from ..app.runner import finished_summary
+
+    summary = finished_summary(case, out)
+    if summary and summary.get("exit_code") == 0 and summary.get("exit_profile"):
+        return summary
     return None
 
 

@@ -15,6 +15,7 @@ not an error of the study: it is a row with status "bad_input" and the reason.
 """
 from __future__ import annotations
 
+import copy
 import itertools
 import re
 import tomllib
@@ -24,8 +25,8 @@ from typing import Any, Literal
 
 from pydantic import Field, ValidationError, field_validator, model_validator
 
-from ..app.config import Case, CaseError, case_from_dict
-from ..app.config_base import _field, _Problems, _Section
+from ..app.config import Case, CaseError, case_from_dict, set_dotted
+from ..app.config_base import _field, _Problems, _Section, problem_lines
 
 
 class BaseConfig(_Section):
@@ -116,7 +117,7 @@ def load_study(path: str | Path) -> tuple[Study, dict]:
     try:
         study = Study.model_validate(data)
     except ValidationError as e:
-        raise CaseError(_problems(e), str(path), "study") from None
+        raise CaseError(problem_lines(e), str(path), "study") from None
     return study, _base_dict(study, path.parent)
 
 
@@ -149,38 +150,10 @@ def expand(study: Study, base: dict) -> list[StudyCase]:
     out = []
     for i, values in enumerate(study.combinations()):
         name = label(values)
-        data = _with(base, values)
-        data["name"] = f"{base.get('name', 'case')} {name}"
-        data.setdefault("solver", {})["threads"] = 1
         try:
+            data = set_dotted(copy.deepcopy(base), {**values, "solver.threads": 1})
+            data["name"] = f"{base.get('name', 'case')} {name}"
             out.append(StudyCase(i, name, values, case_from_dict(data)))
         except CaseError as e:
             out.append(StudyCase(i, name, values, None, "; ".join(e.problems)))
-    return out
-
-
-def _with(base: dict, values: dict[str, Any]) -> dict:
-    import copy
-
-    data = copy.deepcopy(base)
-    for key, value in values.items():
-        sec, _, rest = key.partition(".")
-        node = data.setdefault(sec, {})
-        parts = rest.split(".")
-        for p in parts[:-1]:
-            node = node.setdefault(p, {})
-        node[parts[-1]] = value
-    return data
-
-
-def _problems(err: ValidationError) -> list[str]:
-    out = []
-    for e in err.errors():
-        exc = (e.get("ctx") or {}).get("error")
-        if isinstance(exc, _Problems):
-            out += exc.problems
-            continue
-        loc = ".".join(str(x) for x in e["loc"])
-        msg = {"missing": "missing", "extra_forbidden": "unknown key"}.get(e["type"], e["msg"])
-        out.append(f"{loc}: {msg}")
     return out

@@ -17,7 +17,6 @@ atomically after every finished group.
 """
 from __future__ import annotations
 
-import json
 import math
 import os
 import socket
@@ -52,7 +51,7 @@ def groups(cases: list[StudyCase], workers: int) -> list[list[StudyCase]]:
 def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
     """Solve a group's cases in this process (a dask task); one row per case."""
     from ..app.config import case_from_dict
-    from ..app.runner import run_case
+    from ..app.runner import finished_summary, run_case
     from ..app.sweep import Sweep
 
     sweep = Sweep(similar=True, history=False) if warm else None
@@ -63,7 +62,7 @@ def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
         row = {"index": item["index"], "case": item["label"], **item["values"],
                "worker": f"{socket.gethostname()}:{os.getpid()}"}
         try:
-            summary = _finished(case, cdir)
+            summary = finished_summary(case, cdir)
             resumed = summary is not None
             if summary is None:
                 cdir.mkdir(parents=True, exist_ok=True)
@@ -134,14 +133,6 @@ def restore_run(case, warm):
     run.shape = warm.shape.copy()
     run._set_shape()
     return run
-
-
-def _finished(case, cdir: Path) -> dict | None:
-    """The summary of a case solved before for the same case file, else None."""
-    s, c = cdir / "summary.json", cdir / "case.toml"
-    if s.exists() and c.exists() and c.read_text() == case.to_toml():
-        return json.loads(s.read_text())
-    return None
 
 
 def _reason(summary: dict) -> str:

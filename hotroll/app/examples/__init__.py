@@ -21,8 +21,14 @@ EXAMPLES: dict[str, list[str]] = {
 
 def example_path(name: str) -> Path:
     """Path of the bundled case file ``name`` (with or without ``.toml``)."""
-    path = Path(__file__).with_name(name if name.endswith(".toml") else f"{name}.toml")
+    return bundled_path(Path(__file__).parent, name, "example case")
+
+
+def bundled_path(folder: Path, name: str, what: str) -> Path:
+    """Path of the bundled file ``name`` (with or without ``.toml``) in ``folder``;
+    FileNotFoundError listing the known ones."""
+    path = Path(folder) / (name if name.endswith(".toml") else f"{name}.toml")
     if not path.is_file():
         known = sorted(p.stem for p in path.parent.glob("*.toml"))
-        raise FileNotFoundError(f"no example case {name!r} (known: {', '.join(known)})")
+        raise FileNotFoundError(f"no {what} {name!r} (known: {', '.join(known)})")
     return path
