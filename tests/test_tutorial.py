@@ -26,6 +26,23 @@ def test_the_tutorial_runs(tmp_path, capsys):
     assert (tmp_path / "study_out" / "study.parquet").exists()
     res = ns["res"]
     assert res.units["roll_force"] == "N/m" and 0.4 < res.roll_force < 0.7
+    # the result is what the run wrote: summary.json and contact.csv, read here on their own
+    import csv
+    import json
+
+    import numpy as np
+
+    written = json.loads((res.out / "summary.json").read_text())
+    for key in ("roll_force", "roll_torque", "forward_slip"):
+        assert getattr(res, key) == written[key]
+    with open(res.out / "contact.csv", newline="") as fh:
+        sn = [float(row["normal_stress"]) for row in csv.DictReader(fh)]
+    assert np.array_equal(res.contact["normal_stress"], np.array(sn))
+    rows = ns["rows"]
+    for row in rows:
+        case_summary = json.loads((tmp_path / "study_out" / "cases" / row["case"] /
+                                   "summary.json").read_text())
+        assert row["roll_force"] == case_summary["roll_force"]
 
 
 def test_the_api_names_are_not_shadowed_by_packages():
