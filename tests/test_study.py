@@ -263,3 +263,23 @@ def test_the_table_is_each_cases_own_run(files, serial, tmp_path):
     own = run_case(case, tmp_path / "own", resume=False)
     for k in keys:
         assert own[k] == cold[k], k
+
+
+def test_a_case_killed_between_its_summary_and_its_state_is_solved_again(files, serial,
+                                                                          tmp_path):
+    """The kill can fall between a case's summary.json and its warm_state.npz: without the
+    state that case is solved again (from the same start: the same numbers), so that the next
+    case of its group does not start cold. Simulated by deleting every saved state."""
+    import shutil
+
+    study, base = load_study(files / "study.toml")
+    out = tmp_path / "copy"
+    shutil.copytree(files / "serial", out)
+    for f in out.glob("cases/*/warm_state.npz"):
+        f.unlink()
+    rows = run_study(study, base, out, serial=True, workers=2)
+    done = [r for r in rows if r["status"] == "done"]
+    assert done and not any(r["resumed"] for r in done)
+    for a, b in zip(serial, rows):
+        if a["status"] == "done":
+            assert b["roll_force"] == pytest.approx(a["roll_force"], rel=1e-9), a["case"]

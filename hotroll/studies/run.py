@@ -63,6 +63,11 @@ def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
                "worker": f"{socket.gethostname()}:{os.getpid()}"}
         try:
             summary = finished_summary(case, cdir)
+            if (summary is not None and sweep is not None and summary.get("exit_code") == 0
+                    and not (cdir / WARM_FILE).exists()):
+                # killed between its summary and its final state: solved again (from the same
+                # start, so to the same numbers), else the group's next case would start cold
+                summary = None
             resumed = summary is not None
             if summary is None:
                 cdir.mkdir(parents=True, exist_ok=True)
