@@ -5,7 +5,8 @@ DIR/af_study.csv and .md (rewritten after every run), DIR/af_study.png (neutral 
 slip and roll force against a_f, log x; the estimate run is drawn at the mean a_f it used) and
 DIR/af_compare.png (contact and top-boundary profiles of all runs).  Finished runs are reused,
 interrupted ones resume from their checkpoint.  Every run to steady state takes about as long
-as the mesh's run in scripts/mesh_table.py (C1: about an hour on 2 cores).
+as the mesh's transient run of the mesh table (`hotroll study mesh_table --set
+solver.method=transient`; C1: about an hour on 2 cores).
 
     python scripts/af_study.py --mesh C1
     python scripts/af_study.py --af 1,10,100,estimate --mesh 0.015 --end-time 0.01 --out /tmp/af

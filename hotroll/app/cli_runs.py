@@ -70,7 +70,9 @@ def schedule(
 
 @app.command()
 def study(
-    study_file: Annotated[Path, typer.Argument(help="Study file (TOML): [base] and [vary].")],
+    study_file: Annotated[Path, typer.Argument(
+        help="Study file (TOML): [base] and [vary]/[[cases]], or a bundled study's name "
+             "(mesh_table, report_examples).")],
     out: OutOpt,
     scheduler: Annotated[Optional[str], typer.Option(
         help="Address of a running dask scheduler (default: DASK_SCHEDULER_ADDRESS, else a "
@@ -79,6 +81,9 @@ def study(
         help="Local cluster: worker processes (default: one per core, one thread each).")] = None,
     serial: Annotated[bool, typer.Option("--serial", help="No cluster: the groups one after "
                                          "another in this process.")] = False,
+    set_: Annotated[Optional[list[str]], typer.Option(
+        "--set", help="KEY=VALUE: a dotted case key set on the base case (repeatable), e.g. "
+                      "--set solver.method=transient.")] = None,
 ) -> None:
     """Run every combination of a study's vary lists on dask.distributed into OUT/cases/;
     the table OUT/study.csv and OUT/study.parquet (a column per varied key). Finished cases
@@ -88,8 +93,16 @@ def study(
     from hotroll.studies.config import load_study
     from hotroll.studies.run import FAILED, run_study
 
+    if not study_file.exists():
+        from hotroll.studies.examples import study_path
+
+        try:
+            study_file = study_path(str(study_file))
+        except FileNotFoundError as e:
+            raise _fail(f"study: {study_file} is neither a file nor a bundled study ({e})") \
+                from None
     try:
-        st, base = load_study(study_file)
+        st, base = load_study(study_file, overrides=_key_values(set_ or []))
     except CaseError as e:
         raise _fail(str(e)) from None
     n = len(st.combinations())
@@ -101,8 +114,9 @@ def study(
 
         def progress(p: dict) -> None:
             eta = p["remaining_s"]
-            bar.update(task, completed=p["done"], info=f"failed {p['failed']}, about "
-                       f"{eta:.0f} s left" if eta == eta else f"failed {p['failed']}")
+            info = f"failed {p['failed']}, running {p.get('running', 0)}"
+            bar.update(task, completed=p["done"], info=info + (
+                f", about {eta:.0f} s left" if eta == eta else ""))
 
         rows = run_study(st, base, out, scheduler=scheduler, workers=workers, serial=serial,
                          progress=progress)
@@ -112,5 +126,25 @@ def study(
                           soft_wrap=True)
     console.print(f"{len(rows) - len(failed)} of {len(rows)} cases done; table "
                   f"{out / 'study.csv'} and {out / 'study.parquet'}")
+    for name in ("study.png", "study_profiles.png"):
+        if st.plot is not None and (out / name).is_file():
+            console.print(f"figure {out / name}")
     if failed:
         raise typer.Exit(64 + min(len(failed), 63))
+
+
+def _key_values(items: list[str]) -> dict:
+    """``KEY=VALUE`` options as a dict; a VALUE TOML reads (number, boolean, list, quoted
+    text) is that value, else the text."""
+    import tomllib
+
+    out = {}
+    for item in items:
+        key, sep, text = item.partition("=")
+        if not sep or "." not in key:
+            raise _fail(f"--set {item!r}: expected section.key=value, e.g. solver.method=steady")
+        try:
+            out[key.strip()] = tomllib.loads(f"v = {text.strip()}")["v"]
+        except tomllib.TOMLDecodeError:
+            out[key.strip()] = text.strip()
+    return out

@@ -3,20 +3,32 @@
     name = "m_and_speed"
     [base]
     file = "case.toml"            # relative to the study file; or example = "hot_strip_finishing"
-    [vary]                        # dotted case keys -> lists of values; their product is run
-    "material.m" = [0.15, 0.2, 0.25]
-    "pass.roll_angular_velocity" = [1.0, 2.0]
+    set = { "solver.method" = "steady" }      # dotted keys set on the base case
+    [vary]                        # dotted case keys -> values; their product is run
+    "material.m" = [0.15, 0.2, 0.25]                           # a list
+    "pass.roll_angular_velocity" = { start = 1.0, stop = 3.0, num = 5 }   # a range (ends in)
+    "material.K" = { start = 1e3, stop = 1e6, num = 4, scale = "log" }
+    [[cases]]                     # and/or a table of cases: each row's keys set together
+    "pass.exit_thickness" = 0.4
+    "friction.law" = "coulomb"
     [run]
-    combine = "product"           # or "zip": the lists side by side (equal lengths)
+    combine = "product"           # or "zip": the [vary] lists side by side (equal lengths)
     warm_start = true             # a worker starts each case from its neighbour (app/sweep.py)
+    [plot]                        # study.png drawn from the table (studies/plot.py)
+    x = "material.m"
+    y = ["roll_force", "forward_slip"]
+    lines = "pass.roll_angular_velocity"     # one line per value (optional)
 
-Every combination becomes a case (``StudyCase``); a combination the case schema refuses is
-not an error of the study: it is a row with status "bad_input" and the reason.
+The combinations: each row of ``[[cases]]`` (or ``cases_file``, a CSV whose header names the
+dotted keys) times every combination of ``[vary]``. Every combination becomes a case
+(``StudyCase``); a combination the case schema refuses is not an error of the study: it is a
+row with status "bad_input" and the reason.
 """
 from __future__ import annotations
 
 import copy
 import itertools
+import math
 import re
 import tomllib
 from dataclasses import dataclass
@@ -34,12 +46,60 @@ class BaseConfig(_Section):
                               "a path")
     example: str | None = _field(None, "or a bundled example case by name", "",
                                  "a name of hotroll/app/examples")
+    set: dict[str, Any] = _field({}, "dotted case keys set on the base case", "",
+                                 'e.g. { "solver.method" = "steady" }')
 
     @model_validator(mode="after")
     def _one(self) -> BaseConfig:
         if (self.file is None) == (self.example is None):
             raise _Problems(["base: give exactly one of file and example"])
         return self
+
+
+class Range(_Section):
+    """Evenly spaced values from start to stop, both included: ``num`` of them, or every
+    ``step``; ``scale = "log"``: evenly spaced logarithms (``num`` only)."""
+
+    start: float = _field(..., "first value", "", "a number")
+    stop: float = _field(..., "last value (included)", "", "a number")
+    num: int | None = _field(None, "how many values", "", "2..100000", ge=2, le=100_000)
+    step: float | None = _field(None, "or the spacing", "", "> 0", gt=0)
+    scale: Literal["linear", "log"] = _field("linear", "spacing", "", '"linear" or "log"')
+
+    @model_validator(mode="after")
+    def _one(self) -> Range:
+        if (self.num is None) == (self.step is None):
+            raise _Problems(["give exactly one of num and step"])
+        if self.scale == "log" and (self.step is not None or self.start <= 0 or self.stop <= 0):
+            raise _Problems(['scale = "log" needs num and start, stop > 0'])
+        if self.step is not None and not 1 <= (self.stop - self.start) / self.step + 1 <= 100_000:
+            raise _Problems([f"step: from {self.start:g} to {self.stop:g} by {self.step:g} is "
+                             "not 1..100000 values (stop must not be below start)"])
+        return self
+
+    def values(self) -> list[float]:
+        import numpy as np
+
+        if self.scale == "log":
+            v = np.geomspace(self.start, self.stop, self.num)
+        elif self.num is not None:
+            v = np.linspace(self.start, self.stop, self.num)
+        else:
+            n = int(math.floor((self.stop - self.start) / self.step * (1 + 1e-12))) + 1
+            v = self.start + self.step * np.arange(n)
+        return [float(f"{x:.12g}") for x in v]
+
+
+class PlotConfig(_Section):
+    x: str = _field(..., "the table's column on the x axis (a varied key or a summary field)",
+                    "", "a column of study.csv")
+    y: list[str] = _field(["roll_force"], "summary fields, one panel each", "",
+                          "columns of study.csv")
+    lines: str | None = _field(None, "a varied key: one line per value", "",
+                               "a column of study.csv")
+    xscale: Literal["linear", "log"] = _field("linear", "x axis", "", '"linear" or "log"')
+    profiles: bool = _field(False, "also the contact profiles of the finished cases overlaid "
+                            "(study_profiles.png)", "", "true or false")
 
 
 class RunConfig(_Section):
@@ -53,33 +113,72 @@ class RunConfig(_Section):
 class Study(_Section):
     name: str = Field("study", description="study name")
     base: BaseConfig
-    vary: dict[str, list[Any]] = Field(..., description="dotted case keys -> values")
+    vary: dict[str, list[Any] | Range] = Field({}, description="dotted case keys -> values")
+    cases: list[dict[str, Any]] = Field([], description="a table of cases: dotted keys -> value")
+    cases_file: str | None = Field(None, description="or a CSV of cases (header: dotted keys)")
     run: RunConfig = Field(default_factory=RunConfig)
+    plot: PlotConfig | None = None
 
     @field_validator("vary")
     @classmethod
     def _vary(cls, v: dict) -> dict:
-        if not v:
-            raise ValueError("give at least one dotted case key with a list of values")
         for key, values in v.items():
-            if "." not in key:
-                raise ValueError(f"{key!r}: a dotted case key (section.key), e.g. material.m")
-            if not values:
+            _dotted(key)
+            if isinstance(values, list) and not values:
                 raise ValueError(f"{key!r}: an empty list of values")
+        return {k: x.values() if isinstance(x, Range) else x for k, x in v.items()}
+
+    @field_validator("cases")
+    @classmethod
+    def _cases(cls, v: list) -> list:
+        for row in v:
+            if not row:
+                raise ValueError("an empty row of [[cases]]")
+            for key in row:
+                _dotted(key)
         return v
 
     @model_validator(mode="after")
     def _lengths(self) -> Study:
+        if not self.vary and not self.cases and self.cases_file is None:
+            raise _Problems(["vary: give [vary] (dotted case keys with lists or ranges of "
+                             "values), [[cases]] or cases_file"])
         if self.run.combine == "zip" and len({len(x) for x in self.vary.values()}) > 1:
             raise _Problems(["vary: with run.combine = \"zip\" every list needs the same length, "
                              f"got {[len(x) for x in self.vary.values()]}"])
+        if self.plot is not None and self.plot.lines is not None and self.plot.lines not in \
+                set(self.vary) | {k for r in self.cases for k in r}:
+            raise _Problems([f"plot.lines: {self.plot.lines!r} is not a varied key "
+                             f"({', '.join(self.vary) or 'none'})"])
         return self
 
     def combinations(self) -> list[dict[str, Any]]:
+        """Each row of the cases table (one empty row without one) times the [vary] grid."""
         keys = list(self.vary)
         lists = [self.vary[k] for k in keys]
-        rows = itertools.product(*lists) if self.run.combine == "product" else zip(*lists)
-        return [dict(zip(keys, r)) for r in rows]
+        grid = itertools.product(*lists) if self.run.combine == "product" else zip(*lists)
+        grid = [dict(zip(keys, r)) for r in grid]
+        return [{**row, **g} for row in (self.cases or [{}]) for g in grid]
+
+
+def key_unit(dotted: str) -> str:
+    """The unit of a dotted case key from the case schema (``[m]`` of its description), else
+    "-"."""
+    from ..app.config_base import _fields
+
+    section, _, key = dotted.partition(".")
+    try:
+        model = _fields(Case)[section].annotation
+        text = _fields(model)[key].description or ""
+    except (KeyError, AttributeError, TypeError):
+        return "-"
+    found = re.search(r"\[([^\]]*)\]", text)
+    return found.group(1) if found else "-"
+
+
+def _dotted(key: str) -> None:
+    if "." not in key:
+        raise ValueError(f"{key!r}: a dotted case key (section.key), e.g. material.m")
 
 
 @dataclass
@@ -96,16 +195,21 @@ class StudyCase:
 def label(values: dict[str, Any]) -> str:
     """A directory name of the varied values: ``material.m=0.2,pass.roll_...=1``."""
     parts = [f"{k}={_short(v)}" for k, v in values.items()]
-    return re.sub(r"[^A-Za-z0-9_.=,+-]", "_", ",".join(parts))
+    text = re.sub(r"[^A-Za-z0-9_.=,+-]", "_", ",".join(parts)) or "base"
+    if len(text) > 120:             # a file name has at most 255 bytes: cut, keep it unique
+        import hashlib
+
+        text = text[:100] + "-" + hashlib.sha1(text.encode()).hexdigest()[:12]
+    return text
 
 
 def _short(v: Any) -> str:
     return f"{v:.6g}" if isinstance(v, float) else str(v)
 
 
-def load_study(path: str | Path) -> tuple[Study, dict]:
-    """The validated study and its base case as a dict (TOML names); CaseError naming the
-    field."""
+def load_study(path: str | Path, overrides: dict[str, Any] | None = None) -> tuple[Study, dict]:
+    """The validated study and its base case as a dict (TOML names), ``overrides`` (dotted
+    keys) set on the base after the file's ``base.set``; CaseError naming the field."""
     path = Path(path)
     try:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
@@ -118,10 +222,52 @@ def load_study(path: str | Path) -> tuple[Study, dict]:
         study = Study.model_validate(data)
     except ValidationError as e:
         raise CaseError(problem_lines(e), str(path), "study") from None
+    if study.cases_file is not None:
+        study.cases = study.cases + _read_cases(path.parent / study.cases_file, str(path))
+    if overrides:
+        study.base.set = {**study.base.set, **overrides}
     return study, _base_dict(study, path.parent)
 
 
+def _read_cases(csv_path: Path, source: str) -> list[dict[str, Any]]:
+    """The rows of a CSV of cases; a cell that reads as a number is one."""
+    import csv
+
+    try:
+        with open(csv_path, newline="", encoding="utf-8") as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        raise CaseError(f"cases_file: cannot read {csv_path}: {e.strerror or e}", source,
+                        "study") from None
+    if not rows:
+        raise CaseError(f"cases_file: {csv_path} has no rows under its header", source, "study")
+    bad = [k for k in rows[0] if k is None or "." not in k]
+    if bad:
+        raise CaseError(f"cases_file: header {bad!r}: dotted case keys (section.key)", source,
+                        "study")
+    return [{k: _cell(v) for k, v in r.items() if v not in ("", None)} for r in rows]
+
+
+def _cell(text: str) -> Any:
+    for conv in (int, float):
+        try:
+            return conv(text)
+        except ValueError:
+            pass
+    return {"true": True, "false": False}.get(text.strip().lower(), text)
+
+
 def _base_dict(study: Study, root: Path) -> dict:
+    data = _read_base(study, root)
+    try:
+        set_dotted(data, study.base.set)
+        case_from_dict(data, str(study.base.file or study.base.example))
+    except CaseError as e:
+        raise CaseError([f"base case: {p}" for p in e.problems], None, "study") from None
+    return data
+
+
+def _read_base(study: Study, root: Path) -> dict:
     from ..app.examples import example_path
 
     if study.base.file is not None:
@@ -137,10 +283,6 @@ def _base_dict(study: Study, root: Path) -> dict:
         raise CaseError(f"base.file: cannot read the base case {src}: {e}", None,
                         "study") from None
     data.setdefault("name", src.stem)
-    try:
-        case_from_dict(data, str(src))
-    except CaseError as e:
-        raise CaseError([f"base case: {p}" for p in e.problems], str(src), "study") from None
     return data
 
 

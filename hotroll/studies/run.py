@@ -177,17 +177,22 @@ def run_study(study: Study, base: dict, out: Path, *, scheduler: str | None = No
     work = groups(cases, workers)
     total, t0 = len(cases), time.perf_counter()
 
-    def done(new: list[dict]) -> None:
+    running = min(workers, len(work)) if not serial else min(1, len(work))
+    left = [len(work)]                    # groups not finished
+
+    def done(new: list[dict], group_done: bool = False) -> None:
         for r in new:
             rows[r["index"]] = r
+        left[0] -= group_done
         write_table(out, [rows[i] for i in sorted(rows)])
         if progress:
-            progress(_progress(rows, total, t0))
+            busy = min(running, left[0])
+            progress({**_progress(rows, total, t0), "running": busy})
 
     done([])
     if serial:
         for g in work:
-            done(run_group(_payload(g), str(out), study.run.warm_start))
+            done(run_group(_payload(g), str(out), study.run.warm_start), True)
     else:
         from distributed import Client, LocalCluster, as_completed
 
@@ -200,11 +205,27 @@ def run_study(study: Study, base: dict, out: Path, *, scheduler: str | None = No
                 futures = [client.submit(run_group, _payload(g), str(out.resolve()),
                                          study.run.warm_start, pure=False) for g in work]
                 for fut in as_completed(futures):
-                    done(fut.result())
+                    done(fut.result(), True)
         finally:
             if cluster is not None:
                 cluster.close()
-    return [rows[i] for i in sorted(rows)]
+    table = [rows[i] for i in sorted(rows)]
+    figures(study, out, table)
+    return table
+
+
+def figures(study: Study, out: Path, rows: list[dict]) -> list[Path]:
+    """The study's figures drawn from its table (``[plot]``): study.png, study_profiles.png."""
+    if study.plot is None:
+        return []
+    from .plot import plot_profiles, plot_table, units_of
+
+    made = [plot_table(rows, study.plot, out / "study.png", units=units_of(out, rows),
+                       title=f"study {study.name}")]
+    if study.plot.profiles:
+        made.append(plot_profiles(rows, out, out / "study_profiles.png",
+                                  title=f"study {study.name}: contact profiles"))
+    return [p for p in made if p is not None]
 
 
 def _progress(rows: dict, total: int, t0: float) -> dict:

@@ -1,0 +1,181 @@
+"""Study files (issue 18): ranges, a table of cases, base overrides, the plot section, the
+bundled studies; no solve here (the runs are in test_study.py)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from hotroll.app.config import CaseError
+from hotroll.studies.config import expand, key_unit, label, load_study
+
+BASE = """
+[pass]
+roll_radius = 0.6
+entry_thickness = 0.5
+exit_thickness = 0.4
+roll_angular_velocity = 1.0
+[plate]
+length = 4.0
+[material]
+K = 1.0
+m = 0.2
+[friction]
+law = "viscoplastic"
+[mesh]
+h_contact = 0.03
+[solver]
+method = "transient"
+"""
+
+
+def _study(tmp_path, text: str, top: str = ""):
+    """A study of base.toml: ``top`` (keys before any table), then [base] and ``text``."""
+    (tmp_path / "base.toml").write_text(BASE)
+    (tmp_path / "s.toml").write_text(top + '[base]\nfile = "base.toml"\n' + text)
+    return load_study(tmp_path / "s.toml")
+
+
+def test_ranges_are_evenly_spaced_and_include_both_ends(tmp_path):
+    st, _ = _study(tmp_path, '[vary]\n"material.m" = { start = 0.1, stop = 0.3, num = 5 }\n'
+                   '"material.K" = { start = 1e3, stop = 1e6, num = 4, scale = "log" }\n'
+                   '"pass.roll_angular_velocity" = { start = 0.5, stop = 2.0, step = 0.5 }\n')
+    assert st.vary["material.m"] == pytest.approx([0.1, 0.15, 0.2, 0.25, 0.3], rel=1e-12)
+    assert st.vary["material.K"] == pytest.approx([1e3, 1e4, 1e5, 1e6], rel=1e-12)
+    assert st.vary["pass.roll_angular_velocity"] == pytest.approx([0.5, 1.0, 1.5, 2.0])
+    combos = st.combinations()
+    assert len(combos) == 5 * 4 * 4
+    assert len({tuple(c.values()) for c in combos}) == 80           # all distinct
+
+
+def test_a_table_of_cases_times_the_grid_and_base_overrides(tmp_path):
+    st, base = _study(tmp_path, 'set = { "solver.method" = "steady", "material.K" = 2.0 }\n'
+                      '[vary]\n"material.m" = [0.15, 0.25]\n'
+                      '[[cases]]\n"pass.exit_thickness" = 0.45\n"friction.law" = "tresca"\n'
+                      '"friction.factor" = 0.8\n'
+                      '[[cases]]\n"pass.exit_thickness" = 0.35\n')
+    assert base["solver"]["method"] == "steady" and base["material"]["K"] == 2.0
+    combos = st.combinations()
+    assert [(c["pass.exit_thickness"], c["material.m"]) for c in combos] == [
+        (0.45, 0.15), (0.45, 0.25), (0.35, 0.15), (0.35, 0.25)]
+    cases = expand(st, base)
+    assert [c.case.pass_.exit_thickness for c in cases] == [0.45, 0.45, 0.35, 0.35]
+    assert [c.case.friction.law for c in cases] == ["tresca", "tresca", "viscoplastic",
+                                                   "viscoplastic"]
+    assert all(c.case.solver.method == "steady" and c.case.material.K == 2.0 for c in cases)
+
+
+def test_cases_from_a_csv_file(tmp_path):
+    (tmp_path / "cases.csv").write_text("material.m,pass.roll_angular_velocity,friction.law\n"
+                                        "0.15,1.0,viscoplastic\n0.3,2,coulomb\n")
+    st, base = _study(tmp_path, "", top='cases_file = "cases.csv"\n')
+    assert st.combinations() == [
+        {"material.m": 0.15, "pass.roll_angular_velocity": 1.0, "friction.law": "viscoplastic"},
+        {"material.m": 0.3, "pass.roll_angular_velocity": 2, "friction.law": "coulomb"}]
+    cases = expand(st, base)
+    assert cases[0].case is not None and cases[0].case.material.m == 0.15
+    assert cases[1].case is None and "friction" in cases[1].problem      # coulomb needs its mu
+
+
+@pytest.mark.parametrize("text, field", [
+    ('[vary]\n"material.m" = { start = 0.1, stop = 0.3 }\n', "num"),
+    ('[vary]\n"material.m" = { start = 0.1, stop = 0.3, num = 3, step = 0.1 }\n', "num"),
+    ('[vary]\n"material.m" = { start = 0.3, stop = 0.1, step = 0.1 }\n', "step"),
+    ('[vary]\n"material.K" = { start = 0, stop = 10, num = 3, scale = "log" }\n', "log"),
+    ('[vary]\n"material.m" = { start = 0.1, stop = 0.3, num = 1 }\n', "num"),
+    ('[vary]\n"material.m" = { start = 0.1, stop = 0.3, nums = 3 }\n', "nums"),
+    ('[[cases]]\nm = 0.2\n', "cases"),
+    ("", "cases_file: cannot read"),
+    ('set = { "solver.method" = "quick" }\n[vary]\n"material.m" = [0.2]\n', "solver.method"),
+    ('[vary]\n"material.m" = [0.2]\n[plot]\nx = "material.m"\nlines = "material.K"\n',
+     "plot.lines"),
+    ('[vary]\n"material.m" = [0.2]\n[plot]\ny = ["roll_force"]\n', "plot.x"),
+])
+def test_bad_study_files_name_the_field(tmp_path, text, field):
+    top = 'cases_file = "nothing.csv"\n' if field.startswith("cases_file") else ""
+    with pytest.raises(CaseError) as e:
+        _study(tmp_path, text, top)
+    assert field in str(e.value)
+
+
+def test_labels_are_file_names_and_unique():
+    long = {f"material.key{i}": 0.123456789 * i for i in range(30)}
+    other = {**long, "material.key29": 1.0}
+    a, b = label(long), label(other)
+    assert len(a) <= 120 and len(b) <= 120 and a != b
+    assert label({"mesh.h_contact": "C2", "x.y": "a b/c"}) == "mesh.h_contact=C2,x.y=a_b_c"
+
+
+def test_units_of_varied_keys_come_from_the_case_schema():
+    assert key_unit("pass.roll_angular_velocity") == "rad/s"
+    assert key_unit("material.K") == "Pa s^m"
+    assert key_unit("pass.exit_thickness") == "m"
+    assert key_unit("nothing.there") == "-"
+
+
+@pytest.mark.parametrize("name, n", [("mesh_table", 6), ("report_examples", 4)])
+def test_bundled_studies_are_valid(name, n):
+    from hotroll.studies.examples import study_path
+
+    st, base = load_study(study_path(name))
+    cases = expand(st, base)
+    assert len(cases) == n and all(c.case is not None for c in cases)
+    assert all(c.case.solver.method == "steady" for c in cases)
+    if name == "mesh_table":
+        from hotroll.app.config import MESH_TABLE
+
+        assert [c.case.mesh.h for c in cases] == [MESH_TABLE[k] for k in MESH_TABLE]
+    else:
+        ex = {(c.case.material.m, round(c.case.pass_.roll_angular_velocity, 12))
+              for c in cases}
+        assert ex == {(0.2, round(math.pi / 3, 12)), (0.2, round(math.pi / 6, 12)),
+                      (0.15, round(math.pi / 3, 12)), (0.25, round(math.pi / 3, 12))}
+
+
+def test_the_figure_is_drawn_from_the_table(tmp_path):
+    """study.png's curves are the table's done rows, sorted along x, a line per value."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from hotroll.studies.config import PlotConfig
+    from hotroll.studies.plot import plot_table
+
+    rows = [{"case": f"c{i}", "status": "done", "material.m": m, "pass.roll_angular_velocity": w,
+             "roll_force": 10 * m + w} for i, (m, w) in enumerate(
+                 [(0.3, 1.0), (0.1, 1.0), (0.2, 2.0), (0.1, 2.0), (0.2, 1.0)])]
+    rows.append({"case": "bad", "status": "error", "material.m": 0.5,
+                 "pass.roll_angular_velocity": 1.0, "roll_force": 99.0})
+    captured = {}
+    real = plt.Figure.savefig
+
+    def grab(fig, *a, **k):
+        captured["lines"] = [(ln.get_label(), list(ln.get_xdata()), list(ln.get_ydata()))
+                             for ln in fig.axes[0].lines]
+        return real(fig, *a, **k)
+
+    plt.Figure.savefig = grab
+    try:
+        png = plot_table(rows, PlotConfig(x="material.m", y=["roll_force"],
+                                          lines="pass.roll_angular_velocity"),
+                         tmp_path / "s.png", units={"roll_force": "N/m"})
+    finally:
+        plt.Figure.savefig = real
+    assert png.is_file()
+    lines = {lab: (xs, ys) for lab, xs, ys in captured["lines"]}
+    assert lines["pass.roll_angular_velocity = 1 rad/s"] == ([0.1, 0.2, 0.3], [2.0, 3.0, 4.0])
+    xs, ys = lines["pass.roll_angular_velocity = 2 rad/s"]
+    assert xs == [0.1, 0.2] and np.allclose(ys, [3.0, 4.0])
+
+
+def test_command_line_overrides_go_on_the_base_after_the_files_own(tmp_path):
+    from hotroll.app.cli_runs import _key_values
+    from hotroll.studies.examples import study_path
+
+    over = _key_values(["solver.method=transient", "solver.end_time=0.01", "material.m = 0.3"])
+    assert over == {"solver.method": "transient", "solver.end_time": 0.01, "material.m": 0.3}
+    st, base = load_study(study_path("mesh_table"), overrides=over)
+    cases = expand(st, base)
+    assert all(c.case.solver.method == "transient" and c.case.material.m == 0.3 for c in cases)
