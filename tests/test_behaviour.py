@@ -180,6 +180,8 @@ def test_steady_test_looks_at_the_last_two_windows_only():
     ({"converged": False, "status": "wall_time", "roll_force": 1.0, "roll_torque": 1.0}, 5),
     ({"converged": False, "status": "steady", "outlet_driven": True, "roll_force": 1.0,
       "roll_torque": 1.0}, 6),
+    ({"converged": False, "status": "steady", "not_conserved": True, "roll_force": 1.0,
+      "roll_torque": 1.0, "failure": "not conserved: mass_flux_error = 0.03 above 0.02"}, 7),
 ])
 @pytest.mark.mutation   # cheap enough for mutmut's selection (pyproject [tool.mutmut])
 def test_exit_code_says_what_happened(summary, code):
@@ -289,7 +291,7 @@ def test_figures_show_finite_data_inside_their_axes(tmp_path, monkeypatch):
     real_savefig = Figure.savefig
 
     def savefig(fig, path, *a, **k):          # every figure, whoever saves it
-        figs[Path(path).name] = fig
+        figs[Path(path).name.replace(".tmp.", ".")] = fig     # written atomically (files.py)
         return real_savefig(fig, path, *a, **k)
 
     monkeypatch.setattr(Figure, "savefig", savefig)

@@ -201,7 +201,7 @@ def test_temperature_figure_shows_the_written_data(chilled, monkeypatch):
     monkeypatch.setattr(P.plt, "close", lambda *a, **k: None)
 
     def savefig(fig, path, *a, **k):
-        figs[Path(path).name] = fig
+        figs[Path(path).name.replace(".tmp.", ".")] = fig     # written atomically (files.py)
         return real_savefig(fig, path, *a, **k)
 
     monkeypatch.setattr(Figure, "savefig", savefig)

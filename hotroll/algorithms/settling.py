@@ -54,3 +54,8 @@ def transit_time(rp, carried: bool) -> float:
     if carried:
         transit *= 1.2 * rp.half_entry / rp.half_exit
     return transit
+
+
+def default_end_time(rp) -> float:
+    """Time for the roll surface to travel three contact lengths (the run stops when steady)."""
+    return 3.0 * rp.contact_length / rp.u_roll

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -341,8 +340,13 @@ class TransientRun:
     # --- checkpoints -----------------------------------------------------------------------------
     def save_checkpoint(self) -> None:
         """Atomic write of everything needed to resume (mesh saved once at start)."""
+        from ..files import atomic
+
         st = self.state
-        tmp = self.ckpt / "state.tmp.npz"
+        with atomic(self.ckpt / "state.npz") as tmp:
+            self._write_state(tmp, st)
+
+    def _write_state(self, tmp, st) -> None:
         np.savez(tmp, disp=self.d, sol=self.form.problem.gf.vec.FV().NumPy(),
                  contact=self.top.vertex_contact,
                  strain=self.strain.values if self.strain is not None else np.zeros(0),
@@ -351,7 +355,6 @@ class TransientRun:
                  a_f=self.form.a_f.Get(), step=st.step, time=st.time,
                  meta=json.dumps({"fingerprint": self.fingerprint, "status": st.status,
                                   "history": st.history, "settings": asdict(self.s)}))
-        os.replace(tmp, self.ckpt / "state.npz")
 
     def _load_mesh(self):
         import ngsolve

@@ -41,6 +41,8 @@ NonlinOpt = Annotated[Optional[str], typer.Option(help="Nonlinear solver: newton
 MethodOpt = Annotated[Optional[str], typer.Option(
     help="Solution method: steady (direct steady state) or transient (the report's scheme).")]
 ResumeOpt = Annotated[bool, typer.Option("--resume/--no-resume", help="Resume from a checkpoint.")]
+ForceOpt = Annotated[bool, typer.Option(
+    "--force", help="Run even when the memory estimate is above the limit (solver.force).")]
 
 
 def _fail(msg: str, code: int = 2) -> typer.Exit:
@@ -106,7 +108,13 @@ def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
         from hotroll.app.runner import run_case
     except ImportError as e:
         raise _fail(f"runner not available: {e}", code=1) from None
-    console.print(Text(f"running {case.name} -> {out}", style="bold"))
+    from hotroll.app.estimate import ResourceError, check
+
+    try:
+        est = check(case)
+    except ResourceError as e:
+        raise _fail(f"{case.name}: refused: {e}", code=8) from None
+    console.print(Text(f"running {case.name} -> {out} ({est.text()})", style="bold"))
     summary = run_case(case, out, resume=resume, progress=_Progress(), sweep=sweep) or {}
     table = Table(title=escape(f"{case.name}: summary"))
     table.add_column("quantity")
@@ -150,9 +158,12 @@ def run(
     method: MethodOpt = None,
     no_figures: Annotated[bool, typer.Option("--no-figures", help="Do not write figures.")] = False,
     resume: ResumeOpt = True,
+    force: ForceOpt = False,
 ) -> None:
     """Run one case file into OUT (the method is the file's [solver] method unless given)."""
     extra = {"output.figures": False} if no_figures else {}
+    if force:
+        extra["solver.force"] = True
     if method is not None:
         extra["solver.method"] = method
     case = _load(case_file, _overrides(mesh, end_time, nonlinear, **extra))
@@ -213,12 +224,13 @@ def example(
         help="steady (default: direct steady state) or transient (the report's time stepping).")
     ] = "steady",
     resume: ResumeOpt = True,
+    force: ForceOpt = False,
 ) -> None:
     """Run an example by name: the report's 1, 2, 3 (3 runs m = 0.15, 0.2, 0.25 and compares
     them) or one of the realistic passes."""
     if number not in EXAMPLES:
         raise _fail(f"example: unknown example {number!r} (allowed: {', '.join(EXAMPLES)})")
-    extra = {"solver.method": method}
+    extra = {"solver.method": method, **({"solver.force": True} if force else {})}
     over = _overrides(mesh, end_time, nonlinear, **extra)
     cases = [_load(example_path(name), over) for name in EXAMPLES[number]]  # validate all first
     if len(cases) == 1:
@@ -315,9 +327,22 @@ def meshes() -> None:
 
 
 from hotroll.app import cli_runs  # noqa: E402,F401  (registers schedule, study)
+from hotroll.app import cli_report  # noqa: E402,F401  (registers report)
 
 
-if __name__ == "__main__":      # python -m hotroll.app.cli: the imported module's app,
-    from hotroll.app.cli import app as _app   # on which cli_runs registered its commands
+def main() -> None:
+    """The ``hotroll`` command: the app, a full disk ending it with its clear message (exit
+    code 9, ``files.DiskFullError``) instead of a traceback."""
+    from hotroll.files import DiskFullError
 
-    _app()
+    try:
+        app()
+    except DiskFullError as e:
+        err_console.print(Text(str(e.strerror or e), style="red"), soft_wrap=True)
+        raise SystemExit(9) from None
+
+
+if __name__ == "__main__":      # python -m hotroll.app.cli: the imported module's main,
+    from hotroll.app.cli import main as _main   # whose app has cli_runs' commands
+
+    _main()

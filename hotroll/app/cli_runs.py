@@ -129,6 +129,8 @@ def study(
     for name in ("study.png", "study_profiles.png"):
         if st.plot is not None and (out / name).is_file():
             console.print(f"figure {out / name}")
+    from hotroll.app.cli_report import study_report
+    study_report(out, st.name)
     if failed:
         raise typer.Exit(64 + min(len(failed), 63))
 

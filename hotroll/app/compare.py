@@ -28,7 +28,6 @@ from __future__ import annotations
 import csv
 import io
 import math
-import os
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
@@ -36,6 +35,7 @@ from typing import Callable
 import numpy as np
 
 from .config import Case
+from .output import write_text
 
 SQRT3 = math.sqrt(3.0)
 
@@ -279,9 +279,7 @@ def _slab_mean_flow_stress(slab) -> float:
 
 # ----------------------------------------------------------------------------- writing
 def _atomic(path: Path, text: str) -> None:
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(text)
-    os.replace(tmp, path)
+    write_text(path, text)
 
 
 def _fmt(v) -> str:

@@ -25,6 +25,11 @@ from .config_base import (MESH_TABLE, CaseError, MeshName, PosFloat, _field, _fi
 from .config_laws import FrictionConfig, MaterialConfig
 from .config_thermal import ThermalConfig
 
+#: Largest length of a case (m): roll radius, thicknesses, plate length, |roll_axis_x|. Beyond
+#: it the geometry's squares overflow (R = 1e300 m) or the roll position swamps the contact
+#: length in double precision (roll_axis_x = 1e300 m: l_c = 0); mills are metres in size.
+MAX_LENGTH = 1e3
+
 __all__ = ["MESH_TABLE", "Case", "CaseError", "FrictionConfig", "MaterialConfig", "case_from_dict",
            "case_from_toml", "load_case", "flat"]
 
@@ -32,13 +37,16 @@ __all__ = ["MESH_TABLE", "Case", "CaseError", "FrictionConfig", "MaterialConfig"
 class PassConfig(_Section):
     """Roll and pass geometry (roll centre at x = roll_axis_x, y = exit/2 + R)."""
 
-    roll_radius: float = _field(..., "roll radius R", "m", "> 0", gt=0)
-    entry_thickness: float = _field(..., "full plate thickness at entry", "m", "> 0", gt=0)
+    roll_radius: float = _field(..., "roll radius R", "m", f"> 0 and <= {MAX_LENGTH:g}", gt=0,
+                                le=MAX_LENGTH)
+    entry_thickness: float = _field(..., "full plate thickness at entry", "m",
+                                    f"> 0 and <= {MAX_LENGTH:g}", gt=0, le=MAX_LENGTH)
     exit_thickness: float = _field(..., "full plate thickness at exit (roll gap)", "m",
                                    "> 0 and < entry_thickness", gt=0)
     roll_angular_velocity: float = _field(..., "roll angular velocity omega", "rad/s", "> 0", gt=0)
     roll_axis_x: float = _field(1.0, "x of the roll centre (initial plate head position)", "m",
-                                "a finite number")
+                                f"in [-{MAX_LENGTH:g}, {MAX_LENGTH:g}]", ge=-MAX_LENGTH,
+                                le=MAX_LENGTH)
     back_tension: float = _field(0.0, "back tension: mean tensile stress on the entry strip",
                                  "Pa", ">= 0", ge=0)
     front_tension: float = _field(0.0, "front tension: mean tensile stress on the exit strip",
@@ -120,7 +128,8 @@ def check_profile(key: str, v: Any) -> Any:
 
 class PlateConfig(_Section):
     length: float = _field(
-        ..., "initial plate length, at least 3 x the projected contact length", "m", "> 0", gt=0)
+        ..., "initial plate length, at least 3 x the projected contact length", "m",
+        f"> 0 and <= {MAX_LENGTH:g}", gt=0, le=MAX_LENGTH)
     temperature: float = _field(
         1373.15, "plate temperature: uniform (isothermal run) or at the entry (with [thermal])",
         "K", "> 0", gt=0)
@@ -191,16 +200,23 @@ class SolverConfig(_Section):
         '"steady" or "transient"')
     nonlinear: Literal["newton", "picard"] = _field("newton", "nonlinear solver", "",
                                                     '"newton" or "picard"')
-    tolerance: float = _field(1e-5, "nonlinear tolerance", "", "> 0", gt=0)
+    tolerance: float = _field(1e-5, "nonlinear tolerance (Newton update / roll speed)", "",
+                              "in (0, 0.1]", gt=0, le=0.1)
     max_iterations: int = _field(20, "nonlinear iterations per step", "", "an integer >= 1", ge=1)
     end_time: PosFloat | None = _field(None, "simulated time (omit: automatic)", "s", "> 0")
     time_step: Literal["h/6"] | PosFloat = _field(
         "h/6", 'time step ("h/6": dt = h_contact/6)', "s", '"h/6" or a number > 0')
-    steady_tolerance: float = _field(2e-3, "steady-state detection tolerance", "", "> 0", gt=0)
+    steady_tolerance: float = _field(2e-3, "steady-state detection tolerance (relative change)",
+                                     "", "in (0, 0.1]", gt=0, le=0.1)
     max_steps: int = _field(100000, "maximum number of time steps", "", "an integer >= 1", ge=1)
     wall_time_limit: PosFloat | None = _field(None, "wall-clock limit (omit: none)", "s", "> 0")
     checkpoint_every: int = _field(25, "steps between checkpoints", "", "an integer >= 1", ge=1)
-    threads: int = _field(2, "worker threads", "", "an integer >= 1", ge=1)
+    threads: int = _field(2, "worker threads", "", "an integer in [1, 1024]", ge=1, le=1024)
+    memory_limit: PosFloat | None = _field(
+        None, "refuse a mesh whose estimated memory is above this (omit: the machine's free "
+        "memory; app/estimate.py)", "B", "> 0")
+    force: bool = _field(False, "run even when the memory estimate is above the limit", "",
+                         "true or false")
     steady_entry_length: PosFloat | None = _field(
         None, "steady strip: flat length before the touching point (omit: automatic)", "m", "> 0")
     steady_exit_length: PosFloat | None = _field(
@@ -253,6 +269,8 @@ class Case(_Section):
         if self.mesh.h_far is not None and self.mesh.h_far < h:
             problems.append(f"mesh.h_far: must be >= mesh.h_contact ({h:g} m), "
                             f"got {self.mesh.h_far:g} m")
+        problems += self.material.problems_at(self.plate.temperature,
+                                              self.plate.mean_entry_strain)
         if self.thermal is not None:
             problems += [f"material.{key}: missing, required with a [thermal] section "
                          f"({_fields(MaterialConfig)[key].description})"

@@ -3,9 +3,11 @@ the field helper that puts unit and allowed range into every message, the base s
 
 from __future__ import annotations
 
+import types
+import typing
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, field_validator
 from pydantic.fields import FieldInfo
 
 
@@ -44,8 +46,48 @@ def _field(default: Any, text: str, unit: str, allowed: str, **constraints: Any)
     return Field(default, description=desc, json_schema_extra={"allowed": allowed_u}, **constraints)
 
 
+def _number_field(annotation: Any) -> tuple[bool, set]:
+    """(a field of numbers, its allowed words): a field whose type is float or int, optionally
+    with None, in lists or tuples (tables of pairs), and ``Literal`` words ("auto",
+    "estimate"); not text, a switch or a table of sections."""
+    number, words, other = False, set(), False
+    todo = [annotation]
+    while todo:
+        a = todo.pop()
+        origin = typing.get_origin(a)
+        if origin is Annotated:
+            todo.append(typing.get_args(a)[0])
+        elif origin in (typing.Union, types.UnionType, list, tuple):
+            todo += [x for x in typing.get_args(a) if x is not Ellipsis]
+        elif origin is Literal:
+            words.update(typing.get_args(a))
+        elif a in (float, int):
+            number = True
+        elif a is not type(None):
+            other = True
+    return number and not other and all(isinstance(w, str) for w in words), words
+
+
+def has_text(value: Any, words=()) -> bool:
+    """Text (other than ``words``) or a boolean where numbers go, also inside lists."""
+    if isinstance(value, bool) or (isinstance(value, str) and value not in words):
+        return True
+    return isinstance(value, (list, tuple)) and any(has_text(v) for v in value)
+
+
 class _Section(BaseModel):
     model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
+
+    @field_validator("*", mode="before")
+    @classmethod
+    def _number_not_text(cls, v: Any, info) -> Any:
+        """A number field takes numbers: not text ("0.5": pydantic would convert it) nor a
+        boolean (true would be 1), also not inside a table of pairs; its words ("auto", ...)
+        stay allowed. The error carries the field's allowed range (config._message)."""
+        number, words = _number_field(cls.model_fields[info.field_name].annotation)
+        if number and has_text(v, words):
+            raise ValueError(f"numbers, got {v!r}")
+        return v
 
 
 def _fields(model: type[BaseModel]) -> dict[str, FieldInfo]:

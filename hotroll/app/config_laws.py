@@ -6,6 +6,7 @@ parameters are checked against the law chosen, with ``section.key`` errors.
 
 from __future__ import annotations
 
+import math
 from typing import Literal
 
 from pydantic import field_validator, model_validator
@@ -76,9 +77,39 @@ class MaterialConfig(_Section):
             elif self.A is None:
                 problems.append("material.A: missing required key for law = \"hensel-spittel\""
                                 " without a grade (Hensel-Spittel A [Pa]; allowed: > 0)")
+            else:
+                try:                    # the law's own checks (its rate exponent m3 + m8 T)
+                    self.flow_stress()
+                except ValueError as e:
+                    problems.append(f"material.m3: {e}; allowed: m3 + m8 T_C (T in degC) in "
+                                    f"(0, 1] at some T > 0 K (m3 omitted: 0)")
         if problems:
             raise _Problems(problems)
         return self
+
+    def problems_at(self, temperature: float, strain: float) -> list[str]:
+        """What is wrong with the flow-stress law at the plate's entry state (temperature in K,
+        strain): its rate exponent must be in (0, 1] and its consistency K finite and > 0 (the
+        reference Norton-Hoff law of ``runner.reference_material``). Norton-Hoff: nothing
+        (K and m are checked as fields)."""
+        if self.law == "norton-hoff":
+            return []
+        import numpy as np
+
+        flow = self.flow_stress()
+        m = float(flow.rate_exponent(temperature))
+        if not 0.0 < m <= 1.0:
+            lo, hi = flow.admissible_temperature_range()
+            return [f"plate.temperature: the flow-stress law's rate exponent is {m:.4g} at "
+                    f"{temperature:g} K; it must be in (0, 1] (allowed temperatures for this "
+                    f"law: {lo:.6g} to {hi:.6g} K)"]
+        with np.errstate(all="ignore"):
+            K = float(flow.consistency(strain, temperature))
+        if not (math.isfinite(K) and K > 0.0):
+            return [f"plate.temperature: the flow-stress law's consistency K at {temperature:g} "
+                    f"K and strain {strain:g} is {K:g} Pa s^m; it must be finite and > 0 (see "
+                    f"plate.temperature, plate.entry_strain and material.A, m1..m9)"]
+        return []
 
     def _grade(self):
         from ..physics.grades import get_grade

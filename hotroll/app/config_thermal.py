@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from typing import Any, Union
 
-from .config_base import _field, _Section
+from .config_base import _field, _Section, has_text
 
 #: A thermal property: a constant, or [[T (K), value], ...] with strictly increasing T.
 Property = Union[float, list[tuple[float, float]]]
@@ -28,6 +28,8 @@ def check_property(key: str, value: Any) -> Any:
 
     if value is None:
         return None
+    if has_text(value):         # numpy would read "7800" and true as numbers
+        raise ValueError(f"numbers, got {value!r}")
     try:
         checked = thermal_property(key, value, PROPERTY_UNITS[key])
     except ThermalInputError as e:

@@ -5,16 +5,16 @@ import csv
 import io
 import json
 import math
-import os
 from pathlib import Path
 
 import numpy as np
 
+from ..files import DiskFullError, atomic, disk_full  # noqa: F401  (the app's writers use them)
 
 def _atomic_write_text(path: Path, text: str) -> None:
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(text)
-    os.replace(tmp, path)
+    with atomic(path) as tmp:
+        with open(tmp, "w") as f:
+            f.write(text)
 
 
 def _clean(v):
@@ -54,10 +54,13 @@ def write_csv(path: Path, columns: dict[str, np.ndarray] | list[dict]) -> None:
 
 
 def write_npz(path: Path, **arrays) -> None:
-    path = Path(path)
-    tmp = path.with_name(path.stem + ".tmp.npz")
-    np.savez_compressed(tmp, **arrays)
-    os.replace(tmp, path)
+    with atomic(Path(path)) as tmp:
+        np.savez_compressed(tmp, **arrays)
+
+
+def write_text(path: Path, text: str) -> None:
+    """A text file, atomically (``atomic``)."""
+    _atomic_write_text(Path(path), text)
 
 
 def vertex_fields(run) -> dict:
@@ -122,9 +125,9 @@ def write_vtk(run, path: Path) -> Path:
     if thermal is not None:
         coefs.append(thermal.T)
         names.append("temperature")
-    vtk = ngsolve.VTKOutput(run.mesh, coefs=coefs, names=names,
-                            filename=str(Path(path).with_suffix("")), subdivision=1)
-    vtk.Do()
+    with atomic(Path(path).with_suffix(".vtu")) as tmp:      # NGSolve appends .vtu
+        ngsolve.VTKOutput(run.mesh, coefs=coefs, names=names,
+                          filename=str(tmp.with_suffix("")), subdivision=1).Do()
     if getattr(thermal, "strip", None) is not None:    # the temperature's own strip mesh
         ngsolve.VTKOutput(thermal.strip.mesh, coefs=[thermal.field.gf], names=["temperature"],
                           filename=str(Path(path).with_name("thermal")), subdivision=0).Do()

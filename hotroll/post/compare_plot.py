@@ -18,6 +18,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from ..files import atomic  # noqa: E402
+
 DPI = 120
 
 
@@ -102,6 +104,9 @@ def plot_compare_profiles(contact: dict | None, slab, summary: dict, out_png: Pa
     fig.suptitle(title)
     out_png = Path(out_png)
     out_png.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out_png, dpi=DPI)
-    plt.close(fig)
+    try:
+        with atomic(out_png) as tmp:
+            fig.savefig(tmp, dpi=DPI)
+    finally:
+        plt.close(fig)
     return out_png

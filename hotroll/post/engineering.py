@@ -19,7 +19,7 @@ UNITS: dict[str, str] = {
     "penalty_power": "W/m", "outlet_penalty_power": "W/m", "tension_power": "W/m",
     "a_f": "m^-m", "balance_error": "-", "power_balance_error": "-", "penalty_share": "-",
     "mass_flux_error": "-", "symmetry_stress_force_y": "N/m", "free_top_force_share": "-",
-    "h_contact": "m", "wall_time_s": "s", "time": "s", "dt": "s", "K": "Pa s^m", "m": "-",
+    "h_contact": "m", "wall_time_s": "s", "estimated_memory": "B", "estimated_seconds": "s", "time": "s", "dt": "s", "K": "Pa s^m", "m": "-",
     "roll_centre": "m", "roll_radius": "m", "roll_surface_speed": "m/s",
     "contact_start": "m", "contact_end": "m", "back_tension": "Pa", "front_tension": "Pa",
     "exit_strain": "-", "homogeneous_exit_strain": "-", "mean_flow_stress": "Pa",

@@ -38,6 +38,8 @@ from matplotlib.patches import Polygon  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 from matplotlib.tri import LinearTriInterpolator, Triangulation  # noqa: E402
 
+from ..files import DiskFullError, atomic  # noqa: E402
+
 __all__ = ["plot_all", "plot_compare", "plot_series"]
 
 DPI = 120
@@ -230,8 +232,11 @@ def _title(run: _Run, what: str) -> str:
 def _save(fig: plt.Figure, path: Path) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=DPI)
-    plt.close(fig)
+    try:
+        with atomic(path) as tmp:
+            fig.savefig(tmp, dpi=DPI)
+    finally:
+        plt.close(fig)
     return path
 
 
@@ -621,7 +626,7 @@ def plot_all(out_dir) -> list[Path]:
     """Write all figures that the files in ``out_dir`` allow; return their paths.
 
     A figure that fails is reported with a warning and skipped so that one
-    bad file does not cost the others.
+    bad file does not cost the others; a full disk (``files.DiskFullError``) stops.
     """
     from .plots_thermal import FIGURES as THERMAL_FIGURES
 
@@ -631,6 +636,9 @@ def plot_all(out_dir) -> list[Path]:
     for name, func in _FIGURES + THERMAL_FIGURES:
         try:
             p = func(run, out_dir / name)
+        except DiskFullError:
+            plt.close("all")
+            raise
         except Exception as exc:  # noqa: BLE001 - post-processing must not abort a run
             plt.close("all")
             warnings.warn(f"{name}: skipped ({type(exc).__name__}: {exc})")

@@ -1,10 +1,11 @@
 """The schedule's figure: force, torque, power, temperature and strain per pass."""
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import numpy as np
+
+from ..files import atomic
 
 
 def plot_schedule(rows: list[dict], path: Path, width: float | None = None) -> None:
@@ -53,8 +54,8 @@ def plot_schedule(rows: list[dict], path: Path, width: float | None = None) -> N
         a.set_xticks(n, names)
         a.set_xlabel("pass")
         a.grid(alpha=0.3)
-    path = Path(path)
-    tmp = path.with_name(path.stem + ".tmp.png")
-    fig.savefig(tmp, dpi=110)
-    plt.close(fig)
-    os.replace(tmp, path)
+    try:
+        with atomic(Path(path)) as tmp:
+            fig.savefig(tmp, dpi=110)
+    finally:
+        plt.close(fig)

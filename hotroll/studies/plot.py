@@ -6,6 +6,7 @@ import json
 import math
 from pathlib import Path
 
+from ..files import atomic
 from .config import PlotConfig, key_unit
 
 
@@ -69,10 +70,11 @@ def plot_table(rows: list[dict], plot: PlotConfig, out_png: Path, *, units: dict
     if title:
         fig.suptitle(title)
     out_png = Path(out_png)
-    tmp = out_png.with_name(out_png.stem + ".tmp.png")
-    fig.savefig(tmp, dpi=120)
-    plt.close(fig)
-    tmp.replace(out_png)
+    try:
+        with atomic(out_png) as tmp:
+            fig.savefig(tmp, dpi=120)
+    finally:
+        plt.close(fig)
     return out_png
 
 

@@ -25,12 +25,15 @@ import traceback
 from pathlib import Path
 from typing import Callable
 
-from ..app.output import write_csv
+from ..app.estimate import ResourceError
+from ..app.output import write_csv, write_text
+from ..files import DiskFullError, atomic
 from .config import Study, StudyCase, expand
 
 #: status of a row: "done", "not_converged" (the run ended with a non-zero exit code),
-#: "bad_input" (the case schema refused the combination), "error" (an exception).
-FAILED = ("not_converged", "bad_input", "error")
+#: "bad_input" (the case schema refused the combination), "too_large" (the memory estimate is
+#: over the limit, app/estimate.py), "error" (an exception).
+FAILED = ("not_converged", "bad_input", "too_large", "error")
 
 
 def groups(cases: list[StudyCase], workers: int) -> list[list[StudyCase]]:
@@ -71,7 +74,7 @@ def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
             resumed = summary is not None
             if summary is None:
                 cdir.mkdir(parents=True, exist_ok=True)
-                (cdir / "worker.txt").write_text(row["worker"] + "\n")   # who is solving it
+                write_text(cdir / "worker.txt", row["worker"] + "\n")   # who solves it
                 if pending is not None:        # the last case was read back: its run too
                     sweep._last = (pending[0].name, restore_run(*pending))
                     pending = None
@@ -89,11 +92,15 @@ def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
             row.update(status="done" if code == 0 else "not_converged", exit_code=code,
                        reason=None if code == 0 else _reason(summary), resumed=resumed)
             row.update(_scalars(summary))
+        except DiskFullError:            # every next case would fail too: the study stops
+            raise
+        except ResourceError as e:       # refused before meshing: the estimate is its reason
+            row.update(status="too_large", exit_code=8, reason=str(e), resumed=False)
         except Exception as e:  # noqa: BLE001 - a case's failure is its row, not the study's
             row.update(status="error", exit_code=1, reason=f"{type(e).__name__}: {e}",
                        resumed=False)
             (cdir).mkdir(parents=True, exist_ok=True)
-            (cdir / "error.txt").write_text(traceback.format_exc())
+            write_text(cdir / "error.txt", traceback.format_exc())
         rows.append(row)
     return rows
 
@@ -107,11 +114,10 @@ def save_warm(path: Path, warm) -> None:
     import numpy as np
 
     sh = warm.shape
-    tmp = path.with_name(path.stem + ".tmp.npz")
-    np.savez(tmp, solution=warm.solution, x_c=sh.x_c, entry_x=sh.entry_x, entry_y=sh.entry_y,
-             exit_x=sh.exit_x, exit_y=sh.exit_y, a_f=warm.a_f, m=warm.m, u_roll=warm.u_roll,
-             mesh_key=warm.mesh_key, free_surface=warm.free_surface)
-    os.replace(tmp, path)
+    with atomic(path) as tmp:
+        np.savez(tmp, solution=warm.solution, x_c=sh.x_c, entry_x=sh.entry_x, entry_y=sh.entry_y,
+                 exit_x=sh.exit_x, exit_y=sh.exit_y, a_f=warm.a_f, m=warm.m, u_roll=warm.u_roll,
+                 mesh_key=warm.mesh_key, free_surface=warm.free_surface)
 
 
 def load_warm(path: Path):
@@ -260,6 +266,5 @@ def _write_parquet(path: Path, keys: list[str], rows: list[dict]) -> None:
         elif len(kinds) > 1:
             vals = [None if v is None else str(v) for v in vals]
         cols[k] = vals
-    tmp = path.with_name(path.name + ".tmp")
-    pq.write_table(pa.table(cols), tmp)
-    os.replace(tmp, path)
+    with atomic(path) as tmp:
+        pq.write_table(pa.table(cols), tmp)

@@ -1,0 +1,51 @@
+"""Files written whole or not at all, and a clear error on a full disk (issue 18). The lowest
+layer: every writer of hotroll (checkpoints, figures, tables, summaries) goes through
+``atomic``."""
+from __future__ import annotations
+
+import errno
+import os
+import shutil
+from contextlib import contextmanager
+from pathlib import Path
+
+#: the errors of a full device or an exhausted quota
+FULL = (errno.ENOSPC, errno.EDQUOT)
+
+
+class DiskFullError(OSError):
+    """A write that found no space left; the message names the file and the free space."""
+
+
+def disk_full(path: Path, err: OSError) -> DiskFullError:
+    """The clear error for ``err`` (ENOSPC/EDQUOT) while writing ``path``."""
+    path = Path(path)
+    where = next((p for p in [path, *path.parents] if p.exists()), Path("."))
+    try:
+        free = f"{shutil.disk_usage(where).free / 1e6:.1f} MB free"
+    except OSError:
+        free = "free space unknown"
+    return DiskFullError(err.errno, f"disk full: no space left writing {path} ({free} on the "
+                         f"device of {where}); the files written before are intact (each is "
+                         f"written whole or not at all). Free space or write elsewhere (--out), "
+                         f"then run the command again: finished work is read back")
+
+
+@contextmanager
+def atomic(path: Path):
+    """Yields a temporary path beside ``path`` (``name.tmp.ext``, the same extension);
+    on success it replaces ``path`` in one step, on failure it is removed (``path``
+    untouched). A full disk raises ``DiskFullError``."""
+    path = Path(path)
+    tmp = path.with_name(f"{path.stem}.tmp{path.suffix}")
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    except BaseException as e:
+        try:
+            tmp.unlink()
+        except OSError:
+            pass
+        if isinstance(e, OSError) and not isinstance(e, DiskFullError) and e.errno in FULL:
+            raise disk_full(path, e) from None
+        raise
