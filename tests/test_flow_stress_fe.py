@@ -146,8 +146,13 @@ def test_bad_material_input_names_the_field(material, key):
 
 
 def test_a_temperature_without_rate_sensitivity_is_refused(tmp_path):
-    """S355J2's rate exponent is m8 T_C: zero at 0 deg C."""
-    case = _case({"law": "hensel-spittel", "grade": "S355J2"}, **{"plate.temperature": 273.15})
+    """S355J2's rate exponent is m8 T_C: zero at 0 deg C. Refused with the case (``hotroll
+    validate``, exit code 2), and by the runner for a case built past the validation."""
+    with pytest.raises(CaseError) as e:
+        _case({"law": "hensel-spittel", "grade": "S355J2"}, **{"plate.temperature": 273.15})
+    assert "plate.temperature" in str(e.value) and "273.15 to" in str(e.value)
+    case = _case({"law": "hensel-spittel", "grade": "S355J2"})
+    case.plate.temperature = 273.15            # no validation on assignment
     with pytest.raises(CaseError) as e:
         run_case(case, tmp_path)
     assert "plate.temperature" in str(e.value)

@@ -108,6 +108,7 @@ class SteadyResult:
     settled: bool = False        # a_f and the free surface reached their fixed point
     fallback: bool = False       # the direct solve failed; solved again along m = 1 -> target
     warm_failed: bool = False    # the warm start did not converge; solved again from cold
+    failure: str = ""            # why the last solve stopped: a linear solve that failed
 
     @property
     def iterations(self) -> int:
@@ -181,7 +182,8 @@ class SteadyRun:
         if not r.rows:     # benchmarks switch recording off: keep one row for the summary
             r.rows.append(self.measure(r.stats[-1], 0))
         self.state = TransientState(step=len(r.rows) - 1, time=math.nan, history=r.rows,
-                                    status=status)
+                                    status=status,
+                                    failure=r.failure if status == "failed" else "")
         return self.state
 
     @property
@@ -257,12 +259,12 @@ class SteadyRun:
             if warm is None or res.warm_failed:
                 self._cold_start()
                 path = list(s.m_path) or [target]
-                self._follow(path, res, record)
+                self._follow_or_fail(path, res, record)
                 if not res.stats[-1].converged and len(path) == 1 and target < 1.0:
                     # the direct solve failed: afresh along a continuation in m
                     res.fallback = True
                     self._cold_start()
-                    self._follow([1.0] + continuation_path(target), res, record)
+                    self._follow_or_fail([1.0] + continuation_path(target), res, record)
         res.wall_time = time.perf_counter() - t0 + self.mesh_time
         return res
 
@@ -303,6 +305,16 @@ class SteadyRun:
             # heat is the guess's): fewer Newton iterations on five of six passes measured
             # (docs/studies/thermal_cost.md)
             self.thermal.reset(self.model.temperature)
+
+    def _follow_or_fail(self, path: list[float], res: SteadyResult, record) -> None:
+        """``_follow``; a linear solve that fails ends the path as an unconverged solve, its
+        reason in ``res.failure`` (the run's ``failure`` if nothing converges after it: m = 0.02
+        at 15 m/s with Tresca's factor 1 raised LinearSolveError out of the runner, issue 18)."""
+        try:
+            self._follow(path, res, record)
+        except LinearSolveError as e:
+            res.stats.append(SolveStats())
+            res.failure = f"m = {self.form.m.Get():.4g}: {e}"
 
     def _follow(self, path: list[float], res: SteadyResult, record) -> None:
         """Loose Newton solves at the intermediate m of ``path``, then the coupled Newton at the
