@@ -2,7 +2,9 @@
 bundled studies; no solve here (the runs are in test_study.py)."""
 from __future__ import annotations
 
+import csv
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -179,3 +181,62 @@ def test_command_line_overrides_go_on_the_base_after_the_files_own(tmp_path):
     st, base = load_study(study_path("mesh_table"), overrides=over)
     cases = expand(st, base)
     assert all(c.case.solver.method == "transient" and c.case.material.m == 0.3 for c in cases)
+
+
+SCHEDULE = Path(__file__).with_name("data") / "two_pass_schedule.toml"
+
+
+def _schedule_study(tmp_path, vary: str, set_: str = ""):
+    import shutil
+
+    shutil.copy(SCHEDULE, tmp_path / "two_pass.toml")
+    (tmp_path / "s.toml").write_text(f'[base]\nschedule = "two_pass.toml"\n{set_}[vary]\n{vary}')
+    return load_study(tmp_path / "s.toml")
+
+
+def test_schedule_keys_set_one_pass_or_every_pass(tmp_path):
+    st, base = _schedule_study(tmp_path, '"pass[2].exit_thickness" = [0.064, 0.07]\n',
+                               'set = { "pass[*].roll_radius" = 0.45, "strip.strain" = 0.1 }\n')
+    cases = expand(st, base)
+    assert [c.case.passes[1].exit_thickness for c in cases] == [0.064, 0.07]
+    assert all(p.roll_radius == 0.45 for c in cases for p in c.case.passes)
+    assert all(c.case.strip.strain == 0.1 for c in cases)
+    assert key_unit("pass[2].exit_thickness") == "m" and key_unit("strip.temperature") == "K"
+
+
+@pytest.mark.parametrize("vary, field", [
+    ('"pass[3].exit_thickness" = [0.05]\n', "pass[3].exit_thickness: the schedule has passes"),
+    ('"pass[2].exit_thickness" = [0.5]\n', "pass[2].exit_thickness"),
+    ('"strip.temperature" = [-1.0]\n', "strip.temperature"),
+])
+def test_bad_schedule_combinations_are_rows_naming_the_field(tmp_path, vary, field):
+    st, base = _schedule_study(tmp_path, vary)
+    (c,) = expand(st, base)
+    assert c.case is None and field in c.problem
+
+
+def test_a_schedule_study_row_is_its_schedules_own_table(tmp_path):
+    """Each row's per-pass columns = the case directory's schedule.csv; the first case = a
+    separate run_schedule of the same schedule; the hotter strip needs less force."""
+    from hotroll.schedule.config import load_schedule
+    from hotroll.schedule.run import run_schedule
+    from hotroll.studies.run import run_study
+
+    st, base = _schedule_study(tmp_path, '"strip.temperature" = [1323.15, 1373.15]\n')
+    rows = run_study(st, base, tmp_path / "out", serial=True)
+    assert [r["status"] for r in rows] == ["done", "done"]
+    for r in rows:
+        with open(tmp_path / "out" / "cases" / r["case"] / "schedule.csv", newline="") as f:
+            table = list(csv.DictReader(f))
+        assert r["passes"] == len(table) == 2
+        for p in table:
+            for k in ("roll_force", "roll_torque", "forward_slip", "exit_temperature_mean"):
+                assert r[f"{p['name']}.{k}"] == float(p[k]), (p["name"], k)
+        assert r["max_roll_force"] == max(float(p["roll_force"]) for p in table)
+    assert rows[1]["R1.roll_force"] < rows[0]["R1.roll_force"]
+    sch = load_schedule(tmp_path / "two_pass.toml").model_copy(deep=True)
+    sch.strip.temperature = 1323.15
+    sch.solver.threads = 1
+    own = run_schedule(sch, tmp_path / "own", figure=False)
+    for p in own:
+        assert rows[0][f"{p['name']}.roll_force"] == pytest.approx(p["roll_force"], rel=1e-9)

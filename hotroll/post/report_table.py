@@ -13,8 +13,9 @@ from .report_run import LABELS, _finite, case_inputs, number, read_json, run_war
 
 #: A study's result columns shown (when the table has them), after the varied keys.
 STUDY_KEYS = ("roll_force", "roll_force_total", "roll_torque", "forward_slip", "neutral_angle",
-              "mean_pressure", "roll_power", "exit_temperature_mean", "nonlinear_iterations",
-              "wall_time_s")
+              "mean_pressure", "roll_power", "max_roll_force", "total_roll_power",
+              "exit_temperature_mean", "exit_strain_mean", "nonlinear_iterations", "fe_solves",
+              "wall_time_s")   # max_roll_force ...: a schedule study's (studies/run.py)
 #: Column heads of the tables (the summary's labels where not here).
 SHORT = {"roll_force": "roll force", "roll_force_total": "roll force, whole width",
          "roll_torque": "roll torque", "roll_torque_total": "roll torque, whole width",
@@ -24,9 +25,12 @@ SHORT = {"roll_force": "roll force", "roll_force_total": "roll force, whole widt
          "roll_surface_speed": "roll speed", "exit_temperature_surface": "exit surface T",
          "exit_strain_mean": "exit strain", "transport_duration": "transport",
          "next_entry_temperature_mean": "next entry T", "fe_solves": "FE solves",
-         "wall_time": "wall time"}
+         "wall_time": "wall time", "max_roll_force": "largest roll force",
+         "total_roll_power": "roll power, all passes"}
 #: Units of STUDY_KEYS that engineering.UNITS does not hold (thermal/coupling.py has the first).
-_MORE_UNITS = {"exit_temperature_mean": "K", "nonlinear_iterations": "-"}
+_MORE_UNITS = {"exit_temperature_mean": "K", "nonlinear_iterations": "-",
+               "max_roll_force": "N/m", "total_roll_power": "W/m", "exit_strain_mean": "-",
+               "fe_solves": "-"}
 #: Columns of study.csv that are not a varied key (a row's bookkeeping).
 _BOOK = ("worker", "status", "exit_code", "reason", "resumed")
 FAILED = ("not_converged", "bad_input", "error")
@@ -71,6 +75,9 @@ def study_context(d: Path, title: str | None = None) -> dict:
     stop = next((i for i, h in enumerate(heads) if h in _BOOK), len(heads))
     varied = heads[heads.index("case") + 1:stop] if "case" in heads else []
     units = _input_units(d / "cases", [str(r.get("case")) for r in rows])
+    meta = read_json(d / "study.json") if (d / "study.json").is_file() else {}
+    units.update(meta.get("units") or {})          # written by hotroll study (all its keys)
+    title = title or meta.get("name")
     keys = [k for k in STUDY_KEYS if any(_finite(r.get(k)) for r in rows)]
     cols = ([column(k, [r.get(k) for r in rows], units.get(k, ""), label=k) for k in varied]
             + [column(k, [r.get(k) for r in rows], UNITS.get(k) or _MORE_UNITS[k])

@@ -46,13 +46,16 @@ class BaseConfig(_Section):
                               "a path")
     example: str | None = _field(None, "or a bundled example case by name", "",
                                  "a name of hotroll/app/examples")
+    schedule: str | None = _field(None, "or a pass schedule: its file (relative to the study "
+                                  "file) or a bundled schedule's name", "",
+                                  "a path or finishing_mill")
     set: dict[str, Any] = _field({}, "dotted case keys set on the base case", "",
                                  'e.g. { "solver.method" = "steady" }')
 
     @model_validator(mode="after")
     def _one(self) -> BaseConfig:
-        if (self.file is None) == (self.example is None):
-            raise _Problems(["base: give exactly one of file and example"])
+        if sum(x is not None for x in (self.file, self.example, self.schedule)) != 1:
+            raise _Problems(["base: give exactly one of file, example and schedule"])
         return self
 
 
@@ -162,16 +165,20 @@ class Study(_Section):
 
 
 def key_unit(dotted: str) -> str:
-    """The unit of a dotted case key from the case schema (``[m]`` of its description), else
-    "-"."""
+    """The unit of a dotted case key from the case schema (``[m]`` of its description), or of
+    a schedule's (``strip.temperature``, ``pass[2].exit_thickness``), else "-"."""
     from ..app.config_base import _fields
+    from ..schedule.config import PassEntry, Schedule
 
     section, _, key = dotted.partition(".")
-    try:
-        model = _fields(Case)[section].annotation
-        text = _fields(model)[key].description or ""
-    except (KeyError, AttributeError, TypeError):
-        return "-"
+    text = ""
+    for schema in (Case, Schedule):
+        try:
+            model = PassEntry if section.startswith("pass[") else _fields(schema)[section].annotation
+            text = _fields(model)[key].description or ""
+            break
+        except (KeyError, AttributeError, TypeError):
+            continue
     found = re.search(r"\[([^\]]*)\]", text)
     return found.group(1) if found else "-"
 
@@ -260,8 +267,8 @@ def _cell(text: str) -> Any:
 def _base_dict(study: Study, root: Path) -> dict:
     data = _read_base(study, root)
     try:
-        set_dotted(data, study.base.set)
-        case_from_dict(data, str(study.base.file or study.base.example))
+        _set(study, data, study.base.set)
+        _validate(study, data)
     except CaseError as e:
         raise CaseError([f"base case: {p}" for p in e.problems], None, "study") from None
     return data
@@ -270,7 +277,17 @@ def _base_dict(study: Study, root: Path) -> dict:
 def _read_base(study: Study, root: Path) -> dict:
     from ..app.examples import example_path
 
-    if study.base.file is not None:
+    if study.base.schedule is not None:
+        from ..schedule.examples import schedule_path
+
+        src = root / study.base.schedule
+        if not src.is_file():
+            try:
+                src = schedule_path(study.base.schedule)
+            except FileNotFoundError as e:
+                raise CaseError(f"base.schedule: neither a file nor {e}", None,
+                                "study") from None
+    elif study.base.file is not None:
         src = (root / study.base.file)
     else:
         try:
@@ -287,15 +304,43 @@ def _read_base(study: Study, root: Path) -> dict:
 
 
 def expand(study: Study, base: dict) -> list[StudyCase]:
-    """Every combination as a case (one thread each: a worker is one core); an invalid one
-    keeps its reason."""
+    """Every combination as a case, or a schedule (``StudyCase.case`` a ``Schedule``), one
+    thread each (a worker is one core); an invalid one keeps its reason."""
     out = []
     for i, values in enumerate(study.combinations()):
         name = label(values)
         try:
-            data = set_dotted(copy.deepcopy(base), {**values, "solver.threads": 1})
+            data = _set(study, copy.deepcopy(base), {**values, "solver.threads": 1})
             data["name"] = f"{base.get('name', 'case')} {name}"
-            out.append(StudyCase(i, name, values, case_from_dict(data)))
+            out.append(StudyCase(i, name, values, _validate(study, data)))
         except CaseError as e:
             out.append(StudyCase(i, name, values, None, "; ".join(e.problems)))
     return out
+
+
+def _validate(study: Study, data: dict):
+    if study.base.schedule is None:
+        return case_from_dict(data)
+    from ..schedule.config import schedule_from_dict
+
+    return schedule_from_dict(data)
+
+
+def _set(study: Study, data: dict, dotted: dict[str, Any]) -> dict:
+    """``set_dotted`` for a case; for a schedule also ``pass[k].key`` (pass k, from 1) and
+    ``pass[*].key`` (every pass), e.g. ``pass[2].exit_thickness``, ``pass[*].roll_radius``."""
+    if study.base.schedule is None:
+        return set_dotted(data, dotted)
+    plain = {}
+    for key, value in dotted.items():
+        found = re.match(r"^pass\[(\d+|\*)\]\.(.+)$", key)
+        if not found:
+            plain[key] = value
+            continue
+        passes = data.get("pass") or []
+        which = range(len(passes)) if found.group(1) == "*" else [int(found.group(1)) - 1]
+        for k in which:
+            if not 0 <= k < len(passes):
+                raise CaseError(f"{key}: the schedule has passes 1..{len(passes)}")
+            set_dotted(passes[k], {found.group(2): value})
+    return set_dotted(data, plain)

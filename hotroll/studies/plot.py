@@ -11,11 +11,21 @@ from .config import PlotConfig, key_unit
 
 
 def units_of(out: Path, rows: list[dict]) -> dict[str, str]:
-    """The summary fields' units, from the first finished case's summary.json."""
+    """The summary fields' units, from the first finished case's summary.json (a schedule's:
+    schedule.json's, a pass's column ``F1.roll_force`` with the unit of ``roll_force``)."""
     for r in rows:
-        path = Path(out) / "cases" / str(r.get("case")) / "summary.json"
-        if r.get("status") == "done" and path.is_file():
-            return json.loads(path.read_text()).get("units", {})
+        cdir = Path(out) / "cases" / str(r.get("case"))
+        if r.get("status") != "done":
+            continue
+        for name in ("summary.json", "schedule.json"):
+            if (cdir / name).is_file():
+                units = json.loads((cdir / name).read_text()).get("units", {})
+                cols = {k for row in rows for k in row}
+                units.update({c: units[c.split(".")[-1]] for c in cols
+                              if "." in c and c.split(".")[-1] in units and c not in units})
+                units.setdefault("max_roll_force", units.get("roll_force", "-"))
+                units.setdefault("total_roll_power", units.get("roll_power", "-"))
+                return units
     return {}
 
 

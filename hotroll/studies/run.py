@@ -26,7 +26,7 @@ from pathlib import Path
 from typing import Callable
 
 from ..app.estimate import ResourceError
-from ..app.output import write_csv, write_text
+from ..app.output import write_csv, write_json, write_text
 from ..files import DiskFullError, atomic
 from .config import Study, StudyCase, expand
 
@@ -42,8 +42,10 @@ def groups(cases: list[StudyCase], workers: int) -> list[list[StudyCase]]:
     starts from its neighbour on the same mesh where it can."""
     from ..app.sweep import form_key
 
-    valid = sorted((c for c in cases if c.case is not None),
-                   key=lambda c: (form_key(c.case), c.index))
+    def key(c: StudyCase):
+        return (form_key(c.case) if hasattr(c.case, "pass_") else "", c.index)
+
+    valid = sorted((c for c in cases if c.case is not None), key=key)
     if not valid:
         return []
     n = min(len(valid), max(1, 2 * workers))
@@ -60,10 +62,22 @@ def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
     sweep = Sweep(similar=True, history=False) if warm else None
     rows, pending = [], None
     for item in items:
-        case = case_from_dict(item["case"])
         cdir = Path(out) / "cases" / item["label"]
         row = {"index": item["index"], "case": item["label"], **item["values"],
                "worker": f"{socket.gethostname()}:{os.getpid()}"}
+        if "schedule" in item:
+            try:
+                row.update(run_schedule_item(item, cdir))
+            except DiskFullError:
+                raise
+            except Exception as e:  # noqa: BLE001 - a case's failure is its row
+                row.update(status="error", exit_code=1, reason=f"{type(e).__name__}: {e}",
+                           resumed=False)
+                cdir.mkdir(parents=True, exist_ok=True)
+                write_text(cdir / "error.txt", traceback.format_exc())
+            rows.append(row)
+            continue
+        case = case_from_dict(item["case"])
         try:
             summary = finished_summary(case, cdir)
             if (summary is not None and sweep is not None and summary.get("exit_code") == 0
@@ -162,8 +176,42 @@ def _scalars(summary: dict) -> dict:
 
 
 def _payload(group: list[StudyCase]) -> list[dict]:
-    return [{"index": c.index, "label": c.label, "values": c.values, "case": c.case.to_dict()}
+    return [{"index": c.index, "label": c.label, "values": c.values,
+             **({"case": c.case.to_dict()} if hasattr(c.case, "pass_") else
+                {"schedule": c.case.model_dump(by_alias=True, exclude_none=True)})}
             for c in group]
+
+
+#: a schedule study's columns per pass (``<pass name>.<key>``)
+PASS_KEYS = ("roll_force", "roll_torque", "roll_power", "forward_slip", "roll_surface_speed",
+             "exit_temperature_mean", "exit_strain_mean", "roll_force_total")
+
+
+def run_schedule_item(item: dict, cdir: Path) -> dict:
+    """A schedule study's case: the schedule rolled into ``cdir`` (finished passes read back);
+    its row: per-pass columns and the schedule's totals."""
+    from ..schedule.config import schedule_from_dict
+    from ..schedule.run import ScheduleError, run_schedule
+
+    sch = schedule_from_dict(item["schedule"])
+    try:
+        rows = run_schedule(sch, cdir, resume=True, figure=False)
+    except ScheduleError as e:
+        code = int(e.summary.get("exit_code") or 1)
+        return {"status": "not_converged", "exit_code": code, "reason": str(e),
+                "resumed": False}
+    out = {"status": "done", "exit_code": 0, "reason": None,
+           "resumed": all(r["fe_solves"] == 0 for r in rows), "passes": len(rows),
+           "exit_thickness": rows[-1]["exit_thickness"],
+           "exit_temperature_mean": rows[-1].get("outlet_temperature_mean"),
+           "exit_strain_mean": rows[-1]["exit_strain_mean"],
+           "max_roll_force": max(r["roll_force"] for r in rows),
+           "total_roll_power": sum(r["roll_power"] for r in rows),
+           "fe_solves": sum(r["fe_solves"] for r in rows),
+           "wall_time_s": sum(r["wall_time"] for r in rows)}
+    for r in rows:
+        out.update({f"{r['name']}.{k}": r.get(k) for k in PASS_KEYS if r.get(k) is not None})
+    return out
 
 
 def run_study(study: Study, base: dict, out: Path, *, scheduler: str | None = None,
@@ -195,6 +243,11 @@ def run_study(study: Study, base: dict, out: Path, *, scheduler: str | None = No
             busy = min(running, left[0])
             progress({**_progress(rows, total, t0), "running": busy})
 
+    from .config import key_unit
+
+    keys = list(dict.fromkeys(k for c in cases for k in c.values))
+    write_json(out / "study.json", {"name": study.name, "cases": total, "varied": keys,
+                                    "units": {k: key_unit(k) for k in keys}})
     done([])
     if serial:
         for g in work:
