@@ -62,3 +62,17 @@ def gap_means_from_fields(summary: dict, fields: dict) -> dict:
     area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])[band]
     return {key: float(np.sum(area * fields[name][t[band]].mean(axis=1)) / area.sum())
             for key, name in (("mean_flow_stress", "sigma_ef"), ("mean_strain_rate", "edot"))}
+
+
+def assert_same_table(a: list[dict], b: list[dict], skip=("wall_time_s", "worker")) -> None:
+    """Two study tables row by row: the same keys, every value equal (NaN = NaN), but the
+    ``skip`` ones (timings, which worker)."""
+    assert len(a) == len(b)
+    for ra, rb in zip(a, b):
+        assert ra.keys() == rb.keys()
+        for k in ra:
+            if k in skip:
+                continue
+            va, vb = ra[k], rb[k]
+            assert va == vb or (isinstance(va, float) and math.isnan(va) and math.isnan(vb)), \
+                (ra.get("case"), k)

@@ -6,7 +6,6 @@ back without solving; the table's columns are the varied keys; bad study files a
 from __future__ import annotations
 
 import csv
-import math
 from pathlib import Path
 
 import pytest
@@ -14,6 +13,8 @@ import pytest
 from hotroll.app.config import CaseError
 from hotroll.studies.config import expand, load_study
 from hotroll.studies.run import groups, run_study
+
+from casebuild import assert_same_table
 
 BASE = """name = "ex1c"
 [pass]
@@ -66,13 +67,7 @@ def test_a_local_cluster_gives_the_serial_table(files, serial):
     assert len(rows) == len(serial) == 9
     # groups of two neighbours (6 valid cases, 2 workers): the second of each starts warm
     assert sum(r.get("warm_start_from") is not None for r in serial) == 3
-    for a, b in zip(serial, rows):
-        assert a.keys() == b.keys()
-        for k in a:
-            if k in ("wall_time_s", "worker"):
-                continue
-            va, vb = a[k], b[k]
-            assert va == vb or (isinstance(va, float) and math.isnan(va) and math.isnan(vb)), k
+    assert_same_table(serial, rows)
 
 
 def test_a_refused_combination_is_a_row_with_its_reason(serial):
