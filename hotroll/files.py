@@ -6,6 +6,7 @@ from __future__ import annotations
 import errno
 import os
 import shutil
+import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -33,11 +34,20 @@ def disk_full(path: Path, err: OSError) -> DiskFullError:
 
 @contextmanager
 def atomic(path: Path):
-    """Yields a temporary path beside ``path`` (``name.tmp.ext``, the same extension);
-    on success it replaces ``path`` in one step, on failure it is removed (``path``
-    untouched). A full disk raises ``DiskFullError``."""
+    """Yields a temporary path beside ``path`` (``name.tmpXXXXXX.ext``, unique: two writers of
+    one file never share it; the same extension); on success it replaces ``path`` in one
+    step, on failure it is removed (``path`` untouched). A full disk raises
+    ``DiskFullError``."""
     path = Path(path)
-    tmp = path.with_name(f"{path.stem}.tmp{path.suffix}")
+    try:
+        fd, name = tempfile.mkstemp(prefix=f"{path.stem}.tmp", suffix=path.suffix,
+                                    dir=path.parent)
+    except OSError as e:
+        if e.errno in FULL:
+            raise disk_full(path, e) from None
+        raise
+    os.close(fd)
+    tmp = Path(name)
     try:
         yield tmp
         os.replace(tmp, path)

@@ -113,6 +113,11 @@ def test_a_study_records_a_refused_case_and_goes_on(tmp_path):
     assert [r["status"] for r in rows] == ["done", "too_large"]
     assert rows[1]["exit_code"] == 8 and "mesh.h_contact" in rows[1]["reason"]
     assert not (tmp_path / "out" / "cases" / rows[1]["case"] / "summary.json").exists()
+    from hotroll.post.report_table import study_context
+
+    page = study_context(tmp_path / "out")                 # the report shows it failed
+    assert [t["failed"] for t in page["table"]] == [False, True]
+    assert page["status"] == "1 of 2 cases done"
 
 
 def test_a_full_disk_leaves_the_old_file_whole_and_names_the_file(tmp_path, monkeypatch):
@@ -124,8 +129,10 @@ def test_a_full_disk_leaves_the_old_file_whole_and_names_the_file(tmp_path, monk
     output.write_json(path, {"roll_force": 1.0})
 
     class Full:
-        def __init__(self, *a, **k):
-            pass
+        """A file that takes part of the text, then finds the disk full."""
+
+        def __init__(self, name, *a, **k):
+            Path(name).write_text('{"roll_f')
 
         def __enter__(self):
             return self

@@ -114,6 +114,7 @@ def test_units_of_varied_keys_come_from_the_case_schema():
     assert key_unit("material.K") == "Pa s^m"
     assert key_unit("pass.exit_thickness") == "m"
     assert key_unit("nothing.there") == "-"
+    assert key_unit("plate.temperature") == "K" and key_unit("material.density") == "kg/m^3"
 
 
 @pytest.mark.parametrize("name, n", [("mesh_table", 6), ("report_examples", 4)])
@@ -240,3 +241,44 @@ def test_a_schedule_study_row_is_its_schedules_own_table(tmp_path):
     own = run_schedule(sch, tmp_path / "own", figure=False)
     for p in own:
         assert rows[0][f"{p['name']}.roll_force"] == pytest.approx(p["roll_force"], rel=1e-9)
+
+
+def test_zip_of_a_cases_table_alone_and_unique_labels(tmp_path):
+    st, base = _study(tmp_path, '[[cases]]\n"material.m" = 0.2\n[[cases]]\n"material.m" = 0.2\n'
+                      '[[cases]]\n"material.m" = 0.2000001\n[run]\ncombine = "zip"\n')
+    cases = expand(st, base)
+    assert len(cases) == 3
+    assert len({c.label for c in cases}) == 3              # equal to 6 digits: made unique
+
+
+@pytest.mark.parametrize("top, text, field", [
+    ("", '[vary]\n"material.m" = [0.2]\n[[cases]]\n"material.m" = 0.3\n', "also in [[cases]]"),
+    ('cases_file = "c.csv"\n', "", "line 3 has more cells"),
+])
+def test_conflicting_or_ragged_cases_are_refused(tmp_path, top, text, field):
+    (tmp_path / "c.csv").write_text("material.m\n0.2\n0.3,1\n")
+    with pytest.raises(CaseError) as e:
+        _study(tmp_path, text, top)
+    assert field in str(e.value)
+
+
+def test_plot_lines_may_name_a_column_of_the_cases_file(tmp_path):
+    (tmp_path / "c.csv").write_text("material.m,pass.roll_angular_velocity\n0.2,1\n0.3,2\n")
+    st, _ = _study(tmp_path, '[plot]\nx = "material.m"\nlines = "pass.roll_angular_velocity"\n',
+                   'cases_file = "c.csv"\n')
+    assert st.plot.lines == "pass.roll_angular_velocity" and len(st.combinations()) == 2
+    with pytest.raises(CaseError) as e:
+        _study(tmp_path, '[plot]\nx = "material.m"\nlines = "material.K"\n',
+               'cases_file = "c.csv"\n')
+    assert "plot.lines" in str(e.value)
+
+
+def test_a_figure_against_names_and_a_missing_column(tmp_path):
+    from hotroll.studies.config import PlotConfig
+    from hotroll.studies.plot import plot_table
+
+    rows = [{"case": "a", "status": "done", "friction.law": "coulomb", "roll_force": 2.0},
+            {"case": "b", "status": "done", "friction.law": "tresca", "roll_force": 3.0}]
+    assert plot_table(rows, PlotConfig(x="friction.law"), tmp_path / "f.png").is_file()
+    with pytest.raises(ValueError, match="roll_torque"):
+        plot_table(rows, PlotConfig(x="friction.law", y=["roll_torque"]), tmp_path / "g.png")

@@ -331,8 +331,10 @@ from hotroll.app import cli_report  # noqa: E402,F401  (registers report)
 
 
 def main() -> None:
-    """The ``hotroll`` command: the app, a full disk ending it with its clear message (exit
-    code 9, ``files.DiskFullError``) instead of a traceback."""
+    """The ``hotroll`` command: the app, a full disk (exit code 9, ``files.DiskFullError``) or a
+    mesh over the memory limit (exit code 8) ending it with its clear message instead of a
+    traceback."""
+    from hotroll.app.estimate import ResourceError
     from hotroll.files import DiskFullError
 
     try:
@@ -340,6 +342,9 @@ def main() -> None:
     except DiskFullError as e:
         err_console.print(Text(str(e.strerror or e), style="red"), soft_wrap=True)
         raise SystemExit(9) from None
+    except ResourceError as e:          # a schedule's or compare's pass (run/example: _run)
+        err_console.print(Text(f"refused: {e}", style="red"), soft_wrap=True)
+        raise SystemExit(8) from None
 
 
 if __name__ == "__main__":      # python -m hotroll.app.cli: the imported module's main,

@@ -52,5 +52,5 @@ def study_report(out: Path, title: str) -> None:
         console.print(Text(f"report: {write_report(out, title)}"))
     except DiskFullError:
         raise
-    except (OSError, ValueError) as e:
-        console.print(Text(f"report: not written ({e})", style="yellow"))
+    except Exception as e:  # noqa: BLE001 - the page must not cost the study's exit code
+        console.print(Text(f"report: not written ({type(e).__name__}: {e})", style="yellow"))

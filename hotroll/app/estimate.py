@@ -61,7 +61,17 @@ def _duration(s: float) -> str:
 
 
 def available_bytes() -> float:
-    """The memory this machine has free (MemAvailable), else its total."""
+    """Inside a dask worker, its memory limit (a local cluster splits the machine's memory
+    among its workers); else the memory this machine has free (MemAvailable), else its
+    total."""
+    try:
+        from distributed import get_worker
+
+        limit = get_worker().memory_manager.memory_limit
+        if limit:
+            return float(limit)
+    except (ImportError, ValueError, AttributeError):
+        pass
     try:
         with open("/proc/meminfo") as f:
             info = {ln.split(":")[0]: float(ln.split()[1]) * 1024 for ln in f}

@@ -129,6 +129,8 @@ def write_vtk(run, path: Path) -> Path:
         ngsolve.VTKOutput(run.mesh, coefs=coefs, names=names,
                           filename=str(tmp.with_suffix("")), subdivision=1).Do()
     if getattr(thermal, "strip", None) is not None:    # the temperature's own strip mesh
-        ngsolve.VTKOutput(thermal.strip.mesh, coefs=[thermal.field.gf], names=["temperature"],
-                          filename=str(Path(path).with_name("thermal")), subdivision=0).Do()
+        with atomic(Path(path).with_name("thermal.vtu")) as tmp:
+            ngsolve.VTKOutput(thermal.strip.mesh, coefs=[thermal.field.gf],
+                              names=["temperature"], filename=str(tmp.with_suffix("")),
+                              subdivision=0).Do()
     return Path(path).with_suffix(".vtu")

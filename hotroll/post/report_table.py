@@ -14,13 +14,15 @@ from .report_run import LABELS, _finite, case_inputs, number, read_json, run_war
 #: A study's result columns shown (when the table has them), after the varied keys.
 STUDY_KEYS = ("roll_force", "roll_force_total", "roll_torque", "forward_slip", "neutral_angle",
               "mean_pressure", "roll_power", "max_roll_force", "total_roll_power",
-              "exit_temperature_mean", "exit_strain_mean", "nonlinear_iterations", "fe_solves",
+              "exit_temperature_mean", "outlet_temperature_mean", "exit_strain_mean",
+              "nonlinear_iterations", "fe_solves",
               "wall_time_s")   # max_roll_force ...: a schedule study's (studies/run.py)
 #: Column heads of the tables (the summary's labels where not here).
 SHORT = {"roll_force": "roll force", "roll_force_total": "roll force, whole width",
          "roll_torque": "roll torque", "roll_torque_total": "roll torque, whole width",
          "roll_power": "roll power", "mean_pressure": "mean pressure",
          "exit_temperature_mean": "exit temperature", "nonlinear_iterations": "iterations",
+         "outlet_temperature_mean": "exit temperature after the last gap",
          "wall_time_s": "wall time", "entry_thickness": "entry", "exit_thickness": "exit",
          "roll_surface_speed": "roll speed", "exit_temperature_surface": "exit surface T",
          "exit_strain_mean": "exit strain", "transport_duration": "transport",
@@ -28,12 +30,14 @@ SHORT = {"roll_force": "roll force", "roll_force_total": "roll force, whole widt
          "wall_time": "wall time", "max_roll_force": "largest roll force",
          "total_roll_power": "roll power, all passes"}
 #: Units of STUDY_KEYS that engineering.UNITS does not hold (thermal/coupling.py has the first).
-_MORE_UNITS = {"exit_temperature_mean": "K", "nonlinear_iterations": "-",
+_MORE_UNITS = {"exit_temperature_mean": "K", "outlet_temperature_mean": "K",
+               "nonlinear_iterations": "-",
                "max_roll_force": "N/m", "total_roll_power": "W/m", "exit_strain_mean": "-",
                "fe_solves": "-"}
 #: Columns of study.csv that are not a varied key (a row's bookkeeping).
 _BOOK = ("worker", "status", "exit_code", "reason", "resumed")
-FAILED = ("not_converged", "bad_input", "error")
+#: every status but "done" is a failure (not_converged, bad_input, too_large, error, ...)
+DONE = "done"
 
 
 def _float(text: str):
@@ -76,6 +80,7 @@ def study_context(d: Path, title: str | None = None) -> dict:
     varied = heads[heads.index("case") + 1:stop] if "case" in heads else []
     units = _input_units(d / "cases", [str(r.get("case")) for r in rows])
     meta = read_json(d / "study.json") if (d / "study.json").is_file() else {}
+    varied = [k for k in meta.get("varied") or varied if k in heads]   # hotroll study's list
     units.update(meta.get("units") or {})          # written by hotroll study (all its keys)
     title = title or meta.get("name")
     keys = [k for k in STUDY_KEYS if any(_finite(r.get(k)) for r in rows)]
@@ -84,7 +89,7 @@ def study_context(d: Path, title: str | None = None) -> dict:
                for k in keys])
     table = [{"case": str(r.get("case")), "status": str(r.get("status")),
               "index": int(r["index"]) if _finite(r.get("index")) else i,
-              "failed": r.get("status") in FAILED, "reason": r.get("reason") or "",
+              "failed": r.get("status") != DONE, "reason": r.get("reason") or "",
               "link": _link(d, f"cases/{r.get('case')}"),
               "cells": [c["cells"][i] for c in cols],
               "values": [c["values"][i] for c in cols]} for i, r in enumerate(rows)]

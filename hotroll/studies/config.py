@@ -149,17 +149,28 @@ class Study(_Section):
         if self.run.combine == "zip" and len({len(x) for x in self.vary.values()}) > 1:
             raise _Problems(["vary: with run.combine = \"zip\" every list needs the same length, "
                              f"got {[len(x) for x in self.vary.values()]}"])
-        if self.plot is not None and self.plot.lines is not None and self.plot.lines not in \
-                set(self.vary) | {k for r in self.cases for k in r}:
-            raise _Problems([f"plot.lines: {self.plot.lines!r} is not a varied key "
-                             f"({', '.join(self.vary) or 'none'})"])
+        self.check_keys()
         return self
+
+    def check_keys(self) -> None:
+        """A key in both [[cases]] and [vary] is refused; ``plot.lines`` must be varied (after
+        ``cases_file`` is read: ``load_study`` calls this again)."""
+        both = sorted({k for r in self.cases for k in r} & set(self.vary))
+        if both:
+            raise _Problems([f"vary: {', '.join(both)} also in [[cases]]/cases_file: give each "
+                             "key in one of them"])
+        varied = set(self.vary) | {k for r in self.cases for k in r}
+        if self.plot is not None and self.plot.lines is not None and \
+                self.plot.lines not in varied and (self.cases_file is None or self.cases):
+            raise _Problems([f"plot.lines: {self.plot.lines!r} is not a varied key "
+                             f"({', '.join(sorted(varied)) or 'none'})"])
 
     def combinations(self) -> list[dict[str, Any]]:
         """Each row of the cases table (one empty row without one) times the [vary] grid."""
         keys = list(self.vary)
         lists = [self.vary[k] for k in keys]
-        grid = itertools.product(*lists) if self.run.combine == "product" else zip(*lists)
+        grid = itertools.product(*lists) if self.run.combine == "product" or not keys \
+            else zip(*lists)
         grid = [dict(zip(keys, r)) for r in grid]
         return [{**row, **g} for row in (self.cases or [{}]) for g in grid]
 
@@ -179,7 +190,7 @@ def key_unit(dotted: str) -> str:
             break
         except (KeyError, AttributeError, TypeError):
             continue
-    found = re.search(r"\[([^\]]*)\]", text)
+    found = re.search(r"\[([^\]]*)\]; allowed", text)      # _field's "text [unit]; allowed"
     return found.group(1) if found else "-"
 
 
@@ -231,6 +242,10 @@ def load_study(path: str | Path, overrides: dict[str, Any] | None = None) -> tup
         raise CaseError(problem_lines(e), str(path), "study") from None
     if study.cases_file is not None:
         study.cases = study.cases + _read_cases(path.parent / study.cases_file, str(path))
+        try:
+            study.check_keys()
+        except _Problems as e:
+            raise CaseError(e.problems, str(path), "study") from None
     if overrides:
         study.base.set = {**study.base.set, **overrides}
     return study, _base_dict(study, path.parent)
@@ -252,6 +267,10 @@ def _read_cases(csv_path: Path, source: str) -> list[dict[str, Any]]:
     if bad:
         raise CaseError(f"cases_file: header {bad!r}: dotted case keys (section.key)", source,
                         "study")
+    for n, r in enumerate(rows, 2):
+        if None in r:
+            raise CaseError(f"cases_file: {csv_path} line {n} has more cells than the header",
+                            source, "study")
     return [{k: _cell(v) for k, v in r.items() if v not in ("", None)} for r in rows]
 
 
@@ -306,9 +325,12 @@ def _read_base(study: Study, root: Path) -> dict:
 def expand(study: Study, base: dict) -> list[StudyCase]:
     """Every combination as a case, or a schedule (``StudyCase.case`` a ``Schedule``), one
     thread each (a worker is one core); an invalid one keeps its reason."""
-    out = []
+    out, seen = [], set()
     for i, values in enumerate(study.combinations()):
         name = label(values)
+        if name in seen:                 # values equal to 6 digits, or a repeated row
+            name = f"{name}-{i}"
+        seen.add(name)
         try:
             data = _set(study, copy.deepcopy(base), {**values, "solver.threads": 1})
             data["name"] = f"{base.get('name', 'case')} {name}"

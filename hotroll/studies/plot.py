@@ -24,6 +24,9 @@ def units_of(out: Path, rows: list[dict]) -> dict[str, str]:
                 units.update({c: units[c.split(".")[-1]] for c in cols
                               if "." in c and c.split(".")[-1] in units and c not in units})
                 units.setdefault("max_roll_force", units.get("roll_force", "-"))
+                units.setdefault("outlet_temperature_mean", "K")
+                units.update({c: "K" for c in cols if c.split(".")[-1] in (
+                    "exit_temperature_mean", "outlet_temperature_mean")})
                 units.setdefault("total_roll_power", units.get("roll_power", "-"))
                 return units
     return {}
@@ -39,7 +42,9 @@ def _num(v) -> float:
 def plot_table(rows: list[dict], plot: PlotConfig, out_png: Path, *, units: dict | None = None,
                title: str = "") -> Path | None:
     """``out_png`` from the rows (a study table); None when no row is done. A varied key whose
-    values are names (a Table 2 mesh) is plotted against the summary's h_contact instead."""
+    values are names (a Table 2 mesh) is plotted against the summary's h_contact instead;
+    other names (a friction law) are categories in the order of the table. A column the
+    table does not have is a ValueError naming it."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -52,6 +57,14 @@ def plot_table(rows: list[dict], plot: PlotConfig, out_png: Path, *, units: dict
     x = plot.x
     if x == "mesh.h_contact" and any(isinstance(r.get(x), str) for r in done):
         x = "h_contact"
+    have = {k for r in rows for k in r}
+    missing = [k for k in [x, *plot.y] if k not in have]
+    if missing:
+        raise ValueError(f"plot: {', '.join(missing)} not a column of the table")
+    names = list(dict.fromkeys(r.get(x) for r in done if not math.isfinite(_num(r.get(x)))))
+    if names:                             # categories: their position, their name as tick
+        pos = {v: i for i, v in enumerate(dict.fromkeys(r.get(x) for r in done))}
+        done = [{**r, x: pos[r.get(x)]} for r in done]
     groups: dict = {}
     for r in done:
         groups.setdefault(r.get(plot.lines) if plot.lines else None, []).append(r)
@@ -68,7 +81,7 @@ def plot_table(rows: list[dict], plot: PlotConfig, out_png: Path, *, units: dict
             unit = key_unit(plot.lines) if plot.lines else "-"
             label = None if value is None else f"{plot.lines} = {value:.4g}" + (
                 f" {unit}" if unit != "-" else "") if isinstance(value, (int, float)) \
-                else f"{plot.lines} = {value}"
+                and not isinstance(value, bool) else f"{plot.lines} = {value}"
             ax.plot(xs, ys, "o-", ms=4, label=label)
         ax.set_ylabel(f"{key} [{units.get(key, '-')}]")
         ax.grid(alpha=0.3, which="both")
@@ -76,6 +89,8 @@ def plot_table(rows: list[dict], plot: PlotConfig, out_png: Path, *, units: dict
             ax.set_xscale("log")
         if plot.lines and ax is axes[0, 0]:
             ax.legend(fontsize=8)
+    if names:
+        axes[-1, 0].set_xticks(list(pos.values()), [str(v) for v in pos])
     axes[-1, 0].set_xlabel(f"{x} [{units[x] if x in units else key_unit(x)}]")
     if title:
         fig.suptitle(title)

@@ -25,6 +25,7 @@ import traceback
 from pathlib import Path
 from typing import Callable
 
+from ..app.config import CaseError
 from ..app.estimate import ResourceError
 from ..app.output import write_csv, write_json, write_text
 from ..files import DiskFullError, atomic
@@ -200,10 +201,15 @@ def run_schedule_item(item: dict, cdir: Path) -> dict:
         code = int(e.summary.get("exit_code") or 1)
         return {"status": "not_converged", "exit_code": code, "reason": str(e),
                 "resumed": False}
+    except ResourceError as e:
+        return {"status": "too_large", "exit_code": 8, "reason": str(e), "resumed": False}
+    except CaseError as e:              # a later pass's case, built from the exit state
+        return {"status": "bad_input", "exit_code": 2, "reason": "; ".join(e.problems),
+                "resumed": False}
     out = {"status": "done", "exit_code": 0, "reason": None,
            "resumed": all(r["fe_solves"] == 0 for r in rows), "passes": len(rows),
            "exit_thickness": rows[-1]["exit_thickness"],
-           "exit_temperature_mean": rows[-1].get("outlet_temperature_mean"),
+           "outlet_temperature_mean": rows[-1].get("outlet_temperature_mean"),
            "exit_strain_mean": rows[-1]["exit_strain_mean"],
            "max_roll_force": max(r["roll_force"] for r in rows),
            "total_roll_power": sum(r["roll_power"] for r in rows),
@@ -252,7 +258,7 @@ def run_study(study: Study, base: dict, out: Path, *, scheduler: str | None = No
     if serial:
         for g in work:
             done(run_group(_payload(g), str(out), study.run.warm_start), True)
-    else:
+    elif work:
         from distributed import Client, LocalCluster, as_completed
 
         cluster = None
@@ -261,10 +267,16 @@ def run_study(study: Study, base: dict, out: Path, *, scheduler: str | None = No
                                    dashboard_address=None)
         try:
             with Client(scheduler or cluster) as client:
-                futures = [client.submit(run_group, _payload(g), str(out.resolve()),
-                                         study.run.warm_start, pure=False) for g in work]
+                futures = {client.submit(run_group, _payload(g), str(out.resolve()),
+                                         study.run.warm_start, pure=False): g for g in work}
                 for fut in as_completed(futures):
-                    done(fut.result(), True)
+                    try:
+                        new_rows = fut.result()
+                    except DiskFullError:
+                        raise
+                    except Exception as e:  # noqa: BLE001 - KilledWorker (memory), ...: the
+                        new_rows = [_lost(c, e) for c in futures[fut]]   # group's rows
+                    done(new_rows, True)
         finally:
             if cluster is not None:
                 cluster.close()
@@ -279,12 +291,28 @@ def figures(study: Study, out: Path, rows: list[dict]) -> list[Path]:
         return []
     from .plot import plot_profiles, plot_table, units_of
 
-    made = [plot_table(rows, study.plot, out / "study.png", units=units_of(out, rows),
-                       title=f"study {study.name}")]
-    if study.plot.profiles:
-        made.append(plot_profiles(rows, out, out / "study_profiles.png",
-                                  title=f"study {study.name}: contact profiles"))
+    made = []
+    try:
+        made.append(plot_table(rows, study.plot, out / "study.png", units=units_of(out, rows),
+                               title=f"study {study.name}"))
+        if study.plot.profiles:
+            made.append(plot_profiles(rows, out, out / "study_profiles.png",
+                                      title=f"study {study.name}: contact profiles"))
+    except DiskFullError:
+        raise
+    except Exception as e:  # noqa: BLE001 - a figure must not cost the finished table
+        import warnings
+
+        warnings.warn(f"study figures: not drawn ({type(e).__name__}: {e})")
     return [p for p in made if p is not None]
+
+
+def _lost(c: StudyCase, e: Exception) -> dict:
+    """The row of a case whose group the cluster gave up on (its worker killed again and
+    again, e.g. out of memory: dask's KilledWorker)."""
+    return {"index": c.index, "case": c.label, **c.values, "status": "error", "exit_code": 1,
+            "reason": f"the cluster gave up on its group: {type(e).__name__}: {e}",
+            "resumed": False}
 
 
 def _progress(rows: dict, total: int, t0: float) -> dict:
