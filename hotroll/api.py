@@ -65,12 +65,18 @@ def open_result(out: str | Path) -> Result:
 
 
 def study(study_file: str | Path, out: str | Path, *, workers: int | None = None,
-          scheduler: str | None = None, serial: bool = False) -> list[dict]:
-    """Run a study file (``hotroll study``); its table, one dict per combination."""
+          scheduler: str | None = None, serial: bool = False,
+          overrides: dict[str, Any] | None = None) -> list[dict]:
+    """Run a study file or a bundled study's name (mesh_table, report_examples; ``hotroll
+    study``), ``overrides`` (dotted keys) set on its base case; its table, one dict per
+    combination (also ``out/study.csv``, ``study.parquet``, the figures of its [plot])."""
     from .studies.config import load_study
+    from .studies.examples import study_path
     from .studies.run import run_study
 
-    st, base = load_study(study_file)
+    path = Path(study_file)
+    st, base = load_study(path if path.exists() else study_path(str(study_file)),
+                          overrides=overrides)
     return run_study(st, base, Path(out), workers=workers, scheduler=scheduler, serial=serial)
 
 

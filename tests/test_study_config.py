@@ -241,6 +241,14 @@ def test_a_schedule_study_row_is_its_schedules_own_table(tmp_path):
     own = run_schedule(sch, tmp_path / "own", figure=False)
     for p in own:
         assert rows[0][f"{p['name']}.roll_force"] == pytest.approx(p["roll_force"], rel=1e-9)
+    from hotroll.post.report import write_report       # each case linked to its schedule's page
+
+    html = write_report(tmp_path / "out").read_text()
+    for r in rows:
+        assert (tmp_path / "out" / "cases" / r["case"] / "report.html").is_file()
+        assert (tmp_path / "out" / "cases" / r["case"] / "R1" / "report.html").is_file() or any(
+            (tmp_path / "out" / "cases" / r["case"]).glob("*R1/report.html"))
+    assert html.count('href="cases/') == 2
 
 
 def test_zip_of_a_cases_table_alone_and_unique_labels(tmp_path):
@@ -282,3 +290,17 @@ def test_a_figure_against_names_and_a_missing_column(tmp_path):
     assert plot_table(rows, PlotConfig(x="friction.law"), tmp_path / "f.png").is_file()
     with pytest.raises(ValueError, match="roll_torque"):
         plot_table(rows, PlotConfig(x="friction.law", y=["roll_torque"]), tmp_path / "g.png")
+
+
+def test_the_api_takes_a_bundled_study_and_overrides(tmp_path, monkeypatch):
+    import hotroll
+    from hotroll.studies import run as run_mod
+
+    seen = {}
+    monkeypatch.setattr(run_mod, "run_study", lambda st, base, out, **k: seen.update(
+        st=st, base=base, out=out, **k) or [])
+    assert hotroll.study("report_examples", tmp_path, serial=True,
+                         overrides={"mesh.h_contact": 0.02}) == []
+    assert seen["st"].name == "report_examples" and seen["serial"] is True
+    assert seen["base"]["mesh"]["h_contact"] == 0.02
+    assert seen["base"]["solver"]["method"] == "steady"          # the file's own base.set

@@ -133,10 +133,11 @@ def write_report(d: Path, title: str | None = None, *, runs: bool = True,
     d = Path(d)
     k = kind(d)
     if runs and k in ("study", "schedule"):
-        subs = (d / "cases").glob("*/summary.json") if k == "study" else d.glob("*/summary.json")
+        subs = d.glob("*/summary.json") if k == "schedule" else [
+            *(d / "cases").glob("*/summary.json"), *(d / "cases").glob("*/schedule.json")]
         for s in sorted(subs):
-            try:
-                write_report(s.parent, runs=False, draw=False)
+            try:                        # a schedule study's case: its schedule's page
+                write_report(s.parent, runs=s.name == "schedule.json", draw=False)
             except DiskFullError:
                 raise
             except (OSError, ValueError):   # a run that cannot be shown has no link
