@@ -1,8 +1,17 @@
 #!/usr/bin/env bash
-# Set up and run the test suite on both cores (pytest-xdist, one worker per core; a file's
-# tests stay on one worker so its module fixtures are computed once). The slow-marked runs
-# (a transient Coulomb run to steady state) are outside: add -m slow to run them.
+# Set up (the venv; Debian's chromium for the report test, when root on Debian) and run the
+# test suite on both cores (pytest-xdist, one worker per core; a file's tests stay on one
+# worker so its module fixtures are computed once). The slow-marked runs (a transient Coulomb run to steady state) are outside: add -m slow to run them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
+# the report test renders the pages in Debian's headless chromium (tests/test_report.py)
+if ! command -v chromium >/dev/null && [ -z "${HOTROLL_SKIP_BROWSER:-}" ]; then
+  if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium
+  else
+    echo "tests/test_report.py needs Debian's chromium: sudo apt-get install chromium" \
+         "(or HOTROLL_SKIP_BROWSER=1 to skip the browser part)" >&2
+  fi
+fi
 .venv/bin/python -m pytest -q -n 2 --dist loadfile "$@"
