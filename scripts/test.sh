@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Set up (the venv; Debian's chromium for the report test, when root on Debian) and run the
 # test suite on both cores (pytest-xdist, one worker per core; a file's tests stay on one
-# worker so its module fixtures are computed once). The slow-marked runs (a transient Coulomb run to steady state) are outside: add -m slow to run them.
+# worker so its module fixtures are computed once). The slow-marked runs (a transient
+# Coulomb run to steady state) are outside: add -m slow to run them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
