@@ -117,7 +117,7 @@ def test_units_of_varied_keys_come_from_the_case_schema():
     assert key_unit("plate.temperature") == "K" and key_unit("material.density") == "kg/m^3"
 
 
-@pytest.mark.parametrize("name, n", [("mesh_table", 6), ("report_examples", 4)])
+@pytest.mark.parametrize("name, n", [("mesh_table", 6), ("report_examples", 4), ("af_study", 8)])
 def test_bundled_studies_are_valid(name, n):
     from hotroll.studies.examples import study_path
 
@@ -129,6 +129,9 @@ def test_bundled_studies_are_valid(name, n):
         from hotroll.app.config import MESH_TABLE
 
         assert [c.case.mesh.h for c in cases] == [MESH_TABLE[k] for k in MESH_TABLE]
+    elif name == "af_study":
+        assert [c.case.friction.a_f for c in cases] == [1, 2, 5, 10, 20, 50, 100, "estimate"]
+        assert st.plot.x == "a_f" and st.plot.xscale == "log"
     else:
         ex = {(c.case.material.m, round(c.case.pass_.roll_angular_velocity, 12))
               for c in cases}

@@ -72,7 +72,7 @@ def schedule(
 def study(
     study_file: Annotated[Path, typer.Argument(
         help="Study file (TOML): [base] and [vary]/[[cases]], or a bundled study's name "
-             "(mesh_table, report_examples).")],
+             "(mesh_table, report_examples, af_study).")],
     out: OutOpt,
     scheduler: Annotated[Optional[str], typer.Option(
         help="Address of a running dask scheduler (default: DASK_SCHEDULER_ADDRESS, else a "
