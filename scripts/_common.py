@@ -1,6 +1,6 @@
 """Helpers shared by scripts/agreement.py and benchmarks/bench_example1.py.
 
-Example 1 with dotted overrides, command-line options common to all three, a run that skips
+Example 1 with dotted overrides, command-line options common to them, a run that skips
 finished outputs and survives a failing case, and tables written as CSV and Markdown.
 """
 from __future__ import annotations
