@@ -307,3 +307,21 @@ def test_the_api_takes_a_bundled_study_and_overrides(tmp_path, monkeypatch):
     assert seen["st"].name == "report_examples" and seen["serial"] is True
     assert seen["base"]["mesh"]["h_contact"] == 0.02
     assert seen["base"]["solver"]["method"] == "steady"          # the file's own base.set
+
+
+def test_a_schedule_whose_pass_fails_is_a_row_with_the_passes_before(tmp_path, monkeypatch):
+    from hotroll.app import runner
+    from hotroll.studies.run import run_study
+
+    real = runner.run_case
+
+    def second_diverges(case, out, **k):
+        s = real(case, out, **k)
+        return {**s, "exit_code": 4, "status": "failed"} if "R2" in str(out) else s
+
+    monkeypatch.setattr(runner, "run_case", second_diverges)
+    st, base = _schedule_study(tmp_path, '"strip.temperature" = [1373.15]\n')
+    (row,) = run_study(st, base, tmp_path / "out", serial=True)
+    assert row["status"] == "not_converged" and row["exit_code"] == 4
+    assert "pass 2 (" in row["reason"]
+    assert "R1.roll_force" in row and "R2.roll_force" not in row

@@ -170,7 +170,7 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
                 solves += 1
                 iterations += int(summary.get("nonlinear_iterations") or 0)
             if summary.get("exit_code") != 0:
-                raise ScheduleError(k, case.name, summary)
+                raise ScheduleError(k, case.name, summary, rows)
             if flux is None or sch.mill.speeds != "mass_flow":
                 break
             miss = summary["mass_flux_in"] / flux - 1.0
@@ -204,10 +204,10 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
 class ScheduleError(RuntimeError):
     """A pass that did not converge: the schedule stops there (the passes before are kept)."""
 
-    def __init__(self, k: int, name: str, summary: dict):
+    def __init__(self, k: int, name: str, summary: dict, rows: list[dict] | None = None):
         from ..app.outcome import EXIT_CODES
 
-        self.k, self.name, self.summary = k, name, summary
+        self.k, self.name, self.summary, self.rows = k, name, summary, rows or []
         code = summary.get("exit_code")
         super().__init__(f"pass {k + 1} ({name}) ended with exit code {code}: "
                          f"{EXIT_CODES.get(code, '?')} (status {summary.get('status')}); the "

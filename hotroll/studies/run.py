@@ -197,10 +197,10 @@ def run_schedule_item(item: dict, cdir: Path) -> dict:
     sch = schedule_from_dict(item["schedule"])
     try:
         rows = run_schedule(sch, cdir, resume=True, figure=False)
-    except ScheduleError as e:
+    except ScheduleError as e:          # the passes before the failed one keep their columns
         code = int(e.summary.get("exit_code") or 1)
         return {"status": "not_converged", "exit_code": code, "reason": str(e),
-                "resumed": False}
+                "resumed": False, **_pass_columns(e.rows)}
     except ResourceError as e:
         return {"status": "too_large", "exit_code": 8, "reason": str(e), "resumed": False}
     except CaseError as e:              # a later pass's case, built from the exit state
@@ -215,9 +215,13 @@ def run_schedule_item(item: dict, cdir: Path) -> dict:
            "total_roll_power": sum(r["roll_power"] for r in rows),
            "fe_solves": sum(r["fe_solves"] for r in rows),
            "wall_time_s": sum(r["wall_time"] for r in rows)}
-    for r in rows:
-        out.update({f"{r['name']}.{k}": r.get(k) for k in PASS_KEYS if r.get(k) is not None})
-    return out
+    return out | _pass_columns(rows)
+
+
+def _pass_columns(rows: list[dict]) -> dict:
+    """``<pass name>.<key>`` of a schedule's finished passes."""
+    return {f"{r['name']}.{k}": r.get(k) for r in rows for k in PASS_KEYS
+            if r.get(k) is not None}
 
 
 def run_study(study: Study, base: dict, out: Path, *, scheduler: str | None = None,
