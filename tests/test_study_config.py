@@ -325,3 +325,13 @@ def test_a_schedule_whose_pass_fails_is_a_row_with_the_passes_before(tmp_path, m
     assert row["status"] == "not_converged" and row["exit_code"] == 4
     assert "pass 2 (" in row["reason"]
     assert "R1.roll_force" in row and "R2.roll_force" not in row
+
+
+def test_groups_are_cut_for_the_workers_a_scheduler_has():
+    from distributed import LocalCluster
+
+    from hotroll.studies.run import _scheduler_workers
+
+    with LocalCluster(n_workers=3, threads_per_worker=1, processes=False,
+                      dashboard_address=None) as cluster:
+        assert _scheduler_workers(cluster.scheduler_address) == 3

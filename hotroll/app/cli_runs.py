@@ -78,7 +78,8 @@ def study(
         help="Address of a running dask scheduler (default: DASK_SCHEDULER_ADDRESS, else a "
              "local cluster).")] = None,
     workers: Annotated[Optional[int], typer.Option(
-        help="Local cluster: worker processes (default: one per core, one thread each).")] = None,
+        help="Workers the groups are cut for; a local cluster starts that many processes, one "
+             "thread each (default: one per core, or the workers a --scheduler has).")] = None,
     serial: Annotated[bool, typer.Option("--serial", help="No cluster: the groups one after "
                                          "another in this process.")] = False,
     set_: Annotated[Optional[list[str]], typer.Option(

@@ -229,7 +229,8 @@ def run_study(study: Study, base: dict, out: Path, *, scheduler: str | None = No
               progress: Callable[[dict], None] | None = None) -> list[dict]:
     """Run every combination (module docstring); returns the table's rows by index.
     ``scheduler``: an existing dask scheduler's address (else ``DASK_SCHEDULER_ADDRESS``, else
-    a local cluster of ``workers`` processes, one per core, one thread each)."""
+    a local cluster of ``workers`` processes, one per core, one thread each); with a
+    scheduler and no ``workers``, the groups are cut for the workers it has."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     cases = expand(study, base)
@@ -237,6 +238,8 @@ def run_study(study: Study, base: dict, out: Path, *, scheduler: str | None = No
                       "exit_code": 2, "reason": c.problem, "resumed": False}
             for c in cases if c.case is None}
     scheduler = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")
+    if workers is None and scheduler is not None and not serial:
+        workers = _scheduler_workers(scheduler)
     workers = workers or os.cpu_count() or 1
     work = groups(cases, workers)
     total, t0 = len(cases), time.perf_counter()
@@ -287,6 +290,15 @@ def run_study(study: Study, base: dict, out: Path, *, scheduler: str | None = No
     table = [rows[i] for i in sorted(rows)]
     figures(study, out, table)
     return table
+
+
+def _scheduler_workers(address: str) -> int | None:
+    """How many workers (threads) a running scheduler has, or None if it has none yet."""
+    from distributed import Client
+
+    with Client(address, timeout="30s") as client:
+        info = client.scheduler_info().get("workers", {})
+    return sum(int(w.get("nthreads", 1)) for w in info.values()) or None
 
 
 def figures(study: Study, out: Path, rows: list[dict]) -> list[Path]:
