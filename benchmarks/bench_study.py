@@ -78,7 +78,7 @@ def main(argv=None) -> int:
     p.add_argument("--out", type=Path, default=HERE / "results" / "bench_study")
     args = p.parse_args(argv)
     n_speed = 10
-    n_thick = max(1, args.cases // n_speed)
+    n_thick = max(2, args.cases // n_speed)          # a range needs 2 values at least
     rows = []
     for mode in args.modes.split(","):
         base, _, cold = mode.partition("-")
