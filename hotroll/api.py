@@ -71,12 +71,10 @@ def study(study_file: str | Path, out: str | Path, *, workers: int | None = None
     study``), ``overrides`` (dotted keys) set on its base case; its table, one dict per
     combination (also ``out/study.csv``, ``study.parquet``, the figures of its [plot])."""
     from .studies.config import load_study
-    from .studies.examples import study_path
+    from .studies.examples import find_study
     from .studies.run import run_study
 
-    path = Path(study_file)
-    st, base = load_study(path if path.exists() else study_path(str(study_file)),
-                          overrides=overrides)
+    st, base = load_study(find_study(study_file), overrides=overrides)
     return run_study(st, base, Path(out), workers=workers, scheduler=scheduler, serial=serial)
 
 

@@ -7,6 +7,30 @@ import math
 from hotroll.app.config import Case, case_from_dict
 
 
+#: Example 1 on a coarse contact mesh, steady, no figures: the base of the study and report
+#: tests (about 1 s a run).
+EX1_COARSE_TOML = """name = "ex1c"
+[pass]
+roll_radius = 0.6
+entry_thickness = 0.5
+exit_thickness = 0.4
+roll_angular_velocity = 1.0471975511965976
+[plate]
+length = 1.0
+[material]
+K = 1.0
+m = 0.2
+[mesh]
+h_contact = 0.02
+[solver]
+method = "steady"
+threads = 1
+[output]
+figures = false
+vtk = false
+"""
+
+
 def build_case(base: dict, section: str | None = None, table: dict | None = None,
                **dotted) -> Case:
     """``base`` with ``[section]`` replaced by ``table`` (if given) and ``{"sec.key": v}`` set."""

@@ -7,9 +7,8 @@ import math
 from pathlib import Path
 
 import numpy as np
-import pytest
 
-from hotroll.post.plots import plot_all, plot_compare, plot_series
+from hotroll.post.plots import plot_all, plot_compare
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -176,14 +175,4 @@ def test_plot_compare_tolerates_missing_files(tmp_path):
     b = tmp_path / "b"
     b.mkdir()
     out = plot_compare({"full": a, "empty": b}, tmp_path / "cmp.png")
-    _assert_png(out)
-
-
-@pytest.mark.parametrize("logx", [False, True])
-def test_plot_series(tmp_path, logx):
-    table = [{"a_f": af, "neutral_angle": 0.1 + 0.01 * i, "roll_force": 1e6 * (1 + i)}
-             for i, af in enumerate((0.01, 0.03, 0.1, 0.3))]
-    table.append({"a_f": 1.0, "neutral_angle": None})  # incomplete row is skipped
-    out = plot_series(table, "a_f", ["neutral_angle", "roll_force"],
-                      tmp_path / "series.png", title="a_f study", logx=logx)
     _assert_png(out)

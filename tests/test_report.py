@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from casebuild import example1_coarse
+from casebuild import EX1_COARSE_TOML, example1_coarse
 
 #: A shown unit -> its SI factor (written here, not taken from hotroll.post.report*).
 TO_SI = {"N/m": 1.0, "kN/m": 1e3, "MN/m": 1e6, "N": 1.0, "kN": 1e3, "MN": 1e6,
@@ -30,26 +30,7 @@ BROWSER = os.environ.get("HOTROLL_CHROMIUM", "/usr/bin/chromium")   # Debian's c
 ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
         "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 
-BASE = """name = "ex1c"
-[pass]
-roll_radius = 0.6
-entry_thickness = 0.5
-exit_thickness = 0.4
-roll_angular_velocity = 1.0471975511965976
-[plate]
-length = 1.0
-[material]
-K = 1.0
-m = 0.2
-[mesh]
-h_contact = 0.02
-[solver]
-method = "steady"
-threads = 1
-[output]
-figures = false
-vtk = false
-"""
+BASE = EX1_COARSE_TOML
 STUDY = """name = "m_and_draft"
 [base]
 file = "base.toml"

@@ -14,27 +14,9 @@ from hotroll.app.config import CaseError
 from hotroll.studies.config import expand, load_study
 from hotroll.studies.run import groups, run_study
 
-from casebuild import assert_same_table
+from casebuild import EX1_COARSE_TOML, assert_same_table
 
-BASE = """name = "ex1c"
-[pass]
-roll_radius = 0.6
-entry_thickness = 0.5
-exit_thickness = 0.4
-roll_angular_velocity = 1.0471975511965976
-[plate]
-length = 1.0
-[material]
-K = 1.0
-m = 0.2
-[mesh]
-h_contact = 0.02
-[solver]
-method = "steady"
-[output]
-figures = false
-vtk = false
-"""
+BASE = EX1_COARSE_TOML
 
 STUDY = """name = "m_speed"
 [base]

@@ -62,6 +62,17 @@ class SteadySettings:
     couple_below: float = 1e-2       # update them once the Newton update (at the P2 nodes) is
                                      # below this x U
 
+    def mesh_zone(self, rp, h: float) -> tuple[float, float, float, float]:
+        """(upstream, downstream, fine margin, core factor) of the strip's mesh at contact
+        size ``h`` (the memory estimate uses it before meshing). The interior carries little
+        of the error: 4h on the axis (at least 8 elements through the exit half-thickness)
+        halves the DOFs of the transient's 2h for the same roll force to 4e-5 (M2,
+        docs/theory.md 4b)."""
+        up, down = default_lengths(rp)
+        core = max(1.0, min(self.core_factor, rp.half_exit / (8.0 * h)))
+        return (self.upstream or up, self.downstream or down,
+                self.fine_margin * rp.contact_length + 4 * h, core)
+
 
 def default_lengths(rp) -> tuple[float, float]:
     """Upstream and downstream lengths: one contact length and two full thicknesses at least,
@@ -131,18 +142,10 @@ class SteadyRun:
                              f"{settings.free_surface!r}")
         self.model, self.s = model, settings
         rp, mat = model.rp, model.material
-        up, down = default_lengths(rp)
-        self.upstream = settings.upstream or up
-        self.downstream = settings.downstream or down
+        self.upstream, self.downstream, margin, core = settings.mesh_zone(rp, model.h)
         self.plate_length = plate_length
-        # the interior carries little of the error: 4h on the axis (at least 8 elements
-        # through the exit half-thickness) halves the DOFs of the transient's 2h for the same
-        # roll force to 4e-5 (M2, docs/theory.md 4b)
-        core = max(1.0, min(settings.core_factor, rp.half_exit / (8.0 * model.h)))
         spec = replace(model.mesh, core_factor=core)
-        self.mesh = build_steady_mesh(rp, self.upstream, self.downstream, spec,
-                                      margin=settings.fine_margin * rp.contact_length
-                                      + 4 * model.h)
+        self.mesh = build_steady_mesh(rp, self.upstream, self.downstream, spec, margin=margin)
         reduced = NortonHoff(1.0, mat.m, mat.eps0)
         self.strain, self.thermal, consistency = model.field_setup(self.mesh)
         self.form = RollingForm(self.mesh, rp, reduced, model.friction, PenaltyTable(model.h),

@@ -94,14 +94,12 @@ def study(
     from hotroll.studies.config import load_study
     from hotroll.studies.run import FAILED, run_study
 
-    if not study_file.exists():
-        from hotroll.studies.examples import study_path
+    from hotroll.studies.examples import find_study
 
-        try:
-            study_file = study_path(str(study_file))
-        except FileNotFoundError as e:
-            raise _fail(f"study: {study_file} is neither a file nor a bundled study ({e})") \
-                from None
+    try:
+        study_file = find_study(study_file)
+    except FileNotFoundError as e:
+        raise _fail(f"study: {e}") from None
     try:
         st, base = load_study(study_file, overrides=_key_values(set_ or []))
     except CaseError as e:
@@ -137,17 +135,13 @@ def study(
 
 
 def _key_values(items: list[str]) -> dict:
-    """``KEY=VALUE`` options as a dict; a VALUE TOML reads (number, boolean, list, quoted
-    text) is that value, else the text."""
-    import tomllib
+    """``KEY=VALUE`` options as a dict (``studies.config.parse_value``)."""
+    from hotroll.studies.config import parse_value
 
     out = {}
     for item in items:
         key, sep, text = item.partition("=")
         if not sep or "." not in key:
             raise _fail(f"--set {item!r}: expected section.key=value, e.g. solver.method=steady")
-        try:
-            out[key.strip()] = tomllib.loads(f"v = {text.strip()}")["v"]
-        except tomllib.TOMLDecodeError:
-            out[key.strip()] = text.strip()
+        out[key.strip()] = parse_value(text)
     return out

@@ -100,25 +100,21 @@ def triangles(rp, h: float, h_far: float, x0: float, x1: float, fine_lo: float, 
 def estimate(case) -> Estimate:
     """The estimate for a validated case (its method's mesh; the temperature's own mesh of a
     [thermal] case is small beside it and not counted)."""
-    from ..algorithms.steady import SteadySettings, default_lengths
-    from ..discretisation.mesh import MeshSpec
     from ..algorithms.settling import default_end_time
+    from ..algorithms.steady import SteadySettings
+    from ..discretisation.mesh import MeshSpec, plate_fine_length, plate_zone, steady_zone
 
     rp, h = case.pass_.roll_pass(), case.mesh.h
     spec = MeshSpec(h=h, fine_length=0.0, h_far=case.mesh.h_far, grading=case.mesh.grading)
     far = max(spec.far(rp), h)
-    if case.solver.method == "steady":
-        up, down = default_lengths(rp)
-        up = case.solver.steady_entry_length or up
-        down = case.solver.steady_exit_length or down
-        margin = SteadySettings.fine_margin * rp.contact_length + 4 * h
-        core = max(1.0, min(SteadySettings.core_factor, rp.half_exit / (8.0 * h)))
-        x0, x1 = rp.x_touch - up, rp.axis_x + down
-        lo, hi = max(x0, rp.x_touch - margin), min(x1, rp.axis_x + margin)
+    if case.solver.method == "steady":      # the lengths runner.steady_settings passes on
+        up, down, margin, core = SteadySettings(
+            upstream=case.solver.steady_entry_length,
+            downstream=case.solver.steady_exit_length).mesh_zone(rp, h)
+        x0, x1, lo, hi = steady_zone(rp, up, down, margin)
     else:
         end = case.solver.end_time or default_end_time(rp)
-        x0, x1 = rp.axis_x - case.plate.length, rp.axis_x
-        lo, hi = max(x0, x1 - (rp.contact_length + rp.u_roll * end + 6 * h)), x1
+        x0, x1, lo, hi = plate_zone(rp, case.plate.length, plate_fine_length(rp, h, end))
         core = spec.core_factor
     tri = MESHER_FACTOR * triangles(rp, h, far, x0, x1, lo, hi, core, case.mesh.grading)
     dofs = DOFS_PER_TRIANGLE * tri

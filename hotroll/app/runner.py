@@ -104,12 +104,12 @@ def exit_strain(case: Case, run) -> dict:
 def build_model(case: Case):
     """Translate the case description into the solver's model and settings."""
     from ..algorithms.transient import RollingModel, TransientSettings
-    from ..discretisation.mesh import MeshSpec
+    from ..discretisation.mesh import MeshSpec, plate_fine_length
     sv = case.solver
     rp = case.pass_.roll_pass()
     h = case.mesh.h
     end_time = sv.end_time or default_end_time(rp)
-    spec = MeshSpec(h=h, fine_length=rp.contact_length + rp.u_roll * end_time + 6 * h,
+    spec = MeshSpec(h=h, fine_length=plate_fine_length(rp, h, end_time),
                     h_far=case.mesh.h_far, grading=case.mesh.grading)
     material, flow = reference_material(case)
     t_profile, e_profile = case.plate.entry_profiles()

@@ -114,17 +114,37 @@ def _graded_mesh(geometry, rp: RollPass, spec: MeshSpec, x_lo: float, x_hi: floa
     return ngsolve.Mesh(geometry.GenerateMesh(mp=mp))
 
 
+def plate_fine_length(rp: RollPass, h: float, end_time: float) -> float:
+    """The report's scheme: the fine zone upstream of the gap, the contact length, what the
+    roll surface travels until ``end_time`` and 6h."""
+    return rp.contact_length + rp.u_roll * end_time + 6 * h
+
+
+def plate_zone(rp: RollPass, length: float, fine_length: float) -> tuple[float, float, float,
+                                                                          float]:
+    """(x0, x1, fine from, fine to) of the initial plate's mesh."""
+    x0, x1 = rp.axis_x - length, rp.axis_x
+    return x0, x1, max(x0, x1 - fine_length), x1
+
+
+def steady_zone(rp: RollPass, upstream: float, downstream: float,
+                margin: float) -> tuple[float, float, float, float]:
+    """(x0, x1, fine from, fine to) of the steady strip's mesh: fine over the arc and
+    ``margin`` either side of it."""
+    x0, x1 = rp.x_touch - upstream, rp.axis_x + downstream
+    return x0, x1, max(x0, rp.x_touch - margin), min(x1, rp.axis_x + margin)
+
+
 def build_plate_mesh(rp: RollPass, length: float, spec: MeshSpec):
     """Generate the graded NGSolve mesh (straight-sided; the arc is restored by the P2 geometry)."""
-    x_lo = max(rp.axis_x - length, rp.axis_x - spec.fine_length)
-    return _graded_mesh(plate_geometry(rp, length), rp, spec, x_lo, rp.axis_x)
+    _, _, x_lo, x_hi = plate_zone(rp, length, spec.fine_length)
+    return _graded_mesh(plate_geometry(rp, length), rp, spec, x_lo, x_hi)
 
 
 def build_steady_mesh(rp: RollPass, upstream: float, downstream: float, spec: MeshSpec,
                       margin: float):
-    """Graded mesh of the steady strip; fine over the arc and ``margin`` either side of it."""
-    x_lo = max(rp.x_touch - upstream, rp.x_touch - margin)
-    x_hi = min(rp.axis_x + downstream, rp.axis_x + margin)
+    """Graded mesh of the steady strip (``steady_zone``)."""
+    _, _, x_lo, x_hi = steady_zone(rp, upstream, downstream, margin)
     return _graded_mesh(steady_geometry(rp, upstream, downstream), rp, spec, x_lo, x_hi)
 
 

@@ -15,7 +15,6 @@ Public functions
 plot_all(out_dir)                        -> list[Path]   (fig_*.png in out_dir; the
                                                           temperature's in plots_thermal.py)
 plot_compare(runs, out_png, title="")    -> Path         (overlay of several runs)
-plot_series(table, x_key, y_keys, out_png, ...) -> Path  (parameter studies)
 """
 
 from __future__ import annotations
@@ -40,7 +39,7 @@ from matplotlib.tri import LinearTriInterpolator, Triangulation  # noqa: E402
 
 from ..files import DiskFullError, atomic  # noqa: E402
 
-__all__ = ["plot_all", "plot_compare", "plot_series"]
+__all__ = ["plot_all", "plot_compare"]
 
 DPI = 120
 ROLL_FACE = "0.75"
@@ -749,40 +748,6 @@ def plot_compare(runs: Mapping[str, Path], out_png: Path, *, title: str = "") ->
         ax.grid(alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=8)
-    if title:
-        fig.suptitle(title)
-    return _save(fig, out_png)
-
-
-def plot_series(table: list[dict], x_key: str, y_keys: list[str], out_png: Path, *,
-                title: str = "", xlabel: str = "", logx: bool = False) -> Path:
-    """One stacked panel per ``y_key`` against ``x_key`` (rows lacking a value skipped)."""
-    y_keys = list(y_keys)
-    n = max(len(y_keys), 1)
-    fig, axes = plt.subplots(n, 1, figsize=(7, 2.6 * n + 0.6), sharex=True,
-                             layout="constrained", squeeze=False)
-    axes = axes[:, 0]
-
-    def num(v):
-        try:
-            f = float(v)
-        except (TypeError, ValueError):
-            return math.nan
-        return f
-
-    for ax, key in zip(axes, y_keys):
-        pts = [(num(row.get(x_key)), num(row.get(key))) for row in table]
-        pts = sorted(p for p in pts if np.isfinite(p[0]) and np.isfinite(p[1]))
-        if pts:
-            xs, ys = zip(*pts)
-            ax.plot(xs, ys, "o-", ms=5)
-        else:
-            _na(ax, f"no data for {key}")
-        ax.set_ylabel(key)
-        ax.grid(alpha=0.3, which="both")
-        if logx and pts and min(xs) > 0:
-            ax.set_xscale("log")
-    axes[-1].set_xlabel(xlabel or x_key)
     if title:
         fig.suptitle(title)
     return _save(fig, out_png)

@@ -29,11 +29,10 @@ SHORT = {"roll_force": "roll force", "roll_force_total": "roll force, whole widt
          "next_entry_temperature_mean": "next entry T", "fe_solves": "FE solves",
          "wall_time": "wall time", "max_roll_force": "largest roll force",
          "total_roll_power": "roll power, all passes"}
-#: Units of STUDY_KEYS that engineering.UNITS does not hold (thermal/coupling.py has the first).
-_MORE_UNITS = {"exit_temperature_mean": "K", "outlet_temperature_mean": "K",
-               "nonlinear_iterations": "-",
-               "max_roll_force": "N/m", "total_roll_power": "W/m", "exit_strain_mean": "-",
-               "fe_solves": "-"}
+#: Units of STUDY_KEYS that neither study.json (written by hotroll study: every column's) nor
+#: engineering.UNITS holds (a study directory without study.json; thermal/coupling.py has
+#: the first).
+_MORE_UNITS = {"exit_temperature_mean": "K", "nonlinear_iterations": "-"}
 #: Columns of study.csv that are not a varied key (a row's bookkeeping).
 _BOOK = ("worker", "status", "exit_code", "reason", "resumed")
 #: every status but "done" is a failure (not_converged, bad_input, too_large, error, ...)
@@ -85,8 +84,8 @@ def study_context(d: Path, title: str | None = None) -> dict:
     title = title or meta.get("name")
     keys = [k for k in STUDY_KEYS if any(_finite(r.get(k)) for r in rows)]
     cols = ([column(k, [r.get(k) for r in rows], units.get(k, ""), label=k) for k in varied]
-            + [column(k, [r.get(k) for r in rows], UNITS.get(k) or _MORE_UNITS[k])
-               for k in keys])
+            + [column(k, [r.get(k) for r in rows],
+                      units.get(k) or UNITS.get(k) or _MORE_UNITS.get(k, "-")) for k in keys])
     table = [{"case": str(r.get("case")), "status": str(r.get("status")),
               "index": int(r["index"]) if _finite(r.get("index")) else i,
               "failed": r.get("status") != DONE, "reason": r.get("reason") or "",

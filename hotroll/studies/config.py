@@ -271,16 +271,19 @@ def _read_cases(csv_path: Path, source: str) -> list[dict[str, Any]]:
         if None in r:
             raise CaseError(f"cases_file: {csv_path} line {n} has more cells than the header",
                             source, "study")
-    return [{k: _cell(v) for k, v in r.items() if v not in ("", None)} for r in rows]
+    return [{k: parse_value(v) for k, v in r.items() if v not in ("", None)} for r in rows]
 
 
-def _cell(text: str) -> Any:
-    for conv in (int, float):
-        try:
-            return conv(text)
-        except ValueError:
-            pass
-    return {"true": True, "false": False}.get(text.strip().lower(), text)
+def parse_value(text: str) -> Any:
+    """A value written as text (a CSV cell, ``--set key=VALUE``): what TOML reads it as
+    (number, boolean, list, quoted text), true/false in any case, else the text itself."""
+    text = text.strip()
+    if text.lower() in ("true", "false"):
+        return text.lower() == "true"
+    try:
+        return tomllib.loads(f"v = {text}")["v"]
+    except tomllib.TOMLDecodeError:
+        return text
 
 
 def _base_dict(study: Study, root: Path) -> dict:

@@ -2,34 +2,11 @@
 field against a column, one line per value of a varied key; the done rows only."""
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 
 from ..files import atomic
 from .config import PlotConfig, key_unit
-
-
-def units_of(out: Path, rows: list[dict]) -> dict[str, str]:
-    """The summary fields' units, from the first finished case's summary.json (a schedule's:
-    schedule.json's, a pass's column ``F1.roll_force`` with the unit of ``roll_force``)."""
-    for r in rows:
-        cdir = Path(out) / "cases" / str(r.get("case"))
-        if r.get("status") != "done":
-            continue
-        for name in ("summary.json", "schedule.json"):
-            if (cdir / name).is_file():
-                units = json.loads((cdir / name).read_text()).get("units", {})
-                cols = {k for row in rows for k in row}
-                units.update({c: units[c.split(".")[-1]] for c in cols
-                              if "." in c and c.split(".")[-1] in units and c not in units})
-                units.setdefault("max_roll_force", units.get("roll_force", "-"))
-                units.setdefault("outlet_temperature_mean", "K")
-                units.update({c: "K" for c in cols if c.split(".")[-1] in (
-                    "exit_temperature_mean", "outlet_temperature_mean")})
-                units.setdefault("total_roll_power", units.get("roll_power", "-"))
-                return units
-    return {}
 
 
 def _num(v) -> float:

@@ -17,6 +17,7 @@ atomically after every finished group.
 """
 from __future__ import annotations
 
+import json
 import math
 import os
 import socket
@@ -29,7 +30,7 @@ from ..app.config import CaseError
 from ..app.estimate import ResourceError
 from ..app.output import write_csv, write_json, write_text
 from ..files import DiskFullError, atomic
-from .config import Study, StudyCase, expand
+from .config import Study, StudyCase, expand, key_unit
 
 #: status of a row: "done", "not_converged" (the run ended with a non-zero exit code),
 #: "bad_input" (the case schema refused the combination), "too_large" (the memory estimate is
@@ -183,6 +184,11 @@ def _payload(group: list[StudyCase]) -> list[dict]:
             for c in group]
 
 
+#: units of a schedule study's own columns (its totals; per pass, those it has no unit for)
+ROW_UNITS = {"passes": "-", "exit_thickness": "m", "outlet_temperature_mean": "K",
+             "exit_temperature_mean": "K", "exit_strain_mean": "-", "max_roll_force": "N/m",
+             "total_roll_power": "W/m", "fe_solves": "-", "wall_time_s": "s"}
+
 #: a schedule study's columns per pass (``<pass name>.<key>``)
 PASS_KEYS = ("roll_force", "roll_torque", "roll_power", "forward_slip", "roll_surface_speed",
              "exit_temperature_mean", "exit_strain_mean", "roll_force_total")
@@ -256,8 +262,6 @@ def run_study(study: Study, base: dict, out: Path, *, scheduler: str | None = No
             busy = min(running, left[0])
             progress({**_progress(rows, total, t0), "running": busy})
 
-    from .config import key_unit
-
     keys = list(dict.fromkeys(k for c in cases for k in c.values))
     write_json(out / "study.json", {"name": study.name, "cases": total, "varied": keys,
                                     "units": {k: key_unit(k) for k in keys}})
@@ -288,8 +292,30 @@ def run_study(study: Study, base: dict, out: Path, *, scheduler: str | None = No
             if cluster is not None:
                 cluster.close()
     table = [rows[i] for i in sorted(rows)]
-    figures(study, out, table)
+    units = column_units(out, table, {k: key_unit(k) for k in keys})
+    write_json(out / "study.json", {"name": study.name, "cases": total, "varied": keys,
+                                    "units": units})
+    figures(study, out, table, units)
     return table
+
+
+def column_units(out: Path, rows: list[dict], varied: dict[str, str]) -> dict[str, str]:
+    """The unit of every column of the table: the varied keys' (``varied``), the summary's
+    from the first finished case (a schedule's ``schedule.json``, a pass's column
+    ``F1.roll_force`` with the unit of ``roll_force``), a schedule row's own (``ROW_UNITS``)."""
+    units = {}
+    for r in rows:
+        cdir = Path(out) / "cases" / str(r.get("case"))
+        found = [cdir / n for n in ("summary.json", "schedule.json") if (cdir / n).is_file()]
+        if r.get("status") == "done" and found:
+            units = dict(json.loads(found[0].read_text()).get("units", {}))
+            if found[0].name == "schedule.json":
+                units = {**ROW_UNITS, **units}
+            break
+    cols = {k for r in rows for k in r}
+    units.update({c: units[c.split(".")[-1]] for c in cols
+                  if "." in c and c not in varied and c.split(".")[-1] in units})
+    return {**{k: u for k, u in units.items() if k in cols}, **varied}
 
 
 def _scheduler_workers(address: str) -> int | None:
@@ -301,15 +327,15 @@ def _scheduler_workers(address: str) -> int | None:
     return sum(int(w.get("nthreads", 1)) for w in info.values()) or None
 
 
-def figures(study: Study, out: Path, rows: list[dict]) -> list[Path]:
+def figures(study: Study, out: Path, rows: list[dict], units: dict[str, str]) -> list[Path]:
     """The study's figures drawn from its table (``[plot]``): study.png, study_profiles.png."""
     if study.plot is None:
         return []
-    from .plot import plot_profiles, plot_table, units_of
+    from .plot import plot_profiles, plot_table
 
     made = []
     try:
-        made.append(plot_table(rows, study.plot, out / "study.png", units=units_of(out, rows),
+        made.append(plot_table(rows, study.plot, out / "study.png", units=units,
                                title=f"study {study.name}"))
         if study.plot.profiles:
             made.append(plot_profiles(rows, out, out / "study_profiles.png",
