@@ -237,6 +237,12 @@ def test_a_schedule_study_row_is_its_schedules_own_table(tmp_path):
             for k in ("roll_force", "roll_torque", "forward_slip", "exit_temperature_mean"):
                 assert r[f"{p['name']}.{k}"] == float(p[k]), (p["name"], k)
         assert r["max_roll_force"] == max(float(p["roll_force"]) for p in table)
+        assert r["total_roll_power"] == pytest.approx(sum(float(p["roll_power"]) for p in table),
+                                                      rel=1e-12)
+        last = table[-1]
+        for k in ("exit_thickness", "outlet_temperature_mean", "exit_strain_mean"):
+            assert r[k] == float(last[k]), k
+        assert r["fe_solves"] == sum(int(p["fe_solves"]) for p in table)
     assert rows[1]["R1.roll_force"] < rows[0]["R1.roll_force"]
     sch = load_schedule(tmp_path / "two_pass.toml").model_copy(deep=True)
     sch.strip.temperature = 1323.15
