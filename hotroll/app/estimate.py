@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 from dataclasses import dataclass
 
 import numpy as np
@@ -64,14 +65,14 @@ def available_bytes() -> float:
     """Inside a dask worker, its memory limit (a local cluster splits the machine's memory
     among its workers); else the memory this machine has free (MemAvailable), else its
     total."""
-    try:
-        from distributed import get_worker
-
-        limit = get_worker().memory_manager.memory_limit
-        if limit:
-            return float(limit)
-    except (ImportError, ValueError, AttributeError):
-        pass
+    dist = sys.modules.get("distributed")       # a worker has it; a plain run does not
+    if dist is not None:                        # import it (memory and time for nothing)
+        try:
+            limit = dist.get_worker().memory_manager.memory_limit
+            if limit:
+                return float(limit)
+        except (ValueError, AttributeError):
+            pass
     try:
         with open("/proc/meminfo") as f:
             info = {ln.split(":")[0]: float(ln.split()[1]) * 1024 for ln in f}
