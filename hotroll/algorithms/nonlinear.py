@@ -43,8 +43,12 @@ class _Workspace:
         self.du = problem.gf.vec.CreateVector()
         self.backup = problem.gf.vec.CreateVector()
         self.check = problem.gf.vec.CreateVector()
-        self.free = problem.free_mask
         self.problem = problem
+
+    @property
+    def free(self):
+        """The free DOFs now (an active set of contact multipliers may change them)."""
+        return self.problem.free_mask
 
     def norm(self, vec) -> float:
         return float(np.linalg.norm(vec.FV().NumPy()[self.free]))
@@ -171,7 +175,9 @@ def newton(
             if couple():
                 residual_ready = False   # the form changed: its residual must be re-evaluated
                 continue
-        if stats.update <= tol and (alpha == 1.0 or not full_step):
+        # a contact multiplier's own test (its DOFs are not velocity nodes)
+        settled = problem.max_multiplier(ws.du) <= problem.multiplier_tol * scale
+        if stats.update <= tol and settled and (alpha == 1.0 or not full_step):
             # full_step: a full Newton step below the tolerance, in Newton's quadratic range the
             # residual after it is of the order of the step squared (the steady solver's final
             # solve, whose forces are reported; each time step of the report's scheme keeps the

@@ -61,6 +61,7 @@ class SteadySettings:
     max_outer: int = 30              # a_f / free-surface updates at the target m
     couple_below: float = 1e-2       # update them once the Newton update (at the P2 nodes) is
                                      # below this x U
+    contact: str = "multiplier"      # exact contact (a multiplier on the arc) or "penalty"
 
     def mesh_zone(self, rp, h: float) -> tuple[float, float, float, float]:
         """(upstream, downstream, fine margin, core factor) of the strip's mesh at contact
@@ -152,7 +153,8 @@ class SteadyRun:
                                 free_surface=settings.free_surface,
                                 tensions=model.reduced_tensions, consistency=consistency,
                                 rate_offset=self.thermal.rate_offset()
-                                if self.thermal is not None else None)
+                                if self.thermal is not None else None,
+                                contact=settings.contact)
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.d = self.disp.vec.FV().NumPy()
@@ -286,8 +288,10 @@ class SteadyRun:
                                  f"tops, this case {self.s.free_surface!r}")
             ratio = self.model.rp.u_roll / warm.u_roll
             nv = self.form.problem.n_velocity_dofs()
+            pr, lr = self.form.problem.pressure_range(), self.form.problem.multiplier_range()
             vec[:nv] = ratio * warm.solution[:nv]
-            vec[nv:] = ratio**target * warm.solution[nv:]
+            vec[pr] = ratio**target * warm.solution[pr]
+            vec[lr] = ratio * warm.solution[lr]     # the multiplier is scaled to a velocity
             self.shape = warm.shape.copy()
             self._set_shape()
             a_f = warm.a_f

@@ -110,6 +110,8 @@ class SimilarPass:
         factor = _mean_rate(rd) ** m_d / _mean_rate(rs) ** m_s
         press = np.asarray(p(pts), dtype=float).reshape(-1)[:nv]
         vec[n:n + nv] = factor * press
+        # the contact multiplier (exact contact) starts from zero: Newton's first step sets it
+        vec[dst.form.problem.multiplier_range()] = 0.0
 
     def _find(self, xs: np.ndarray, ys: np.ndarray):
         """Mesh points of the solved pass's mesh (searched undeformed, evaluated deformed)."""

@@ -21,8 +21,9 @@ from pydantic.fields import FieldInfo
 
 from .config_base import MESH_TABLE, CaseError, _fields, _Problems, _Section
 from .config_laws import FrictionConfig, MaterialConfig
-from .config_sections import (MAX_LENGTH, MeshConfig, OutputConfig,  # noqa: F401 (re-exported)
-                              PassConfig, PlateConfig, SolverConfig, check_profile)
+from .config_sections import (MAX_LENGTH, ContactConfig,  # noqa: F401 (re-exported)
+                              MeshConfig, OutputConfig, PassConfig, PlateConfig, SolverConfig,
+                              check_profile)
 from .config_thermal import ThermalConfig
 
 __all__ = ["MESH_TABLE", "Case", "CaseError", "FrictionConfig", "MaterialConfig", "case_from_dict",
@@ -41,6 +42,8 @@ class Case(_Section):
     friction: FrictionConfig = Field(default_factory=FrictionConfig, description="friction law")
     mesh: MeshConfig = Field(default_factory=MeshConfig, description="mesh sizes")
     solver: SolverConfig = Field(default_factory=SolverConfig, description="solver settings")
+    contact: ContactConfig = Field(default_factory=ContactConfig,
+                                   description="roll contact formulation")
     output: OutputConfig = Field(default_factory=OutputConfig, description="output switches")
     thermal: ThermalConfig | None = Field(
         None, description="heat sources and losses; present: the coupled thermo-mechanical "
@@ -81,6 +84,10 @@ class Case(_Section):
                 problems.append(f"plate.{key}: needs solver.method = \"steady\" (the report's "
                                 f"scheme starts from a uniform plate), got "
                                 f"\"{self.solver.method}\"")
+        if self.contact.method == "multiplier" and self.solver.method != "steady":
+            problems.append('contact.method: "multiplier" needs solver.method = "steady" (the '
+                            'report\'s scheme has the penalty contact of Table 1), got '
+                            f'"{self.solver.method}"')
         if self.plate.temperature_profile is not None and self.thermal is None:
             problems.append("plate.temperature_profile: needs a [thermal] section (an isothermal "
                             "run has one temperature, plate.temperature)")

@@ -207,6 +207,19 @@ class SolverConfig(_Section):
     exit_pressure_correction: bool = _field(True, "correct the exit pressure", "", "true or false")
 
 
+class ContactConfig(_Section):
+    method: Literal["auto", "multiplier", "penalty"] = _field(
+        "auto", "roll contact: exact (the pressure a Lagrange multiplier on the arc) or the "
+        "report's penalty (Table 1); auto: multiplier for the steady solver, penalty for the "
+        "report's scheme", "", '"auto", "multiplier" (steady only) or "penalty"')
+
+    def resolved(self, solver_method: str) -> str:
+        """The method a run uses: "auto" resolved by the solver."""
+        if self.method != "auto":
+            return self.method
+        return "multiplier" if solver_method == "steady" else "penalty"
+
+
 class OutputConfig(_Section):
     figures: bool = _field(True, "write figures", "", "true or false")
     vtk: bool = _field(True, "write VTK files", "", "true or false")

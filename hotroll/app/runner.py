@@ -145,7 +145,8 @@ def steady_settings(case: Case):
         tol=sv.tolerance, max_it=max(sv.max_iterations, 30),
         a_f=case.friction.a_f_rule,
         a_f_max=case.friction.a_f_max, upstream=sv.steady_entry_length,
-        downstream=sv.steady_exit_length, free_surface=case.plate.free_surface)
+        downstream=sv.steady_exit_length, free_surface=case.plate.free_surface,
+        contact=case.contact.resolved(sv.method))
 
 
 def contact_tolerance(rp, dt: float) -> float:

@@ -2,6 +2,8 @@
 
 A problem is written once as ``integrand(u, p, w, v, q)``: ``u, p`` the trial velocity and
 pressure, ``w`` the velocity at which nonlinear coefficients are evaluated, ``v, q`` the tests.
+A space with a third component (the contact multiplier on the roll arc) passes its trial and test
+functions as two more arguments, ``integrand(u, p, w, v, q, lam, xi)`` (Newton only).
 Newton uses w = u (exact linearisation by NGSolve); Picard (3.8) uses w = the previous iterate, so
 the Picard matrix J(U^i) is the linearisation of the frozen form and the Picard step is
 U^{i+1} = U^i - J(U^i)^{-1} r(U^i). One code path, two algorithms.
@@ -73,6 +75,9 @@ class NonlinearProblem:
     integrand: Callable
     velocity_scale: float = 1.0
     jacobian: Callable | None = None
+    #: the multiplier's stopping test: max |d lambda| <= multiplier_tol * velocity_scale (the
+    #: rolling form scales lambda so that the reference stress is the roll speed)
+    multiplier_tol: float = 1e-4
     gf: object = field(init=False)
     gf_w: object = field(init=False)
     a_newton: object = field(init=False)
@@ -85,25 +90,66 @@ class NonlinearProblem:
 
         self.gf = GridFunction(self.fes)
         self.gf_w = GridFunction(self.fes)
-        (u, p), (v, q) = self.fes.TnT()
+        trial, test = self.fes.TnT()
+        (u, p, *lam), (v, q, *xi) = trial, test
         w_frozen = self.gf_w.components[0]
         self.a_newton = BilinearForm(self.fes)
-        self.a_newton += self.integrand(u, p, u, v, q).Compile()
-        self.a_picard = BilinearForm(self.fes)
-        self.a_picard += self.integrand(u, p, w_frozen, v, q).Compile()
-        # Newton's Jacobian at gf along (u, p)
-        gu, gp = self.gf.components
+        self.a_newton += self.integrand(u, p, u, v, q, *lam, *xi).Compile()
+        self.a_picard = None
+        if not lam:      # Picard freezes the velocity; a multiplier problem is Newton only
+            self.a_picard = BilinearForm(self.fes)
+            self.a_picard += self.integrand(u, p, w_frozen, v, q).Compile()
+        # Newton's Jacobian at gf along (u, p[, lam])
+        gu, gp, *glam = self.gf.components
         if self.jacobian is not None:
-            tangent = self.jacobian(gu, u, p, v, q)
+            extra = dict(lam_w=glam[0]) if glam else {}   # the multiplier at the iterate
+            tangent = self.jacobian(gu, u, p, v, q, *lam, *xi, **extra)
         else:
-            residual = self.integrand(gu, gp, gu, v, q)
+            residual = self.integrand(gu, gp, gu, v, q, *glam, *xi)
             tangent = residual.Diff(gu, u) + residual.Diff(gp, p)
+            for g, t in zip(glam, lam):
+                tangent = tangent + residual.Diff(g, t)
         self.a_jacobian = BilinearForm(self.fes)
         self.a_jacobian += tangent.Compile()
+        self._freedofs = self.fes.FreeDofs()
 
     @property
     def freedofs(self):
-        return self.fes.FreeDofs()
+        return self._freedofs
+
+    def set_free(self, dofs, free: bool) -> bool:
+        """Free or fix (value kept by the caller) the DOFs ``dofs`` (an active set: fixed
+        multipliers are 0); True if that changed the free set. The kept factorisations then
+        cover another matrix and are dropped."""
+        from ngsolve import BitArray
+
+        changed = [int(d) for d in dofs if self._freedofs[int(d)] != free]
+        if not changed:
+            return False
+        fd = BitArray(self._freedofs)
+        for d in changed:
+            fd[d] = free
+        self._freedofs = fd
+        self.inverses.clear()
+        self.__dict__.pop("free_mask", None)
+        self.__dict__.pop("free_velocity_mask", None)
+        return True
+
+    @property
+    def has_multiplier(self) -> bool:
+        return len(self.fes.components) > 2
+
+    def multiplier_range(self) -> slice:
+        """The multiplier's DOFs in the product vector (empty without one)."""
+        if not self.has_multiplier:
+            n = self.fes.ndof
+            return slice(n, n)
+        r = self.fes.Range(2)
+        return slice(r.start, r.stop)
+
+    def pressure_range(self) -> slice:
+        r = self.fes.Range(1)
+        return slice(r.start, r.stop)
 
     @property
     def velocity(self):
@@ -131,6 +177,15 @@ class NonlinearProblem:
         nodes = self._velocity_nodes
         vals = nodes.values(a) if nodes is not None else a[: self.n_velocity_dofs()]
         return float(np.max(np.abs(vals))) if vals.size else 0.0
+
+    def max_multiplier(self, vec) -> float:
+        """max |lambda| over the free multiplier DOFs of ``vec`` (0 without a multiplier); the
+        problems that have one scale it to a velocity (``RollingForm``)."""
+        import numpy as np
+
+        r = self.multiplier_range()
+        lam = vec.FV().NumPy()[r][self.free_mask[r]]
+        return float(np.max(np.abs(lam))) if lam.size else 0.0
 
     @cached_property
     def _velocity_nodes(self):

@@ -21,6 +21,15 @@ and stresses are K times the reduced ones; this is how the penalties of Table 1 
   as the normal traction sigma n on Gamma_in and Gamma_out (reduced by K like the rest).
 Penalty parameters follow Table 1: gamma_v0 = gamma_vC = 10/h in the soft zone I around the
 first touching point, 25/h elsewhere; gamma_in = gamma_out = 2/h^(m+1).
+
+Exact contact (``contact="multiplier"``, the steady solver's default, docs/theory.md 1d): the
+roll's impermeability u.n = 0 on the arc holds weakly against a continuous P1 multiplier
+lambda on the arc, the contact pressure itself (no penalty: flux in = flux out to round-off,
+nothing depends on the roll speed or the units). The multiplier is carried scaled to a velocity,
+p_c = s lambda~ with s = mu_ref / l_c (mu_ref the secant viscosity at the strain rate U / l_c),
+so the constraint rows and the stopping test are in the units of the momentum rows and of the
+velocity. The remaining penalties (inlet/outlet (3.2a,b), the head face's T*, the constrained
+tops (3.2d)) scale with the same mu_ref / h (``ScaledPenalties``): unit-free.
 """
 from __future__ import annotations
 
@@ -53,6 +62,52 @@ class PenaltyTable:
     def inlet_outlet(self, m):
         return self.inout / self.h ** (m + 1.0)
 
+    def at_nodes(self, x, zone):
+        """gamma_vC at the points x (numpy)."""
+        import numpy as np
+
+        lo, hi = zone
+        return np.where((x - lo) * (hi - x) > 0, self.soft, self.hard) / self.h
+
+
+@dataclass(frozen=True)
+class ScaledPenalties:
+    """The penalties that stay beside exact contact, scaled with the viscosity (Nitsche's
+    gamma = gamma0 mu / h): gamma_v0 = 25 mu_ref / h, gamma_in = gamma_out = 2 mu_ref / h, with
+    mu_ref the reduced secant viscosity at the pass's reference strain rate. Under a change of
+    roll speed, time or length unit they scale as the stresses do; no soft zone."""
+
+    h: float
+    mu_ref: float
+    hard: float = 25.0
+    inout: float = 2.0
+
+    def surface(self, x, zone):
+        return self.hard * self.mu_ref / self.h
+
+    def inlet_outlet(self, m):
+        return self.inout * self.mu_ref / self.h
+
+    def at_nodes(self, x, zone):
+        import numpy as np
+
+        return np.full(np.shape(x), self.hard * self.mu_ref / self.h)
+
+
+#: Contact methods of the steady solver: the exact one (default) and the report's penalty.
+CONTACT_METHODS = ("multiplier", "penalty")
+#: Relative weight of the -delta s lambda xi term that only the Newton matrix carries (never the
+#: residual): it gives the multiplier rows a non-zero pivot so that the LDL^T factorisation
+#: (no pivoting) works; the solution is the exact one (docs/theory.md 1d).
+MATRIX_REGULARISATION = 1e-8
+
+
+def reference_viscosity(material: NortonHoff, rp: RollPass) -> float:
+    """Reduced secant viscosity at the strain rate U / l_c: the scale of every unit-free
+    penalty and of the multiplier."""
+    rate = rp.u_roll / rp.contact_length
+    return float(material.viscosity(rate * rate))
+
 
 def _elements_on(mesh, regions: str):
     """BitArray of the volume elements with an edge on the boundary ``regions``."""
@@ -75,16 +130,26 @@ class RollingForm:
 
     def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: FrictionLaw,
                  penalties: PenaltyTable, free_surface: str, tensions: tuple = (0.0, 0.0),
-                 consistency=1.0, rate_offset=None):
+                 consistency=1.0, rate_offset=None, contact: str = "penalty"):
         from ngsolve import FacetFESpace, GridFunction, Parameter
 
+        if contact not in CONTACT_METHODS:
+            raise ValueError(f"contact.method must be one of {CONTACT_METHODS}, got {contact!r}")
         self.mesh, self.rp = mesh, rp
         self.free_surface = free_surface
+        self.contact = contact
+        self.mu_ref = reference_viscosity(material, rp)
+        if contact == "multiplier":
+            penalties = ScaledPenalties(penalties.h, self.mu_ref)
+        # p_c = lam_scale * lambda~ (reduced): lambda~ is a velocity, of the order of U where
+        # the pressure is of the order of the reference stress mu_ref U / l_c
+        self.lam_scale = self.mu_ref / rp.contact_length
         self.material, self.friction, self.penalties = material, friction, penalties
         # K(strain, T) / K_ref of a strain-dependent flow stress (a CF of the strain field,
         # discretisation/strain.py), 1 for Norton-Hoff
         self.consistency = consistency
-        self.fes = taylor_hood(mesh, dirichlety="sym")
+        self.fes = taylor_hood(mesh, dirichlety="sym",
+                               multiplier_on="arc" if contact == "multiplier" else None)
         self.m = Parameter(material.m)      # set to 1 for the very first iterate (Section 3.4)
         # the material's rate exponent: m, plus m(T) - m_ref (a CF) where a temperature-
         # dependent law's exponent varies (thermal/feedback.py); the friction law keeps m
@@ -122,10 +187,50 @@ class RollingForm:
         _, t = self.roll_frame()
         return u * t - self.rp.u_roll
 
-    def pressure(self, u):
-        """Contact pressure, the penalty reaction gamma_vC (u.n) (reduced units)."""
+    @property
+    def exact(self) -> bool:
+        return self.contact == "multiplier"
+
+    @property
+    def multiplier(self):
+        """The solution's scaled multiplier lambda~ (a GridFunction on the arc; None with
+        penalties)."""
+        return self.problem.gf.components[2] if self.exact else None
+
+    def multiplier_vertices(self):
+        """(vertex numbers, multiplier DOFs) of the arc's P1 multiplier, in the component's
+        numbering (cached)."""
+        cached = getattr(self, "_mult_vertices", None)
+        if cached is None:
+            import numpy as np
+            from ngsolve import VERTEX, NodeId
+
+            L = self.fes.components[2]
+            verts, dofs = [], []
+            for v in range(self.mesh.nv):
+                d = L.GetDofNrs(NodeId(VERTEX, v))
+                if len(d) and d[0] >= 0:
+                    verts.append(v)
+                    dofs.append(d[0])
+            cached = self._mult_vertices = (np.array(verts, int), np.array(dofs, int))
+        return cached
+
+    def vertex_pressure(self):
+        """The multiplier's contact pressure (reduced) at every mesh vertex (0 off the arc)."""
+        import numpy as np
+
+        out = np.zeros(self.mesh.nv)
+        verts, dofs = self.multiplier_vertices()
+        out[verts] = self.lam_scale * self.multiplier.vec.FV().NumPy()[dofs]
+        return out
+
+    def pressure(self, u, lam=None):
+        """Contact pressure (reduced units): the multiplier s lambda~ (``lam``: a trial function
+        or the solution's by default) or the penalty reaction gamma_vC (u.n)."""
         from ngsolve import x
 
+        if self.exact:
+            return self.lam_scale * (self.multiplier if lam is None else lam)
         n, _ = self.roll_frame()
         return self.penalties.surface(x, self.rp.soft_zone) * (u * n)
 
@@ -138,21 +243,21 @@ class RollingForm:
         e2 = edot_squared(strain_rate(w))
         return self.material.sigma_ef_reg(e2, m=self.m_material, K=self.consistency) / 3.0**0.5
 
-    def friction_arguments(self, w, k=None) -> dict:
-        """The friction law's keyword arguments at the velocity w: a_f, m, and the pressure
-        and k = sigma_ef/sqrt3 where the law takes them (``k`` given: that CF instead, e.g. a
-        P1 field where the volume gradient is not at hand)."""
+    def friction_arguments(self, w, k=None, lam=None) -> dict:
+        """The friction law's keyword arguments at the velocity w (and multiplier ``lam``):
+        a_f, m, and the pressure and k = sigma_ef/sqrt3 where the law takes them (``k`` given:
+        that CF instead, e.g. a P1 field where the volume gradient is not at hand)."""
         law = self.friction
         if law.uses_k and k is None:
             k = self.shear_flow_stress(w)
         return dict(a_f=self.a_f, m=self.m,
-                    pressure=self.pressure(w) if law.uses_pressure else None,
+                    pressure=self.pressure(w, lam) if law.uses_pressure else None,
                     k=k if law.uses_k else None)
 
-    def friction_coefficient(self, w, k=None):
+    def friction_coefficient(self, w, k=None, lam=None):
         """The friction law's secant coefficient k_f at the velocity w (T_tau = -k_f v_s)."""
         s = self.slip(w)
-        return self.friction.coefficient(s * s, **self.friction_arguments(w, k))
+        return self.friction.coefficient(s * s, **self.friction_arguments(w, k, lam))
 
     def friction_measure(self):
         """Where the friction term is integrated: the top boundary, or, for a law with k (which
@@ -181,28 +286,46 @@ class RollingForm:
         return -self.penalties.inlet_outlet(self.m) * one_sided(U - u[0], U - w[0])
 
     # --- the form ---------------------------------------------------------------------------
-    def integrand(self, u, p, w, v, q):
-        """The residual form (3.6), coefficients at w (w = u: Newton; the last iterate: Picard)."""
+    def integrand(self, u, p, w, v, q, lam=None, xi=None):
+        """The residual form (3.6), coefficients at w (w = u: Newton; the last iterate: Picard);
+        exact contact: the multiplier's trial and test ``lam``, ``xi`` (Newton: w = u)."""
         from ngsolve import dx
 
         vol = norton_hoff_volume(self.material, self.m_material, u, p, w, v, q,
                                  K=self.consistency)
-        return vol * dx + self.boundary(u, w, v)
+        out = vol * dx + self.boundary(u, w, v, lam=lam)
+        return out + self.constraint(u, v, lam, xi) if self.exact else out
 
-    def jacobian(self, w, u, p, v, q):
+    def constraint(self, u, v, lam, xi, regularise: float = 0.0):
+        """s (lambda~ v.n + xi u.n) on the arc: the contact pressure's work and the weak
+        impermeability int xi u.n = 0; ``regularise`` adds -delta s lambda~ xi (matrix only)."""
+        from ngsolve import ds
+
+        n, _ = self.roll_frame()
+        term = self.lam_scale * (lam * (v * n) + xi * (u * n))
+        if regularise:
+            term = term - regularise * self.lam_scale * lam * xi
+        return term * ds("arc", bonus_intorder=2)
+
+    def jacobian(self, w, u, p, v, q, lam=None, xi=None, lam_w=None):
         """Newton's Jacobian of (3.6) at w: the Norton-Hoff tangent and the friction tangent
         by hand, the other boundary terms differentiated symbolically (w is the iterate's
-        GridFunction component)."""
+        GridFunction component); exact contact: the constraint (linear) with the matrix-only
+        regularisation, and Coulomb's dependence on the multiplier."""
         from ngsolve import dx
 
         vol = norton_hoff_tangent(self.material, self.m_material, w, u, p, v, q,
                                   K=self.consistency)
-        return (vol * dx + self.friction_tangent(w, u, v) * self.friction_measure()
-                + self.boundary(w, w, v, friction=False).Diff(w, u))
+        out = (vol * dx + self.friction_tangent(w, u, v, lam, lam_w) * self.friction_measure()
+               + self.boundary(w, w, v, friction=False).Diff(w, u))
+        if self.exact:
+            out = out + self.constraint(u, v, lam, xi, regularise=MATRIX_REGULARISATION)
+        return out
 
-    def friction_tangent(self, w, u, v):
-        """d/dw of the friction term chi k_f(w) s(w) (v.t) along u, by the chain rule through
-        the law's ``coefficient_partials`` (slip^2, pressure gamma (w.n), k of the strain rate)."""
+    def friction_tangent(self, w, u, v, lam=None, lam_w=None):
+        """d/dw of the friction term chi k_f(w) s(w) (v.t) along u (and the multiplier's
+        direction ``lam``; ``lam_w`` the multiplier at the iterate), by the chain rule through the law's ``coefficient_partials``
+        (slip^2, pressure, k of the strain rate)."""
         from ngsolve import InnerProduct
 
         from .forms import strain_rate
@@ -210,13 +333,13 @@ class RollingForm:
 
         n, t = self.roll_frame()
         law, s, s_u = self.friction, self.slip(w), u * t
-        kw = self.friction_arguments(w)
+        kw = self.friction_arguments(w, lam=lam_w)
         kf = law.coefficient(s * s, **kw)
         d_s2, d_p, d_k = law.coefficient_partials(s * s, **kw)
         k = kw["k"]
         d_kf = d_s2 * 2.0 * s * s_u
-        if law.uses_pressure:      # p = gamma (w.n)
-            d_kf = d_kf + d_p * self.pressure(u)
+        if law.uses_pressure:      # p = gamma (w.n) or s lambda~
+            d_kf = d_kf + d_p * self.pressure(u, lam)
         if law.uses_k:             # k ~ (eps0^2 + e2)^(m/2), e2 = 2/3 eps(w):eps(w)
             ew = strain_rate(w)
             e2 = edot_squared(ew)
@@ -224,9 +347,10 @@ class RollingForm:
             d_kf = d_kf + d_k * dk_de2 * (4.0 / 3.0) * InnerProduct(ew, strain_rate(u))
         return self.chi * (kf * s_u + s * d_kf) * (v * t)
 
-    def boundary(self, u, w, v, friction: bool = True):
+    def boundary(self, u, w, v, friction: bool = True, lam=None):
         """Friction law, penalty terms (3.2), (3.3) and tensions on the boundary, coefficients at w
-        (without the friction law if not ``friction``)."""
+        (without the friction law if not ``friction``); ``lam`` the multiplier at w (exact
+        contact: Coulomb's pressure)."""
         from ngsolve import IfPos, ds, specialcf, x
 
         rp, pen = self.rp, self.penalties
@@ -234,8 +358,9 @@ class RollingForm:
         gam_s = pen.surface(x, rp.soft_zone)
         chi = self.chi
 
-        friction_term = chi * self.friction_coefficient(w) * self.slip(u) * (v * t)
-        contact = gam_s * (u * n) * (v * n)
+        friction_term = chi * self.friction_coefficient(w, lam=lam) * self.slip(u) * (v * t)
+        # the penalty contact; exact contact: the constraint (``constraint``) instead
+        contact = 0.0 if self.exact else gam_s * (u * n) * (v * n)
 
         inlet = self.inlet_penalty(u, w) * v[0]
         outlet = self.outlet_penalty(u, w) * v[0]

@@ -8,13 +8,19 @@ import numpy as np
 BUBBLE_MID = -0.125
 
 
-def taylor_hood(mesh, dirichletx: str = "", dirichlety: str = "sym", order: int = 2):
-    """Velocity VectorH1(order) x pressure H1(order - 1), component-wise Dirichlet regions."""
-    from ngsolve import H1, VectorH1
+def taylor_hood(mesh, dirichletx: str = "", dirichlety: str = "sym", order: int = 2,
+                multiplier_on: str | None = None):
+    """Velocity VectorH1(order) x pressure H1(order - 1), component-wise Dirichlet regions;
+    with ``multiplier_on`` (a boundary region) a third factor: continuous P1 on that boundary
+    only (the contact pressure; stable with P2 velocities, ../shared/notes/exact-contact.md)."""
+    from ngsolve import H1, Compress, VectorH1
 
     V = VectorH1(mesh, order=order, dirichletx=dirichletx, dirichlety=dirichlety)
     Q = H1(mesh, order=order - 1)
-    return V * Q
+    if multiplier_on is None:
+        return V * Q
+    L = Compress(H1(mesh, order=1, definedon=mesh.Boundaries(multiplier_on)))
+    return V * Q * L
 
 
 class P2Nodes:

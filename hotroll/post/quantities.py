@@ -41,9 +41,10 @@ def contact_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: fl
     xy, vel, ang, vertex = xy[order], vel[order], ang[order], vertex[order]
     n, t = rp.normal(xy), rp.tangent(xy)
     slip = np.sum(vel * t, -1) - rp.u_roll
-    lo, hi = rp.soft_zone
-    gam = np.where((xy[:, 0] - lo) * (hi - xy[:, 0]) > 0, pen.soft, pen.hard) / pen.h
-    pressure = gam * np.sum(vel * n, -1)             # reduced, the penalty reaction
+    if form.exact:      # the multiplier: P1 along the arc, a midpoint the mean of its vertices
+        pressure = at_top_nodes(form.vertex_pressure(), top, contact_only=True)[order]
+    else:               # the penalty reaction
+        pressure = pen.at_nodes(xy[:, 0], rp.soft_zone) * np.sum(vel * n, -1)
     k = _nodal_k(form, top, contact_only=True)
     k = None if k is None else k[order]
     shear = K * np.asarray(form.friction.shear(slip, a_f=form.a_f.Get(), m=form.m.Get(),
@@ -242,7 +243,11 @@ def integrals(form: RollingForm, K: float) -> dict:
     free_pen = bnd((1 - chi) * (top_pen + IfPos(x - rp.axis_x, outlet, inlet)))
     face_pen = bnd(inlet, mesh.Boundaries("in")) + bnd(outlet + gam * u[1] ** 2,
                                                       mesh.Boundaries("out"))
-    contact_pen = bnd(chi * gam * (u * n) ** 2)
+    # the contact's power on the strip: the penalty's gamma (u.n)^2; with exact contact the
+    # multiplier's s lambda~ u.n, zero to round-off (the constraint holds against every P1
+    # function, and lambda~ is one)
+    contact_pen = (bnd(form.pressure(u) * (u * n), mesh.Boundaries("arc")) if form.exact
+                   else bnd(chi * gam * (u * n) ** 2))
     outlet_pen = bnd((1 - chi) * IfPos(x - rp.axis_x, outlet, 0.0)) + bnd(
         outlet, mesh.Boundaries("out"))
     p = m.Get() + 1.0
@@ -306,7 +311,9 @@ def force_balance(form: RollingForm, K: float) -> dict:
         return [-K * float(Integrate(term[i].Compile(), mesh, BND,
                                      definedon=mesh.Boundaries(region))) for i in range(2)]
 
-    roll = np.add(force(chi * gam * (u * n) * n, TOP),
+    normal = (force(form.pressure(u) * n, "arc") if form.exact
+              else force(chi * gam * (u * n) * n, TOP))
+    roll = np.add(normal,
                   [-K * form.integrate_friction(chi * friction_term[i]) for i in range(2)])
     tops = force((1 - chi) * top_term, TOP)
     face = np.add(force(faces["in"], "in"), force(faces["out"], "out"))
