@@ -29,6 +29,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..discretisation.contact_set import ActiveSet
 from ..discretisation.mesh import build_steady_mesh
 from ..discretisation.rolling_form import PenaltyTable, RollingForm
 from ..physics.friction_estimate import estimate_a_f
@@ -62,6 +63,7 @@ class SteadySettings:
     couple_below: float = 1e-2       # update them once the Newton update (at the P2 nodes) is
                                      # below this x U
     contact: str = "multiplier"      # exact contact (a multiplier on the arc) or "penalty"
+    unilateral: bool = False         # exact contact: the strip may leave the roll (active set)
 
     def mesh_zone(self, rp, h: float) -> tuple[float, float, float, float]:
         """(upstream, downstream, fine margin, core factor) of the strip's mesh at contact
@@ -168,6 +170,8 @@ class SteadyRun:
         self.top.set_midpoints(self.d, rows, rp.project(self.top.midpoint_positions(self.d, rows)))
         self.d_ref = self.d.copy()
         self.map = StripMap(rp, self.mesh, V.ndof // 2, self.d_ref, rp.x_touch - self.upstream)
+        self.active = (ActiveSet(self.form) if self.form.exact and settings.unilateral
+                       else None)
         self.shape = StripShape.flat(rp)
         self._set_shape()
         self._top_part = self._top_parts()
@@ -302,6 +306,8 @@ class SteadyRun:
     def _cold_start(self) -> None:
         """Reference strip shape, kinematic velocity guess and a_f (3.15) from it."""
         self.shape = StripShape.flat(self.model.rp)
+        if self.active is not None:
+            self.active.reset()
         self._set_shape()
         self._kinematic_guess()
         self._update_strain()
@@ -358,7 +364,8 @@ class SteadyRun:
         """Update a_f (3.15), the strain field and the free surface; return the largest change
         in units of its tolerance."""
         s, f = self.s, self.form
-        change = self._update_strain() / s.strain_rtol
+        change = math.inf if self._update_active_set() else 0.0
+        change = max(change, self._update_strain() / s.strain_rtol)
         change = max(change, self._update_thermal(newton_steps=1) / s.thermal_rtol)
         if s.a_f is None:
             a_old, a_new = f.a_f.Get(), self._estimate_a_f()
@@ -370,6 +377,29 @@ class SteadyRun:
             res.surface_moves.append(moved)
             change = max(change, moved / (s.surface_tol * self.model.h))
         return change
+
+    def _update_active_set(self) -> bool:
+        """Unilateral contact: one active-set update (``discretisation/contact_set.py``); the
+        contact edges (friction) and the top's parts follow it. True if it changed."""
+        if self.active is None or not self.active.update():
+            return False
+        self._set_contact()
+        return True
+
+    def _set_contact(self) -> None:
+        """The contact edges: arc edges with both vertices active (all of the arc without an
+        active set); the friction indicator and the top's parts follow."""
+        edges = self.arc
+        if self.active is not None:
+            on = np.zeros(self.mesh.nv, dtype=bool)
+            on[self.active.active_vertices()] = True
+            edges = self.arc & on[self.top.ea] & on[self.top.eb]
+        self.top.set_contact_edges(edges)
+        self.top.write_indicator(self.form.chi.vec.FV().NumPy())
+        self._top_part = self._top_parts()
+        # the entry's and the exit's one-sided conditions split inside the contact
+        xy = self.top.vertex_positions(self.d, self.top.verts[self.top.vertex_contact])
+        self.form.x_split.Set(float(np.median(xy[:, 0])))
 
     def _update_strain(self) -> float:
         """Transport the strain along the current flow; its largest relative change (0 when
@@ -388,11 +418,13 @@ class SteadyRun:
 
     def _top_parts(self) -> np.ndarray:
         """Part of every top P2 node (vertices, then edge midpoints, as ``Q.top_nodes``):
-        0 free entry top, 1 contact (arc), 2 free exit top."""
-        top, rp = self.top, self.model.rp
+        0 free entry top (before the first contact vertex), 1 contact, 2 free exit top (after
+        it: the flat exit and a stretch of the arc the strip has left)."""
+        top = self.top
         xv = top.X0[top.verts, 0]
-        verts = np.where(top.vertex_contact, 1, np.where(xv < rp.x_touch, 0, 2))
-        mids = np.select([top.region == "top", top.region == "arc"], [0, 1], 2)
+        x_first = xv[top.vertex_contact].min()
+        verts = np.where(top.vertex_contact, 1, np.where(xv < x_first, 0, 2))
+        mids = np.where(top.edge_contact, 1, np.where(top.M0[:, 0] < x_first, 0, 2))
         return np.concatenate([verts, mids])
 
     def update_surface(self) -> float:
@@ -414,8 +446,7 @@ class SteadyRun:
     def _set_shape(self) -> None:
         """Map the mesh onto ``self.shape``; the contact is the arc's chain of edges."""
         self.d[:] = self.map.displacement(self.shape)
-        self.top.set_contact_edges(self.arc)
-        self.top.write_indicator(self.form.chi.vec.FV().NumPy())
+        self._set_contact()
         self.mesh.SetDeformation(self.disp)
 
     def _kinematic_guess(self) -> None:

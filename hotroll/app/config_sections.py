@@ -212,6 +212,10 @@ class ContactConfig(_Section):
         "auto", "roll contact: exact (the pressure a Lagrange multiplier on the arc) or the "
         "report's penalty (Table 1); auto: multiplier for the steady solver, penalty for the "
         "report's scheme", "", '"auto", "multiplier" (steady only) or "penalty"')
+    unilateral: bool = _field(
+        False, "exact contact: the strip may leave the roll where the contact pressure would be "
+        "tensile (active set); false: bilateral, the strip held to the whole arc", "",
+        "true or false")
 
     def resolved(self, solver_method: str) -> str:
         """The method a run uses: "auto" resolved by the solver."""

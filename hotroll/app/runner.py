@@ -146,7 +146,7 @@ def steady_settings(case: Case):
         a_f=case.friction.a_f_rule,
         a_f_max=case.friction.a_f_max, upstream=sv.steady_entry_length,
         downstream=sv.steady_exit_length, free_surface=case.plate.free_surface,
-        contact=case.contact.resolved(sv.method))
+        contact=case.contact.resolved(sv.method), unilateral=case.contact.unilateral)
 
 
 def contact_tolerance(rp, dt: float) -> float:

@@ -155,6 +155,9 @@ class RollingForm:
         # dependent law's exponent varies (thermal/feedback.py); the friction law keeps m
         self.m_material = self.m if rate_offset is None else self.m + rate_offset
         self.a_f = Parameter(1.0)           # friction parameter, updated by (3.15) every step
+        # free tops before this x are the entry's (3.2a), after it the exit's (3.2b): the roll
+        # axis, or (steady solver) a point inside the contact, which may end before the axis
+        self.x_split = Parameter(rp.axis_x)
         self.chi = GridFunction(FacetFESpace(mesh, order=0))  # 1 on contact edges
         # back / front tension over K (reduced, like every stress in the form)
         self.tension_back, self.tension_front = Parameter(tensions[0]), Parameter(tensions[1])
@@ -364,7 +367,7 @@ class RollingForm:
 
         inlet = self.inlet_penalty(u, w) * v[0]
         outlet = self.outlet_penalty(u, w) * v[0]
-        free = IfPos(x - rp.axis_x, outlet, inlet)
+        free = IfPos(x - self.x_split, outlet, inlet)
         if self.free_surface == "constrained":
             free = free + gam_s * self.free_normal(u) * self.free_normal(v)
 

@@ -240,7 +240,7 @@ def integrals(form: RollingForm, K: float) -> dict:
     inlet = form.inlet_penalty(u, u) * u[0]
     outlet = form.outlet_penalty(u, u) * u[0]
     top_pen = gam * form.free_normal(u) ** 2 if form.free_surface == "constrained" else 0.0
-    free_pen = bnd((1 - chi) * (top_pen + IfPos(x - rp.axis_x, outlet, inlet)))
+    free_pen = bnd((1 - chi) * (top_pen + IfPos(x - form.x_split, outlet, inlet)))
     face_pen = bnd(inlet, mesh.Boundaries("in")) + bnd(outlet + gam * u[1] ** 2,
                                                       mesh.Boundaries("out"))
     # the contact's power on the strip: the penalty's gamma (u.n)^2; with exact contact the
@@ -248,7 +248,7 @@ def integrals(form: RollingForm, K: float) -> dict:
     # function, and lambda~ is one)
     contact_pen = (bnd(form.pressure(u) * (u * n), mesh.Boundaries("arc")) if form.exact
                    else bnd(chi * gam * (u * n) ** 2))
-    outlet_pen = bnd((1 - chi) * IfPos(x - rp.axis_x, outlet, 0.0)) + bnd(
+    outlet_pen = bnd((1 - chi) * IfPos(x - form.x_split, outlet, 0.0)) + bnd(
         outlet, mesh.Boundaries("out"))
     p = m.Get() + 1.0
     nh = specialcf.normal(2)
@@ -299,7 +299,7 @@ def force_balance(form: RollingForm, K: float) -> dict:
     kf = form.friction_coefficient(u)
     ex = CF((1.0, 0.0))
     friction_term = kf * s * t
-    top_term = IfPos(x - rp.axis_x, form.outlet_penalty(u, u), form.inlet_penalty(u, u)) * ex
+    top_term = IfPos(x - form.x_split, form.outlet_penalty(u, u), form.inlet_penalty(u, u)) * ex
     if form.free_surface == "constrained":
         nf = IfPos(x - rp.axis_x, CF((0.0, 1.0)), specialcf.normal(2))
         top_term = top_term + gam * form.free_normal(u) * nf

@@ -100,6 +100,9 @@ class StripMap:
         ent, ex = X < rp.x_touch, X > rp.axis_x
         H[ent] = np.interp(x[ent], shape.entry_x, shape.entry_y)
         H[ex] = np.interp(x[ex], shape.exit_x, shape.exit_y)
+        # the strip has left the roll before the gap (unilateral contact): below the roll
+        left = ~ex & ~ent & (x > shape.exit_x[0])
+        H[left] = np.minimum(H[left], np.interp(x[left], shape.exit_x, shape.exit_y))
         new = np.stack([x, self.P[:, 1] * H / self.H_ref], axis=1)
         return self.nodes.coefficients((new - self.nodes.X0).T)
 
@@ -142,11 +145,12 @@ def kinematic_update(rp: RollPass, shape: StripShape, x: np.ndarray, v: np.ndarr
     w = np.clip((ent_x - x_up) / max(x_new - x_up, 1e-300), 0.0, 1.0)
     ent_y += w * (float(roll_height(rp, x_new)) - ent_y[-1])
     residual = float(np.max(np.abs(eta - x[idx, 1])))
-    # exit: from the gap at X_roll along the exit nodes
-    ex = np.nonzero(part == 2)[0]
-    xs2 = np.concatenate([[rp.axis_x], x[ex, 0]])
+    # exit: from the last contact node (the gap at X_roll unless the strip left the roll
+    # before it) along the exit nodes
     last = np.nonzero(part == 1)[0][-1]
-    eta2 = _trace(xs2, np.concatenate([[slope[last]], slope[ex]]), rp.half_exit)
+    ex = np.nonzero((part == 2) & (x[:, 0] > x[last, 0]))[0]
+    xs2 = np.concatenate([[x[last, 0]], x[ex, 0]])
+    eta2 = _trace(xs2, np.concatenate([[slope[last]], slope[ex]]), x[last, 1])
     if len(ex):
         residual = max(residual, float(np.max(np.abs(eta2[1:] - x[ex, 1]))))
     ex_x = np.concatenate([xs2, [xs2[-1] + 1e3]])
