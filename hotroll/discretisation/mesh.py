@@ -96,9 +96,12 @@ def _strip_geometry(rp: RollPass, x0: float, x1: float):
     return OCCGeometry(face, dim=2)
 
 
-def _graded_mesh(geometry, rp: RollPass, spec: MeshSpec, x_lo: float, x_hi: float):
+def _graded_mesh(geometry, rp: RollPass, spec: MeshSpec, x_lo: float, x_hi: float,
+                 shift: float = 0.0):
     """Mesh ``geometry`` with size h on the top over [x_lo, x_hi], growing to
-    ``core_factor * h`` on the axis and to ``spec.far`` elsewhere."""
+    ``core_factor * h`` on the axis and to ``spec.far`` elsewhere; then move it by ``shift``
+    in x (the geometry is meshed in the roll's frame, so the mesh does not depend on where
+    the case puts the roll axis)."""
     import ngsolve
     from netgen.meshing import MeshingParameters
 
@@ -111,7 +114,17 @@ def _graded_mesh(geometry, rp: RollPass, spec: MeshSpec, x_lo: float, x_hi: floa
         n = max(2, int(math.ceil(yt / h)))
         for y in np.linspace(yt, 0.0, n):
             mp.RestrictH(float(x), float(y), 0.0, float(h + (hc - h) * (1.0 - y / yt)))
-    return ngsolve.Mesh(geometry.GenerateMesh(mp=mp))
+    ngmesh = geometry.GenerateMesh(mp=mp)
+    if shift:
+        ngmesh.Coordinates()[:, 0] += shift     # a view on netgen's points
+    return ngsolve.Mesh(ngmesh)
+
+
+def _in_roll_frame(rp: RollPass) -> RollPass:
+    """The same pass with the roll axis at x = 0."""
+    from dataclasses import replace
+
+    return replace(rp, axis_x=0.0)
 
 
 def plate_fine_length(rp: RollPass, h: float, end_time: float) -> float:
@@ -137,15 +150,18 @@ def steady_zone(rp: RollPass, upstream: float, downstream: float,
 
 def build_plate_mesh(rp: RollPass, length: float, spec: MeshSpec):
     """Generate the graded NGSolve mesh (straight-sided; the arc is restored by the P2 geometry)."""
-    _, _, x_lo, x_hi = plate_zone(rp, length, spec.fine_length)
-    return _graded_mesh(plate_geometry(rp, length), rp, spec, x_lo, x_hi)
+    r0 = _in_roll_frame(rp)
+    _, _, x_lo, x_hi = plate_zone(r0, length, spec.fine_length)
+    return _graded_mesh(plate_geometry(r0, length), r0, spec, x_lo, x_hi, shift=rp.axis_x)
 
 
 def build_steady_mesh(rp: RollPass, upstream: float, downstream: float, spec: MeshSpec,
                       margin: float):
     """Graded mesh of the steady strip (``steady_zone``)."""
-    _, _, x_lo, x_hi = steady_zone(rp, upstream, downstream, margin)
-    return _graded_mesh(steady_geometry(rp, upstream, downstream), rp, spec, x_lo, x_hi)
+    r0 = _in_roll_frame(rp)
+    _, _, x_lo, x_hi = steady_zone(r0, upstream, downstream, margin)
+    return _graded_mesh(steady_geometry(r0, upstream, downstream), r0, spec, x_lo, x_hi,
+                        shift=rp.axis_x)
 
 
 def mesh_triangles(mesh) -> np.ndarray:

@@ -361,7 +361,8 @@ class RollingForm:
         gam_s = pen.surface(x, rp.soft_zone)
         chi = self.chi
 
-        friction_term = chi * self.friction_coefficient(w, lam=lam) * self.slip(u) * (v * t)
+        friction_term = (chi * self.friction_coefficient(w, lam=lam) * self.slip(u) * (v * t)
+                         if friction else None)
         # the penalty contact; exact contact: the constraint (``constraint``) instead
         contact = 0.0 if self.exact else gam_s * (u * n) * (v * n)
 

@@ -11,15 +11,19 @@ BUBBLE_MID = -0.125
 def taylor_hood(mesh, dirichletx: str = "", dirichlety: str = "sym", order: int = 2,
                 multiplier_on: str | None = None):
     """Velocity VectorH1(order) x pressure H1(order - 1), component-wise Dirichlet regions;
-    with ``multiplier_on`` (a boundary region) a third factor: continuous P1 on that boundary
-    only (the contact pressure; stable with P2 velocities, ../shared/notes/exact-contact.md)."""
+    with ``multiplier_on`` (a boundary region) a third factor: continuous P1 with DOFs at that
+    boundary's vertices only (the contact pressure; stable with P2 velocities,
+    ../shared/notes/exact-contact.md). It is the volume P1 space compressed to those DOFs, not a
+    space defined on the boundary: an element-boundary integral (which sees the volume
+    gradient, e.g. Coulomb's cap k of the strain rate) evaluates it too, as the P1 trace."""
     from ngsolve import H1, Compress, VectorH1
 
     V = VectorH1(mesh, order=order, dirichletx=dirichletx, dirichlety=dirichlety)
     Q = H1(mesh, order=order - 1)
     if multiplier_on is None:
         return V * Q
-    L = Compress(H1(mesh, order=1, definedon=mesh.Boundaries(multiplier_on)))
+    full = H1(mesh, order=1)
+    L = Compress(full, active_dofs=full.GetDofs(mesh.Boundaries(multiplier_on)))
     return V * Q * L
 
 

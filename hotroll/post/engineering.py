@@ -26,6 +26,9 @@ UNITS: dict[str, str] = {
     "mean_strain_rate": "1/s", "mean_pressure": "Pa", "width": "m", "roll_force_total": "N",
     "roll_torque_total": "N m", "roll_power_total": "W", "mill_power": "W",
     "temperature": "K", "surface_residual_h": "h", "force_balance": "N/m",
+    "neutral_angle_flux": "rad", "sticking_zone": "rad",
+    "contact_start_angle": "rad", "contact_end_angle": "rad", "min_contact_pressure": "Pa",
+    "leak_to_slip": "-", "exit_thickness": "m", "pressure_last_update": "Pa",
 }
 
 

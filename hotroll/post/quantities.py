@@ -127,6 +127,60 @@ def neutral_point(profile: dict, rp) -> tuple[list[float], float]:
     return [cx - rp.radius * math.sin(a_n), cy - rp.radius * math.cos(a_n)], float(a_n)
 
 
+#: Slip below this fraction of the roll speed is sticking: the regularisation speed of Coulomb's
+#: and Tresca's laws (below it they cannot tell slip from stick), and 100 times the Newton
+#: tolerance on the velocity (1e-5 U).
+STICKING_FLOOR = 1e-3
+
+
+def sticking_zone(profile: dict, u_roll: float, min_length: float,
+                  floor: float = STICKING_FLOOR) -> list[float] | None:
+    """[start angle, end angle] (rad, start > end: from the entry) of the longest stretch of the
+    contact, longer than ``min_length`` along the arc, where |v_s| < floor U; None without."""
+    vs = np.abs(np.asarray(profile["v_slip"], dtype=float))
+    if len(vs) < 2:
+        return None
+    xy = np.stack([profile["x"], profile["y"]], -1)
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))])
+    stuck = vs < floor * u_roll
+    best, i = None, 0
+    while i < len(vs):
+        if stuck[i]:
+            j = i
+            while j + 1 < len(vs) and stuck[j + 1]:
+                j += 1
+            if s[j] - s[i] > min_length and (best is None or s[j] - s[i] > best[2]):
+                best = (i, j, s[j] - s[i])
+            i = j + 1
+        else:
+            i += 1
+    if best is None:
+        return None
+    ang = profile["angle"]
+    return [float(ang[best[0]]), float(ang[best[1]])]
+
+
+def flux_neutral_angle(rp, flux: float) -> float:
+    """The neutral angle of the flux (the slab theory's): where the roll's horizontal speed
+    U cos(phi) carries the strip's flux over its half-height, y(phi) U cos(phi) = q, with
+    y(phi) = h1/2 + R (1 - cos phi) (half model, q the half flux). It needs no slip sign, so it
+    stays defined where the contact sticks; it converges with the flux. NaN if the flux is
+    not between U h1/2 and the largest y U cos."""
+    import math
+
+    from scipy.optimize import brentq
+
+    U, R, h1 = rp.u_roll, rp.radius, rp.half_exit
+
+    def f(phi):
+        return (h1 + R * (1.0 - math.cos(phi))) * U * math.cos(phi) - flux
+
+    lo, hi = 0.0, rp.bite_angle
+    if not (math.isfinite(flux) and f(lo) * f(hi) < 0):
+        return math.nan
+    return float(brentq(f, lo, hi, xtol=1e-14))
+
+
 def measure(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: float, h: float,
             head_x: float) -> dict:
     """The per-configuration figures (SI, stresses times K) recorded by both solvers."""

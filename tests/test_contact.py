@@ -1,0 +1,262 @@
+"""Exact roll contact (issue 30): the roll as a constraint, the pressure as a multiplier.
+
+Kinds of check (docs/testing.md): the speed and time-unit scalings are exact scalings of the
+equations (an independent reference: Norton-Hoff is a power law in the rate, so omega x s with
+eps0 x s must give the same flow with every stress x s^m); the frame shift is an exact
+invariance; the smooth-pressure and unilateral checks are limits derived by hand (a pressure
+has no zigzag at the mesh scale; a contact pressure is >= 0 and the strip leaving the roll does
+not penetrate it); the comparison with the penalty and with the report's scheme is a
+self-comparison (two formulations of the same problem).
+"""
+from __future__ import annotations
+
+import copy
+import json
+import math
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from casebuild import example1_coarse
+from hotroll.app.config import case_from_dict
+from hotroll.app.runner import run_case
+
+
+def solve(d: dict) -> tuple[dict, dict]:
+    """(summary, contact.csv columns) of the case ``d``."""
+    case = case_from_dict(d)
+    with tempfile.TemporaryDirectory() as tmp:
+        s = run_case(case, Path(tmp), resume=False)
+        import csv
+
+        with open(Path(tmp) / "contact.csv") as f:
+            rows = list(csv.DictReader(f))
+    prof = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    return s, prof
+
+
+def with_(d: dict, **dotted) -> dict:
+    d = copy.deepcopy(d)
+    for key, value in dotted.items():
+        sec, name = key.split(".")
+        d.setdefault(sec, {})[name] = value
+    return d
+
+
+# --- exact scaling in the roll speed and the unit of time -----------------------------------
+LAWS = {"viscoplastic": {"law": "viscoplastic"},            # a_f estimated (3.15)
+        "coulomb": {"law": "coulomb", "mu": 0.3},
+        "tresca": {"law": "tresca", "factor": 0.6}}
+BASE_OMEGA = math.pi / 3
+
+
+def _scaled(law: str, factor: float, minutes: bool = False) -> dict:
+    """Example 1 (coarse) at omega x factor with eps0 x factor (the law's own rate scale); in
+    minutes: omega and eps0 per minute (x60) and K in Pa min^m (K / 60^m)."""
+    d = example1_coarse(f"scale-{law}", friction=LAWS[law])
+    t = 60.0 if minutes else 1.0
+    d["pass"]["roll_angular_velocity"] = BASE_OMEGA * factor * t
+    d["material"]["eps0"] = 1e-4 * factor * t
+    d["material"]["K"] = 1.0 / t ** d["material"]["m"]
+    return d
+
+
+@pytest.fixture(scope="module", params=sorted(LAWS))
+def speed_runs(request):
+    law = request.param
+    return law, {f: solve(_scaled(law, f))[0] for f in (0.01, 1.0, 100.0)}, \
+        solve(_scaled(law, 1.0, minutes=True))[0]
+
+
+def test_roll_speed_scales_exactly(speed_runs):
+    """omega = 0.01, 1, 100 x pi/3 (eps0 with it): forward slip, neutral angle and the contact
+    arc the same to 1e-6, force and torque x (omega ratio)^m to 1e-6, every run converged, the
+    same number of Newton iterations."""
+    law, runs, _ = speed_runs
+    ref, m = runs[1.0], runs[1.0]["m"]
+    assert ref["exit_code"] == 0, (law, ref["failure"])
+    for f, s in runs.items():
+        assert s["exit_code"] == 0, (law, f, s["failure"])
+        for key in ("forward_slip", "neutral_angle", "contact_start_angle", "contact_end_angle",
+                    "contact_length", "mass_flux_error"):
+            assert s[key] == pytest.approx(ref[key], rel=1e-6, abs=1e-9), (law, f, key)
+        for key in ("roll_force", "roll_torque"):
+            assert s[key] == pytest.approx(ref[key] * f**m, rel=1e-6), (law, f, key)
+        assert s["nonlinear_iterations"] == ref["nonlinear_iterations"], (law, f)
+
+
+def test_minutes_give_the_same_pass(speed_runs):
+    """The same pass in minutes (omega, eps0 per minute, K in Pa min^m): the same forces,
+    torques, slip and angles to 1e-6 (the power in W/m reads per minute: / 60)."""
+    law, runs, s = speed_runs
+    ref = runs[1.0]
+    for key in ("forward_slip", "neutral_angle", "contact_end_angle", "roll_force",
+                "roll_torque"):
+        assert s[key] == pytest.approx(ref[key], rel=1e-6, abs=1e-9), (law, key)
+    assert s["roll_power"] == pytest.approx(ref["roll_power"] * 60.0, rel=1e-6)
+
+
+# --- frame ---------------------------------------------------------------------------------
+def test_the_roll_axis_can_be_anywhere():
+    """roll_axis_x = 0, 1 and 37.5 m: the same numbers to 1e-9, positions moved with the axis."""
+    d = example1_coarse("frame")
+    runs = {ax: solve(with_(d, **{"pass.roll_axis_x": ax}))[0] for ax in (0.0, 1.0, 37.5)}
+    ref = runs[1.0]
+    for ax, s in runs.items():
+        for key in ("roll_force", "roll_torque", "forward_slip", "neutral_angle",
+                    "contact_end_angle", "plastic_power", "a_f", "mass_flux_in"):
+            assert s[key] == pytest.approx(ref[key], rel=1e-9, abs=1e-12), (ax, key)
+        assert s["neutral_point"][0] - ax == pytest.approx(ref["neutral_point"][0] - 1.0,
+                                                           abs=1e-9)
+        assert s["nonlinear_iterations"] == ref["nonlinear_iterations"]
+
+
+# --- the pressure ------------------------------------------------------------------------------
+def _zigzag(prof: dict) -> float:
+    """Largest departure of a raw nodal normal stress from the local quadratic through its
+    neighbours (least squares over 7 contact nodes), over the arc's inner 96 %, / peak."""
+    sn, ang = prof["normal_stress"], prof["angle"]
+    n = len(sn)
+    inner = (ang <= ang[0] - 0.02 * (ang[0] - ang[-1])) & (ang >= ang[-1] + 0.02 * (ang[0] - ang[-1]))
+    dev = 0.0
+    for i in np.nonzero(inner)[0]:
+        lo, hi = max(0, i - 3), min(n, i + 4)
+        c = np.polyfit(ang[lo:hi], sn[lo:hi], 2)
+        dev = max(dev, abs(sn[i] - np.polyval(c, ang[i])))
+    return dev / np.max(np.abs(sn))
+
+
+FINISHING = {   # a finishing-type pass (5 -> 3.6 mm, R = 0.35 m, 0.4 m/s, Coulomb 0.3)
+    "name": "finishing",
+    "pass": {"roll_radius": 0.35, "entry_thickness": 0.005, "exit_thickness": 0.0036,
+             "roll_angular_velocity": 0.4 / 0.35},
+    "plate": {"length": 0.2},
+    "material": {"K": 1.5e8, "m": 0.12},
+    "friction": {"law": "coulomb", "mu": 0.3},
+    "solver": {"method": "steady", "threads": 1},
+    "contact": {"unilateral": True},
+    "output": {"figures": False, "vtk": False},
+}
+
+
+@pytest.fixture(scope="module")
+def finishing_runs():
+    from hotroll.discretisation.mesh import auto_contact_size
+
+    h = auto_contact_size(case_from_dict(FINISHING).pass_.roll_pass())
+    return {k: solve(with_(FINISHING, **{"mesh.h_contact": h / k})) for k in (1, 2)}
+
+
+def test_the_pressure_is_smooth_up_to_the_arcs_ends(finishing_runs):
+    """Raw nodal normal stress within 10 % of the peak of its local smooth curve over the
+    inner 96 % of the arc, on the automatic mesh and on one twice as fine; no tensile value."""
+    for k, (s, prof) in finishing_runs.items():
+        assert s["exit_code"] == 0, (k, s["failure"])
+        assert _zigzag(prof) < 0.10, k
+        assert np.max(prof["normal_stress"]) <= 1e-9 * np.max(np.abs(prof["normal_stress"]))
+
+
+def test_coulomb_shear_follows_the_multiplier_at_vertices_and_midpoints(finishing_runs):
+    """Where the strip slips (|v_s| > 1 % U), Coulomb's shear is min(mu p, k) of the multiplier
+    pressure at vertices and midpoints alike: |tau| / min(mu p, k) = 1 +- 0.05 at both."""
+    for k, (s, prof) in finishing_runs.items():
+        U = s["roll_surface_speed"]
+        slip = np.abs(prof["v_slip"]) > 0.01 * U
+        p = -prof["normal_stress"]
+        limit = np.minimum(0.3 * p, prof["shear_flow_stress"])
+        ok = slip & (p > 0)
+        for vertex in (0, 1):
+            sel = ok & (prof["vertex"] == vertex)
+            ratio = np.abs(prof["shear_stress"][sel]) / limit[sel]
+            assert sel.sum() > 5 and np.all(np.abs(ratio - 1.0) < 0.05), (k, vertex)
+
+
+def test_exact_contact_has_no_leak_and_no_penalty_on_the_roll(finishing_runs):
+    """Flux in = flux out within the free tops' kinematic tolerance (far below the forward
+    slip), no penalty power."""
+    for k, (s, _) in finishing_runs.items():
+        assert s["leak_to_slip"] < 0.01, k
+        assert abs(s["penalty_share"]) < 1e-9, k
+
+
+# --- unilateral contact ------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def example1_unilateral():
+    return solve(with_(example1_coarse("unilateral"), **{"contact.unilateral": True}))
+
+
+def test_a_thick_strip_leaves_the_roll_before_the_gap(example1_unilateral):
+    """Example 1 (h/l_c about 1.8): held to the whole arc, the contact stress turns tensile
+    before the gap; unilateral, the strip leaves the roll there: the loss is reported (from
+    the contact's end to the gap), the pressure is >= 0 on the arc, the run converges."""
+    s, prof = example1_unilateral
+    assert s["exit_code"] == 0, s["failure"]
+    assert s["contact_end_angle"] > 0.01
+    assert s["contact_loss_detected"] and s["contact_loss"][-1][1] == pytest.approx(1.0)
+    assert s["min_contact_pressure"] >= 0.0
+    assert np.max(prof["normal_stress"]) <= 0.0
+
+
+def test_held_to_the_arc_the_tensile_stretch_is_reported():
+    """Bilateral exact contact on the same pass: the raw multiplier's tensile nodes at the
+    exit are reported as contact loss (no exit correction hides them)."""
+    s, prof = solve(with_(example1_coarse("bilateral"), **{"contact.unilateral": False}))
+    assert s["exit_code"] == 0
+    assert np.max(prof["normal_stress"]) > 0.0
+    assert s["contact_loss_detected"] and s["min_contact_pressure"] < 0.0
+    assert s["contact_end_angle"] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_the_separated_top_stays_off_the_roll(example1_unilateral):
+    """After the contact's end the traced exit top lies on or below the roll (no penetration)
+    and the exit is thinner than the gap (the strip went on stretching)."""
+    from hotroll.process.free_surface import roll_height
+
+    s, _ = example1_unilateral
+    case = case_from_dict(with_(example1_coarse("unilateral"), **{"contact.unilateral": True}))
+    rp = case.pass_.roll_pass()
+    with tempfile.TemporaryDirectory() as tmp:
+        run_case(case, Path(tmp), resume=False)
+        import csv
+
+        with open(Path(tmp) / "top.csv") as f:
+            top = [(float(r["x"]), float(r["y"])) for r in csv.DictReader(f)]
+    x, y = np.array(top).T
+    on_arc = (x > rp.x_touch) & (x < rp.axis_x)
+    assert np.all(y[on_arc] <= roll_height(rp, x[on_arc]) + 1e-9 * rp.radius)
+    assert s["exit_thickness"] < 2 * rp.half_exit
+
+
+# --- exit codes --------------------------------------------------------------------------------
+def test_a_leaking_penalty_is_not_a_success():
+    """The report's penalty on a slow lab pass (0.05 m/s, m = 0.05) lets the strip through the
+    roll by more than a tenth of the forward slip: exit code 7, the reason named; the same pass
+    with exact contact is a success."""
+    lab = {
+        "name": "lab",
+        "pass": {"roll_radius": 0.1, "entry_thickness": 0.01, "exit_thickness": 0.0075,
+                 "roll_angular_velocity": 0.5},
+        "plate": {"length": 0.1},
+        "material": {"K": 1e8, "m": 0.05},
+        "friction": {"law": "tresca", "factor": 0.3},
+        "solver": {"method": "steady", "threads": 1},
+        "output": {"figures": False, "vtk": False},
+    }
+    pen, _ = solve(with_(lab, **{"contact.method": "penalty"}))
+    ex, _ = solve(lab)
+    assert ex["exit_code"] == 0 and ex["leak_to_slip"] < 0.01
+    assert pen["exit_code"] == 7 and "leak_to_slip" in pen["failure"]
+    assert pen["forward_slip"] < ex["forward_slip"]
+
+
+def test_the_penalty_is_an_option_of_the_steady_solver_only():
+    """contact.method = "multiplier" with the report's scheme is refused, naming the field."""
+    from hotroll.app.config import CaseError
+
+    with pytest.raises(CaseError, match="contact.method"):
+        case_from_dict(with_(example1_coarse("x"), **{"contact.method": "multiplier",
+                                                       "solver.method": "transient"}))
+    assert case_from_dict(with_(example1_coarse("x"), **{"solver.method": "transient"})
+                          ).contact.resolved("transient") == "penalty"
