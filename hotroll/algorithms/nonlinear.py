@@ -54,7 +54,17 @@ class _Workspace:
         return self.problem.free_mask
 
     def norm(self, vec) -> float:
-        return float(np.linalg.norm(vec.FV().NumPy()[self.free]))
+        """||r|| over the free DOFs, the pressure rows (int q div u: a velocity gradient) times
+        ``problem.pressure_row_scale`` (a viscosity: then every row is a stress and the line
+        search makes the same choices at any roll speed or unit of time)."""
+        a = vec.FV().NumPy()
+        w = self.problem.pressure_row_scale
+        if w == 1.0:
+            return float(np.linalg.norm(a[self.free]))
+        pr = self.problem.pressure_range()
+        rest = np.concatenate([a[: pr.start][self.free[: pr.start]],
+                               a[pr.stop:][self.free[pr.stop:]]])
+        return float(np.hypot(np.linalg.norm(rest), w * np.linalg.norm(a[pr][self.free[pr]])))
 
     def max_velocity(self, vec) -> float:
         return self.problem.max_nodal_velocity(vec)

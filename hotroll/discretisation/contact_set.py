@@ -77,10 +77,10 @@ class ActiveSet:
             return False
         if new.tobytes() in self.seen:
             # a cycle: the contact's end lies between two nodes that take turns. Keep the
-            # union of the two sets (the longer contact: the end within one node of the
-            # exact one) and stop updating
+            # intersection of the two sets (the shorter contact: no tensile pressure, the end
+            # within one node of the exact one) and stop updating
             self.cycled = True
-            new = new | self.active
+            new = new & self.active
             if np.array_equal(new, self.active):
                 return False
         self.seen.add(new.tobytes())

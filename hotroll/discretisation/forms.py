@@ -78,6 +78,8 @@ class NonlinearProblem:
     #: the multiplier's stopping test: max |d lambda| <= multiplier_tol * velocity_scale (the
     #: rolling form scales lambda so that the reference stress is the roll speed)
     multiplier_tol: float = 1e-4
+    #: weight of the pressure rows in the residual norm (a viscosity; ``nonlinear._Workspace``)
+    pressure_row_scale: float = 1.0
     gf: object = field(init=False)
     gf_w: object = field(init=False)
     a_newton: object = field(init=False)

@@ -163,7 +163,8 @@ class RollingForm:
         self.tension_back, self.tension_front = Parameter(tensions[0]), Parameter(tensions[1])
         self.top_elements = _elements_on(mesh, TOP) if friction.uses_k else None
         self.problem = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll,
-                                        jacobian=self.jacobian)
+                                        jacobian=self.jacobian,
+                                        pressure_row_scale=self.mu_ref)
 
     # --- geometry of the roll as coefficient functions ------------------------------------
     def roll_frame(self):
