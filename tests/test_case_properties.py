@@ -47,6 +47,7 @@ from hypothesis import strategies as st
 import hotroll
 from hotroll.app import config as C
 from hotroll.app.outcome import EXIT_CODES, exit_code
+from hotroll.app.runner import CONSERVATION_TOL
 
 # ------------------------------------------------------------------------------------------------
 # 1. invalid cases
@@ -71,6 +72,7 @@ BASE: dict = {
                "steady_tolerance": 2e-3, "max_steps": 1000, "wall_time_limit": 60.0,
                "checkpoint_every": 25, "threads": 1, "steady_entry_length": 0.3,
                "steady_exit_length": 0.3, "exit_pressure_correction": True},
+    "contact": {"method": "multiplier", "unilateral": False},
     "output": {"figures": False, "vtk": False},
     "thermal": {"taylor_quinney": 0.9, "friction_heat_to_strip": 0.5, "htc_contact": 2e4,
                 "roll_temperature": 350.0, "htc_air": 20.0, "emissivity": 0.8,
@@ -559,7 +561,9 @@ def check_outcome(case: C.Case, s: dict) -> None:
             assert isinstance(s["failure"], str) and s["failure"]
         if code == 7:
             assert s["not_conserved"] and s["steady_state"] and not s["outlet_driven"]
-            assert (s["mass_flux_error"] > MASS_TOL or s["power_balance_error"] > POWER_TOL)
+            assert (s["mass_flux_error"] > MASS_TOL or s["power_balance_error"] > POWER_TOL
+                    or s["leak_to_slip"] > CONSERVATION_TOL["leak_to_slip"]
+                    or s["penalty_share"] > CONSERVATION_TOL["penalty_share"])
         if code == 6:
             assert s["outlet_driven"]
         if code == 5:
@@ -671,18 +675,19 @@ def test_conservation_check_of_the_runner_by_hand():
     assert "mass_flux_error = 0.03" in text and "power_balance_error = 0.05 above 0.02" in text
 
 
-@pytest.mark.xfail(strict=True, reason="issue 18: the contact penalties of Table 1 are fixed "
-                   "numbers in units of K, not scaled with the roll speed: at low speeds the "
-                   "strip leaks through the roll (the forward slip 13 % low at 0.05 m/s)")
 def test_forward_slip_does_not_depend_on_the_roll_speed():
     """Norton-Hoff is a power law in the rate: omega x 100 scales every stress by 100^m and
-    leaves the flow pattern, hence the forward slip, exactly as it was (the regularisations
-    v_reg and eps0 aside: v_reg is a fraction of the roll speed, eps0 is 1e-4 of the rates
-    here). With the penalties scaled by (U/0.2 pi)^(m-1) the slip agreed to 1e-4 and the flux
-    error was 0.39 % at both speeds (measured, not in the code)."""
-    slips = [solve(pass_case(16.6, 0.33, 0.05, omega, 1e5, {"law": "tresca", "factor": 0.3}))[1]
-             for omega in (0.1, 10.0)]
-    assert slips[0]["forward_slip"] == pytest.approx(slips[1]["forward_slip"], rel=0.02)
+    leaves the flow pattern, hence the forward slip, exactly as it was, once eps0 scales with
+    it (v_reg is a fraction of the roll speed). Issue 18's strict xfail (the penalties of
+    Table 1 did not scale: the slip 13 % low at 0.1 rad/s); exact contact (issue 30): equal to
+    1e-9."""
+    runs = []
+    for omega in (0.1, 10.0):
+        d = pass_case(16.6, 0.33, 0.05, omega, 1e5, {"law": "tresca", "factor": 0.3})
+        d["material"]["eps0"] = 1e-4 * omega
+        runs.append(solve(d)[1])
+    assert runs[0]["exit_code"] == runs[1]["exit_code"]
+    assert runs[0]["forward_slip"] == pytest.approx(runs[1]["forward_slip"], rel=1e-9)
 
 
 def test_a_failing_linear_solve_ends_a_steady_run_with_its_reason(monkeypatch):

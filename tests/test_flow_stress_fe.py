@@ -213,8 +213,10 @@ def test_a_uniform_consistency_ratio_scales_every_stress(tmp_path_factory, plain
     assert doubled["roll_force"] == pytest.approx(2.0 * plain["roll_force"], rel=0.008)
     assert doubled["roll_torque"] == pytest.approx(2.0 * plain["roll_torque"], rel=0.002)
     assert doubled["forward_slip"] == pytest.approx(plain["forward_slip"], rel=0.01)
+    # measured with exact contact (issue 30): 0.57 % (the inlet/outlet and head-face
+    # penalties scale with the reference viscosity, not with c)
     assert (doubled["symmetry_stress_force_y"] / doubled["roll_force"]
-            == pytest.approx(plain["symmetry_stress_force_y"] / plain["roll_force"], rel=0.004))
+            == pytest.approx(plain["symmetry_stress_force_y"] / plain["roll_force"], rel=0.008))
 
 
 def test_symmetry_line_carries_the_force_with_a_consistency_field(hardening_run):

@@ -83,6 +83,13 @@ def steady_slipping(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
+def steady_slipping_penalty(tmp_path_factory):
+    """The steady solver with the report's penalty contact (``[contact] method``)."""
+    return _run(tmp_path_factory, "steady_af3_penalty", **{
+        "solver.method": "steady", "friction.a_f": 3.0, "contact.method": "penalty"})
+
+
+@pytest.fixture(scope="module")
 def steady_estimated(tmp_path_factory):
     return _run(tmp_path_factory, "steady_estimate", **{"solver.method": "steady"})
 
@@ -288,8 +295,14 @@ def test_free_exit_surface_penalises_vertical_motion_only():
 @pytest.mark.parametrize("pair, bounds", [
     # measured (h = 0.02, a_f = 3): force +0.8 %, torque +2.8 %, slip +0.17 points,
     # neutral angle +0.004 rad
-    (("steady_slipping", "settled"), {"force": 0.03, "torque": 0.05, "slip": 3e-3,
-                                      "angle": 0.01, "plastic": 0.05}),
+    (("steady_slipping_penalty", "settled"), {"force": 0.03, "torque": 0.05, "slip": 3e-3,
+                                              "angle": 0.01, "plastic": 0.05}),
+    # exact contact (issue 30) against the report's penalty scheme on this coarse mesh
+    # (h = 0.02): measured force +0.3 %, torque -2.4 %, slip -0.4 points, neutral angle
+    # -0.021 rad (the penalty's leak moves the slip and the neutral point); on M2 see
+    # docs/validation/contact.md
+    (("steady_slipping", "settled"), {"force": 0.02, "torque": 0.04, "slip": 6e-3,
+                                      "angle": 0.03, "plastic": 0.05}),
     # measured: force -8 %, torque -2 %, slip -0.06 points, angle +0.008 rad, plastic power
     # -5.5 %; the transient's flat tops end at the discrete first contact node, 1 h = 0.02 m
     # wide here
@@ -305,7 +318,10 @@ def test_steady_agrees_with_transient(pair, bounds, request):
     t, _, _ = request.getfixturevalue(pair[1])
     assert s["method"] == "steady" and t["method"] == "transient"
     assert s["free_surface"] == t["free_surface"]
-    assert s["converged"] and s["fixed_point_settled"] and t["status"] == "steady"
+    # the steady penalty run ends with exit code 7 (its leak is 17 % of the forward slip on
+    # this coarse mesh, issue 30): settled, its figures still compared
+    assert s["steady_state"] and s["fixed_point_settled"] and t["status"] == "steady"
+    assert s["converged"] or s["not_conserved"]
     assert s["roll_force"] == pytest.approx(t["roll_force"], rel=bounds["force"])
     assert s["roll_torque"] == pytest.approx(t["roll_torque"], rel=bounds["torque"])
     assert abs(s["forward_slip"] - t["forward_slip"]) < bounds["slip"]
@@ -355,7 +371,9 @@ def test_force_balance(fixture, request):
 
 def test_steady_outputs_and_unit_independence(tmp_path_factory, steady_slipping):
     s1, c1, out = steady_slipping
-    assert s1["steps"] == 0 and s1["newton_solves"] >= 1 and s1["contact_loss"] == []
+    # held to the arc (bilateral), the raw multiplier turns tensile near the gap of this thick
+    # strip: reported (issue 30), not hidden by an exit correction
+    assert s1["steps"] == 0 and s1["newton_solves"] >= 1 and s1["contact_loss_detected"]
     assert s1["fixed_point_settled"] and s1["coupling_updates"] >= 2
     hist = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
     # one row per coupling update and one per Newton solve, all at the target m (cold start
@@ -401,9 +419,17 @@ def test_newton_jacobian_is_the_exact_linearisation(hand, law):
     from hotroll.app.runner import build_model, steady_settings
     from hotroll.discretisation.forms import NonlinearProblem
 
+    import hotroll.discretisation.rolling_form as RF
+
     case = _case(**{"solver.method": "steady", **FRICTION_LAWS[law]})
     model, _ = build_model(case)
-    run = SteadyRun(model, steady_settings(case), case.plate.length)
+    # the Jacobian without the matrix-only regularisation of the multiplier block (a term the
+    # residual does not have, docs/theory.md 1e): then it is the exact linearisation
+    saved, RF.MATRIX_REGULARISATION = RF.MATRIX_REGULARISATION, 0.0
+    try:
+        run = SteadyRun(model, steady_settings(case), case.plate.length)
+    finally:
+        RF.MATRIX_REGULARISATION = saved
     run._cold_start()
     form = run.form
     form.a_f.Set(37.0)

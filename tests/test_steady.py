@@ -28,7 +28,7 @@ def _steady_run(**settings) -> SteadyRun:
 def test_kinematic_guess_is_incompressible_and_tangent():
     """Away from the kink of the top at the first touching point (where v_y jumps and the P2
     interpolation smears it over the elements there), the guess is divergence-free and tangent
-    to the top up to interpolation error; its flux is that at zero forward slip."""
+    to the top up to interpolation error; its flux is that at 1 % forward slip."""
     from ngsolve import IfPos, Integrate, div, specialcf, x
 
     run = _steady_run()
@@ -42,7 +42,7 @@ def test_kinematic_guess_is_incompressible_and_tangent():
     vn2 = Integrate(away * (u * n) ** 2, mesh, definedon=top, order=6)
     assert (vn2 / Integrate(away, mesh, definedon=top)) ** 0.5 < 1e-3 * rp.u_roll
     q_out = Integrate(u[0], mesh, definedon=mesh.Boundaries("out"))
-    assert q_out == pytest.approx(rp.u_roll * rp.half_exit, rel=1e-6)
+    assert q_out == pytest.approx(1.01 * rp.u_roll * rp.half_exit, rel=1e-6)
 
 
 def test_low_rate_sensitivity_converges_directly(tmp_path):
