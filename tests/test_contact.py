@@ -239,13 +239,13 @@ def test_the_separated_top_stays_off_the_roll(example1_unilateral):
 
 # --- exit codes --------------------------------------------------------------------------------
 def test_a_leaking_penalty_is_not_a_success():
-    """The report's penalty on a slow lab pass (0.05 m/s, m = 0.05) lets the strip through the
-    roll by more than a tenth of the forward slip: exit code 7, the reason named; the same pass
+    """The report's penalty on a slow lab pass (0.02 m/s, m = 0.05) lets the strip through the
+    roll by more than a fifth of the forward slip: exit code 7, the reason named; the same pass
     with exact contact is a success."""
     lab = {
         "name": "lab",
         "pass": {"roll_radius": 0.1, "entry_thickness": 0.01, "exit_thickness": 0.0075,
-                 "roll_angular_velocity": 0.5},
+                 "roll_angular_velocity": 0.2},
         "plate": {"length": 0.1},
         "material": {"K": 1e8, "m": 0.05},
         "friction": {"law": "tresca", "factor": 0.3},

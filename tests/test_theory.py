@@ -403,10 +403,11 @@ def test_rate_dependent_law_accepts_tensions():
 ])
 def test_rate_independent_results_unchanged_by_end_rate(name, args, kw, expected):
     """Rate-independent laws (constant; strain hardening) with tensions: force, torque, neutral
-    angle, slip, peak and end pressures and end 2k are bit-identical to the values recorded
-    before the end yield condition was moved to the mean strain rate."""
+    angle, slip, peak and end pressures and end 2k are the values recorded before the end
+    yield condition was moved to the mean strain rate (a snapshot). Once bit-identical; with
+    numpy 2.4 / scipy 1.17 one case moved by 3e-7 (the ODE solver's tolerance): to 1e-6."""
     r = solve_pass(*args, **kw)
     got = (r.force, r.torque, r.neutral_angle, r.forward_slip, r.peak_pressure,
            float(r.pressure[0]), float(r.pressure[-1]), float(r.plane_strain_flow_stress[0]),
            float(r.plane_strain_flow_stress[-1]))
-    assert got == expected
+    assert got == pytest.approx(expected, rel=1e-6)

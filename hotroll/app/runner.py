@@ -38,11 +38,13 @@ THERMAL_AVERAGED = ("exit_temperature_mean", "exit_temperature_surface", "max_te
 #: the speed: 3 % of the flux at U = 0.05 m/s and m = 0.05, the forward slip 13 % low) and with
 #: sticking friction (the estimated a_f at m = 0.8: 3-7 %, 2.6 % on a 5 times finer mesh).
 #: Two more (issue 30): the leak |Q_out - Q_in| / Q_in against the forward slip it falsifies
-#: (``leak_to_slip`` = leak / max(|forward slip|, 1 %): a leak of a tenth of the slip moves the
-#: slip by a tenth), and the penalties' share of the roll power (what the penalties do instead of
+#: (``leak_to_slip`` = leak / max(|forward slip|, 1 %): a leak of a fifth of the slip makes the
+#: slip uncertain by a fifth; measured with exact contact on Example 1-type passes at h = 0.02 m:
+#: 0.05-0.10, the traced free tops' discretisation, 6e-6 / 0.034 on M2; the penalty on a slow lab
+#: pass: 0.2-0.5), and the penalties' share of the roll power (what the penalties do instead of
 #: the physics; exact contact has none on the roll, the inlet/outlet ones are inactive unless the
 #: strip skids).
-CONSERVATION_TOL = {"mass_flux_error": 0.02, "power_balance_error": 0.02, "leak_to_slip": 0.1,
+CONSERVATION_TOL = {"mass_flux_error": 0.02, "power_balance_error": 0.02, "leak_to_slip": 0.2,
                     "penalty_share": 0.02}
 
 
@@ -61,10 +63,16 @@ def conservation_problem(summary: dict) -> str | None:
            and abs(summary[key]) > tol]
     if not bad:
         return None
-    return ("not conserved: " + ", ".join(bad) + "; the contact penalty lets the strip through "
-            f"the roll (penalty share {summary.get('penalty_share', math.nan):.3g}, roll surface "
-            f"speed {summary.get('roll_surface_speed', math.nan):.3g} m/s): most at low roll "
-            "speeds and with sticking friction; a finer mesh.h_contact tightens it")
+    if summary.get("contact_method", "penalty") == "penalty":
+        why = ("the contact penalty lets the strip through the roll (penalty share "
+               f"{summary.get('penalty_share', math.nan):.3g}, roll surface speed "
+               f"{summary.get('roll_surface_speed', math.nan):.3g} m/s): most at low roll speeds "
+               "and with sticking friction; exact contact (contact.method = \"multiplier\") or a "
+               "finer mesh.h_contact")
+    else:
+        why = ("exact contact holds the roll; the flux crosses the traced free tops (their "
+               "discretisation): a finer mesh.h_contact tightens it")
+    return "not conserved: " + ", ".join(bad) + "; " + why
 
 
 def reference_material(case: Case):
