@@ -70,7 +70,9 @@ def test_mass_flux_is_the_same_in_both_stands(rolled):
     assert abs(rows[1]["mass_flux"] / s1["mass_flux_out"] - 1.0) <= sch.mill.mass_flow_tolerance
     # the second stand runs faster than volume constancy at zero slip difference would ask
     assert rows[1]["roll_surface_speed"] > rows[0]["roll_surface_speed"]
-    assert rows[1]["fe_solves"] >= 2 and rows[0]["fe_solves"] == 1
+    # stand 2's speed from the mass flow: with exact contact its first guess (stand 1's flux
+    # over stand 2's exit at its forward slip) lands inside the tolerance (penalty: 2 solves)
+    assert rows[1]["fe_solves"] >= 1 and rows[0]["fe_solves"] == 1
 
 
 def test_strain_accumulates_pass_by_pass(rolled):

@@ -64,7 +64,7 @@ def test_heat_balance_and_roll_chill(chilled, isothermal):
     inlet's conduction, recomputed from the summary's terms (measured 1.9e-6 of the heat to the
     roll). The roll chills the strip: exit mean below the entry temperature, the exit surface
     below the mean, and the colder strip needs more force than the isothermal pass at the
-    entry temperature (measured +3.7 %, Hensel-Spittel m1 = -0.0025 1/degC)."""
+    entry temperature (measured +1.7 %, Hensel-Spittel m1 = -0.0025 1/degC)."""
     s, _ = chilled
     gap = (s["advected_out"] - s["advected_in"] - s["conducted_in"]
            - (s["plastic_heat"] + s["friction_heat_to_strip"] - s["heat_to_roll"]
@@ -78,7 +78,8 @@ def test_heat_balance_and_roll_chill(chilled, isothermal):
         abs(s["advected_out"] - s["advected_in"] - (gain - lost)) / max(gain, lost), rel=1e-6)
     assert s["heat_balance_error"] < 5e-3   # measured 2.4e-3: the cooled top at the inlet
     assert s["exit_temperature_surface"] < s["exit_temperature_mean"] < T_ENTRY
-    assert s["roll_force"] > 1.02 * isothermal["roll_force"]
+    # measured +1.7 % with exact contact (+3.7 % with the penalty)
+    assert s["roll_force"] > 1.01 * isothermal["roll_force"]
 
 
 def test_thermal_layer_and_strip_size_by_hand(chilled):
@@ -270,7 +271,7 @@ def test_a_law_without_temperature_settles_with_the_heat_field(tmp_path):
     """Norton-Hoff (no T in the law) with [thermal]: the element temperatures are the plain
     means (K is the same at every T: the bisection of the K-mean would follow the rounding and
     the coupling never settled, found rolling a Norton-Hoff schedule), the run settles, and
-    its force is the isothermal run's (the temperature does not enter the law) to 1e-6."""
+    its force is the isothermal run's (the temperature does not enter the law) to 2e-5."""
     over = {"material.law": "norton-hoff", "material.A": None, "material.m1": None,
             "material.m3": None, "material.K": 5.0e7, "material.m": 0.15,
             "friction.law": "coulomb", "friction.mu": 0.3, "friction.a_f": None,
@@ -279,6 +280,8 @@ def test_a_law_without_temperature_settles_with_the_heat_field(tmp_path):
     coupled = run_case(case, tmp_path / "coupled")
     iso = run_case(case.with_overrides(thermal=None), tmp_path / "iso")
     assert coupled["exit_code"] == 0 and coupled["status"] == "steady"
-    assert coupled["roll_force"] == pytest.approx(iso["roll_force"], rel=1e-6)
+    # measured 7.5e-6 with exact contact (the coupled fixed point stops at another point of
+    # its tolerance than the isothermal one), 1e-6 with the penalty
+    assert coupled["roll_force"] == pytest.approx(iso["roll_force"], rel=2e-5)
     fields = np.load(tmp_path / "coupled" / "fields.npz")
     assert np.all(np.isfinite(fields["flow_temperature"]))
