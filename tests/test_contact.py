@@ -11,15 +11,14 @@ self-comparison (two formulations of the same problem).
 from __future__ import annotations
 
 import copy
-import json
 import math
 import tempfile
 from pathlib import Path
 
 import numpy as np
 import pytest
-
 from casebuild import example1_coarse
+
 from hotroll.app.config import case_from_dict
 from hotroll.app.runner import run_case
 
