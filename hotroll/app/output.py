@@ -103,10 +103,28 @@ def vertex_fields(run) -> dict:
     }
 
 
-def write_vtk(run, path: Path) -> Path:
+def write_vtk(run, path: Path, shift: float = 0.0) -> Path:
     """ParaView file (.vtu) of velocity, pressure, strain rate, sigma_ef (and the strain, the
     temperature) on the deformed plate; with a temperature, also thermal.vtu, the field on its
-    own strip mesh."""
+    own strip mesh; both moved by ``shift`` in x (the roll's frame to the case's)."""
+    if shift:
+        thermal = getattr(run, "thermal", None)
+        strip = getattr(thermal, "strip", None)
+        nv = run.mesh.nv
+        run.d[:nv] += shift            # vertex DOFs of the x displacement (bubbles unmoved)
+        if strip is not None:
+            strip.disp.vec.FV().NumPy()[: strip.nv] += shift
+        try:
+            run.mesh.SetDeformation(run.disp)
+            if strip is not None:
+                strip.mesh.SetDeformation(strip.disp)
+            return write_vtk(run, path)
+        finally:
+            run.d[:nv] -= shift
+            run.mesh.SetDeformation(run.disp)
+            if strip is not None:
+                strip.disp.vec.FV().NumPy()[: strip.nv] -= shift
+                strip.mesh.SetDeformation(strip.disp)
     import ngsolve
 
     from ..discretisation.forms import strain_rate

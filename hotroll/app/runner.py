@@ -104,7 +104,7 @@ def exit_strain(case: Case, run) -> dict:
     of plane-strain compression: steady strip, x in X_roll + [0.25, 0.75] D with D = max(l_c,
     2 h1) (the downstream length, where it is rigid); report's scheme, the material past
     X_roll + 2h that was ahead of the bite at the start (it has crossed the whole arc)."""
-    rp, pa = case.pass_.roll_pass(), case.pass_
+    rp, pa = run.model.rp, case.pass_      # the run's frame (steady: the roll's, axis at 0)
     homog = case.plate.mean_entry_strain + 2.0 / math.sqrt(3.0) * math.log(
         pa.entry_thickness / pa.exit_thickness)
     field = getattr(run, "strain", None)
@@ -229,9 +229,16 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
     model, settings = build_model(case)
     extra = {"estimated_dofs": est.dofs, "estimated_memory": est.memory_bytes,
              "estimated_seconds": est.seconds}
+    shift = 0.0
     if case.solver.method == "steady":
+        from dataclasses import replace
+
         from ..algorithms.steady import SteadyRun
 
+        # solved in the roll's frame (axis at x = 0), written where the case puts the axis:
+        # the numbers do not depend on roll_axis_x (issue 30)
+        shift = model.rp.axis_x
+        model = replace(model, rp=replace(model.rp, axis_x=0.0))
         near = warm = None
         if sweep is None:
             run = SteadyRun(model, steady_settings(case), case.plate.length)
@@ -246,6 +253,7 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
     else:
         run = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint=fingerprint(case))
         run.run(progress)
+    run.frame_shift = shift
     wall = time.perf_counter() - t0
     summary = write_results(case, run, out, wall, extra)
     if case.output.figures:
@@ -268,16 +276,26 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
                                       else prof["normal_stress"])
     prof["normal_stress_smooth"] = Q.smoothed(prof, prof["normal_stress"])
     prof["shear_stress_smooth"] = Q.smoothed(prof, prof["shear_stress"])
-    write_csv(out / "contact.csv", prof)
+    # positions are written where the case puts the roll axis (``frame_shift``: the steady
+    # solver works in the roll's frame)
+    shift = getattr(run, "frame_shift", 0.0)
+    write_csv(out / "contact.csv", {**prof, "x": prof["x"] + shift})
     top_columns = {"temperature": columns["temperature"]} if columns else None
-    write_csv(out / "top.csv", Q.top_profile(run.form, run.top, run.d, top_columns))
-    write_csv(out / "history.csv", hist)
-    write_npz(out / "fields.npz", **vertex_fields(run))
+    top = Q.top_profile(run.form, run.top, run.d, top_columns)
+    write_csv(out / "top.csv", {**top, "x": top["x"] + shift})
+    write_csv(out / "history.csv", [{**r, **{k: r[k] + shift for k in ("neutral_x", "head_x")
+                                             if k in r}} for r in hist])
+    fields = vertex_fields(run)
+    fields["points"] = fields["points"] + [shift, 0.0]
+    write_npz(out / "fields.npz", **fields)
     if thermal is not None:                   # the temperature's own (finer) strip mesh
-        write_npz(out / "thermal.npz", **thermal.strip_fields())
+        strip = thermal.strip_fields()
+        strip["points"] = strip["points"] + [shift, 0.0]
+        write_npz(out / "thermal.npz", **strip)
     if case.output.vtk:
-        write_vtk(run, out / "fields.vtu")
+        write_vtk(run, out / "fields.vtu", shift=shift)
     summary = summarise(case, run, prof, wall) | (extra or {})
+    _shift_positions(summary, shift)
     summary["leak_to_slip"] = leak_to_slip(summary)
     problem = conservation_problem(summary) if summary["converged"] else None
     summary["not_conserved"] = problem is not None
@@ -309,6 +327,16 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
     summary["exit_code"] = exit_code(summary)
     write_json(out / "summary.json", summary)
     return summary
+
+
+def _shift_positions(summary: dict, shift: float) -> None:
+    """Move the summary's x positions by ``shift`` (the roll's frame to the case's)."""
+    if not shift:
+        return
+    for key in ("neutral_point", "roll_centre", "contact_start", "contact_end"):
+        if summary.get(key) is not None:
+            summary[key] = [summary[key][0] + shift, summary[key][1]]
+    summary["contact_loss"] = [[a + shift, b + shift] for a, b in summary["contact_loss"]]
 
 
 def _nanmean(values) -> float:

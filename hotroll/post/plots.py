@@ -472,9 +472,14 @@ def _fig_contact(run: _Run, path: Path) -> Path | None:
 
     sn, snc = _col(c, "normal_stress"), _col(c, "normal_stress_corrected")
     sns = _col(c, "normal_stress_smooth")
+    exact = run.summary.get("contact_method") == "multiplier"
+    if exact:        # the multiplier is P1 already: its nodes, no projection or correction
+        sns = snc = None
     if sn is not None or snc is not None:
         if sn is not None:
-            a_sn.plot(x, sn, ".", ms=2.5, color="0.6", label="raw (nodal penalty reaction)")
+            a_sn.plot(x, sn, ".-" if exact else ".", ms=2.5, color="C0" if exact else "0.6",
+                      label="contact multiplier (nodal)" if exact
+                      else "raw (nodal penalty reaction)")
         if sns is not None:
             a_sn.plot(x, sns, "-", lw=1.5, color="C0", label="P1 projection")
         if snc is not None:
