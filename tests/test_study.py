@@ -177,9 +177,10 @@ def test_killed_and_run_again_ends_with_the_uninterrupted_table(files, serial, t
     for a, b in zip(serial, rows):
         if a["status"] == "done":
             # a resumed study warm-starts its cases from other neighbours: the same answer to
-            # the solver's tolerance (measured 7e-9 on the slip with exact contact)
+            # the solver's tolerance (1e-5 U; measured with exact contact 7e-9 on the slip,
+            # 1.1e-6 on the torque)
             for k in ("roll_force", "roll_torque", "forward_slip", "neutral_angle"):
-                assert float(b[k]) == pytest.approx(a[k], rel=1e-6), (a["case"], k)
+                assert float(b[k]) == pytest.approx(a[k], rel=1e-5), (a["case"], k)
 
 
 def test_a_worker_killed_mid_study_loses_nothing(files, serial, tmp_path):
@@ -222,7 +223,7 @@ def test_a_worker_killed_mid_study_loses_nothing(files, serial, tmp_path):
     assert [r["status"] for r in rows] == [r["status"] for r in serial]
     for a, b in zip(serial, rows):
         if a["status"] == "done":
-            assert b["roll_force"] == pytest.approx(a["roll_force"], rel=1e-6), a["case"]
+            assert b["roll_force"] == pytest.approx(a["roll_force"], rel=1e-5), a["case"]
 
 
 def test_the_table_is_each_cases_own_run(files, serial, tmp_path):
@@ -266,4 +267,4 @@ def test_a_case_killed_between_its_summary_and_its_state_is_solved_again(files, 
     assert done and not any(r["resumed"] for r in done)
     for a, b in zip(serial, rows):
         if a["status"] == "done":
-            assert b["roll_force"] == pytest.approx(a["roll_force"], rel=1e-6), a["case"]
+            assert b["roll_force"] == pytest.approx(a["roll_force"], rel=1e-5), a["case"]
