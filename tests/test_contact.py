@@ -267,6 +267,9 @@ def test_a_leaking_penalty_is_not_a_success():
     ex, _ = solve(lab)
     assert ex["exit_code"] == 0 and ex["leak_to_slip"] < 0.05     # the traced tops' flux
     assert pen["exit_code"] == 7 and "leak_to_slip" in pen["failure"]
+    for r in (pen, ex):   # the criterion's figure from the summary's own (plumbing)
+        assert r["leak_to_slip"] == pytest.approx(
+            abs(r["mass_flux_error"]) / max(abs(r["forward_slip"]), 0.01), rel=1e-12)
     assert pen["forward_slip"] < ex["forward_slip"]
 
 
