@@ -330,3 +330,31 @@ def test_flux_neutral_angle_by_hand():
     q = (rp.half_exit + rp.radius * (1 - math.cos(phi))) * rp.u_roll * math.cos(phi)
     assert flux_neutral_angle(rp, q) == pytest.approx(phi, rel=1e-10)
     assert math.isnan(flux_neutral_angle(rp, 0.5 * rp.u_roll * rp.half_exit))
+
+
+# --- sticking: Example 1 with the default friction over the report's meshes ------------------
+def test_example1_sticking_zone_is_the_same_on_every_mesh(tmp_path):
+    """Example 1 with a_f from (3.15) (about 1e4: the arc sticks) on C1, C2, M1, M2, F1, F2:
+    the sticking zone (|v_s| < 1e-3 U) is the whole arc on every mesh, its start within 0.002
+    rad (measured 0.0008), its end at the gap; the split of the slip's signs lies inside it
+    (flagged: there it is the sign of a 1e-8 U slip, measured 0.043-0.050 rad over the meshes),
+    and the flux's neutral angle, which needs no slip sign, agrees within 0.002 rad (measured
+    0.0017: 0.1825 .. 0.1808)."""
+    from hotroll.app.config import load_case
+    from hotroll.app.examples import example_path
+
+    runs = {}
+    for mesh in ("C1", "C2", "M1", "M2", "F1", "F2"):
+        case = load_case(example_path("example1")).with_overrides(**{
+            "mesh.h_contact": mesh, "solver.method": "steady", "solver.threads": 1,
+            "output.figures": False, "output.vtk": False})
+        runs[mesh] = run_case(case, tmp_path / mesh, resume=False)
+    starts = [s["sticking_zone"][0] for s in runs.values()]
+    flux = [s["neutral_angle_flux"] for s in runs.values()]
+    for mesh, s in runs.items():
+        assert s["exit_code"] == 0, (mesh, s["failure"])
+        assert s["sticking_zone"][1] == pytest.approx(0.0, abs=1e-12), mesh
+        assert s["sticking_zone"][0] == pytest.approx(s["contact_start_angle"], abs=1e-12)
+        assert s["neutral_angle_in_sticking_zone"], mesh
+    assert max(starts) - min(starts) < 0.002
+    assert max(flux) - min(flux) < 0.002
