@@ -325,7 +325,7 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
     cx, cy = rp.centre
     outlet_driven = mean["outlet_penalty_power"] < -0.05 * mean["plastic_power"]
     steady = state.status == "steady"
-    exact = getattr(run.form, "exact", False)
+    exact = run.form.exact
     # exact contact: every tensile node of the raw multiplier (bilateral), and the stretch of the
     # arc the strip has left (unilateral); penalties: stretches of 2h of the corrected stress
     loss = Q.contact_loss(prof, prof["normal_stress_corrected"], 0.0 if exact else 2.0 * run.model.h)
@@ -335,7 +335,7 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         if prof["x"][-1] < gap - 1e-9 * rp.radius:
             loss.append([float(prof["x"][-1]), float(gap)])
     contact_figures = {
-        "contact_method": getattr(run.form, "contact", "penalty"),
+        "contact_method": run.form.contact,
         "unilateral": active is not None,
         "active_set_changes": active.changes if active is not None else None,
         "active_set_cycled": bool(active.cycled) if active is not None else None,

@@ -9,7 +9,7 @@ int phi_j ds, c > 0 any constant). Newton on it is the primal-dual active set st
 active where lambda_j + c g_j / m_j > 0, and then its constraint g_j = 0 holds; elsewhere
 lambda_j = 0 and the strip there is a free surface (no constraint, no friction). The set is
 updated between Newton steps until it no longer changes; a_f and the free tops are updated
-with it (``algorithms/steady.py``). docs/theory.md 1d.
+with it (``algorithms/steady.py``). docs/theory.md 1e.
 
 In the form's scaled multiplier (lambda~ = p / s, a velocity), c / s = c0 l_c / h with c0 = 1:
 the rule has no units.

@@ -22,9 +22,9 @@ and stresses are K times the reduced ones; this is how the penalties of Table 1 
 Penalty parameters follow Table 1: gamma_v0 = gamma_vC = 10/h in the soft zone I around the
 first touching point, 25/h elsewhere; gamma_in = gamma_out = 2/h^(m+1).
 
-Exact contact (``contact="multiplier"``, the steady solver's default, docs/theory.md 1d): the
+Exact contact (``contact="multiplier"``, the steady solver's default, docs/theory.md 1e): the
 roll's impermeability u.n = 0 on the arc holds weakly against a continuous P1 multiplier
-lambda on the arc, the contact pressure itself (no penalty: flux in = flux out to round-off,
+lambda on the arc, the contact pressure itself (no penalty: nothing leaks through the roll,
 nothing depends on the roll speed or the units). The multiplier is carried scaled to a velocity,
 p_c = s lambda~ with s = mu_ref / l_c (mu_ref the secant viscosity at the strain rate U / l_c),
 so the constraint rows and the stopping test are in the units of the momentum rows and of the
@@ -98,7 +98,7 @@ class ScaledPenalties:
 CONTACT_METHODS = ("multiplier", "penalty")
 #: Relative weight of the -delta s lambda xi term that only the Newton matrix carries (never the
 #: residual): it gives the multiplier rows a non-zero pivot so that the LDL^T factorisation
-#: (no pivoting) works; the solution is the exact one (docs/theory.md 1d).
+#: (no pivoting) works; the solution is the exact one (docs/theory.md 1e).
 MATRIX_REGULARISATION = 1e-8
 
 
@@ -328,8 +328,8 @@ class RollingForm:
 
     def friction_tangent(self, w, u, v, lam=None, lam_w=None):
         """d/dw of the friction term chi k_f(w) s(w) (v.t) along u (and the multiplier's
-        direction ``lam``; ``lam_w`` the multiplier at the iterate), by the chain rule through the law's ``coefficient_partials``
-        (slip^2, pressure, k of the strain rate)."""
+        direction ``lam``; ``lam_w`` the multiplier at the iterate), by the chain rule through
+        the law's ``coefficient_partials`` (slip^2, pressure, k of the strain rate)."""
         from ngsolve import InnerProduct
 
         from .forms import strain_rate
