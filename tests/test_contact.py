@@ -249,20 +249,23 @@ def test_the_separated_top_stays_off_the_roll(example1_unilateral):
 
 
 # --- exit codes --------------------------------------------------------------------------------
+LAB = {   # a slow lab pass: 0.02 m/s roll surface speed, m = 0.05, R/h0 = 10, 25 %
+    "name": "lab",
+    "pass": {"roll_radius": 0.1, "entry_thickness": 0.01, "exit_thickness": 0.0075,
+             "roll_angular_velocity": 0.2},
+    "plate": {"length": 0.1},
+    "material": {"K": 1e8, "m": 0.05},
+    "friction": {"law": "tresca", "factor": 0.3},
+    "solver": {"method": "steady", "threads": 1},
+    "output": {"figures": False, "vtk": False},
+}
+
+
 def test_a_leaking_penalty_is_not_a_success():
     """The report's penalty on a slow lab pass (0.02 m/s, m = 0.05) lets the strip through the
     roll by more than a fifth of the forward slip: exit code 7, the reason named; the same pass
     with exact contact is a success."""
-    lab = {
-        "name": "lab",
-        "pass": {"roll_radius": 0.1, "entry_thickness": 0.01, "exit_thickness": 0.0075,
-                 "roll_angular_velocity": 0.2},
-        "plate": {"length": 0.1},
-        "material": {"K": 1e8, "m": 0.05},
-        "friction": {"law": "tresca", "factor": 0.3},
-        "solver": {"method": "steady", "threads": 1},
-        "output": {"figures": False, "vtk": False},
-    }
+    lab = LAB
     pen, _ = solve(with_(lab, **{"contact.method": "penalty"}))
     ex, _ = solve(lab)
     assert ex["exit_code"] == 0 and ex["leak_to_slip"] < 0.05     # the traced tops' flux
@@ -358,3 +361,68 @@ def test_example1_sticking_zone_is_the_same_on_every_mesh(tmp_path):
         assert s["neutral_angle_in_sticking_zone"], mesh
     assert max(starts) - min(starts) < 0.002
     assert max(flux) - min(flux) < 0.002
+
+
+# --- exact scalings outside the comfortable corner: the slow lab pass -------------------------
+def test_slow_lab_pass_scales_exactly():
+    """The slow lab pass (0.02 m/s, m = 0.05) with exact contact: omega x 100 (eps0 x 100, the
+    law's own rate scale) leaves slip and angles as they were and scales every stress by
+    100^m; K x 1000 scales the stresses only; roll_axis_x moved to 5 m changes nothing. An exact
+    scaling of the equations (1e-9)."""
+    base, _ = solve(LAB)
+    fast, _ = solve(with_(LAB, **{"pass.roll_angular_velocity": 20.0, "material.eps0": 1e-2}))
+    hard, _ = solve(with_(LAB, **{"material.K": 1e11}))
+    moved, _ = solve(with_(LAB, **{"pass.roll_axis_x": 5.0}))
+    m = LAB["material"]["m"]
+    assert base["exit_code"] == 0, base["failure"]
+    kinematic = ("forward_slip", "neutral_angle", "contact_start_angle", "contact_end_angle",
+                 "mass_flux_error", "exit_thickness")
+    stresses = ("roll_force", "roll_torque", "min_contact_pressure", "plastic_power")
+    for s, factor in ((fast, 100.0**m), (hard, 1000.0), (moved, 1.0)):
+        assert s["exit_code"] == 0 and s["nonlinear_iterations"] == base["nonlinear_iterations"]
+        for key in kinematic:
+            assert s[key] == pytest.approx(base[key], rel=1e-9, abs=1e-15), key
+        for key in stresses:
+            rate = 100.0 if (s is fast and key == "plastic_power") else 1.0  # power: x U too
+            assert s[key] == pytest.approx(base[key] * factor * rate, rel=1e-9), key
+    assert moved["neutral_point"][0] == pytest.approx(base["neutral_point"][0] + 4.0, abs=1e-12)
+
+
+# --- the summary's contact figures against the files and the run ----------------------------
+def test_contact_figures_are_the_written_ones(finishing_runs):
+    """min_contact_pressure = - the largest normal stress of contact.csv; exit_thickness =
+    2 x flux / exit velocity (the head face); neutral_angle_flux = y(phi) U cos(phi) = q solved
+    with the summary's own flux (plumbing over the by-hand checks of the functions)."""
+    from hotroll.post.quantities import flux_neutral_angle
+    from hotroll.process.geometry import RollPass
+
+    for k, (s, prof) in finishing_runs.items():
+        assert s["min_contact_pressure"] == pytest.approx(-np.max(prof["normal_stress"]),
+                                                          rel=1e-12)
+        assert s["exit_thickness"] == pytest.approx(
+            2.0 * s["mass_flux_out"] / s["exit_velocity"], rel=1e-12)
+        p = FINISHING["pass"]
+        rp = RollPass(p["roll_radius"], p["entry_thickness"] / 2, p["exit_thickness"] / 2,
+                      p["roll_angular_velocity"])
+        assert s["neutral_angle_flux"] == pytest.approx(
+            flux_neutral_angle(rp, s["mass_flux_in"]), rel=1e-12)
+
+
+def test_pressure_last_update_is_the_last_newton_step(tmp_path, monkeypatch):
+    """pressure_last_update (Pa) = the last Newton step's multiplier change x U x s x K of the
+    run that wrote it (plumbing)."""
+    import hotroll.algorithms.steady as S
+
+    runs, solve_ = [], S.SteadyRun.solve
+
+    def keep(self, *args, **kw):
+        runs.append(self)
+        return solve_(self, *args, **kw)
+
+    monkeypatch.setattr(S.SteadyRun, "solve", keep)
+    s = run_case(case_from_dict(with_(example1_coarse("plu"), **{"material.K": 3e7})), tmp_path)
+    r = runs[-1]
+    expected = (r.result.stats[-1].multiplier_update * r.model.rp.u_roll * r.form.lam_scale
+                * r.model.material.K)
+    assert s["pressure_last_update"] == pytest.approx(expected, rel=1e-12)
+    assert 0.0 <= s["pressure_last_update"]
