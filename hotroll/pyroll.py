@@ -281,7 +281,10 @@ def forward_slip_ratio(self: RollPass):
 def neutral_angle(self: RollPass.Roll):
     """PyRolL's sign: negative towards the entry (hotroll's is positive there)."""
     rp = self.roll_pass
-    return -solve(rp)["neutral_angle"] if is_flat(rp) else None
+    if not is_flat(rp):
+        return None
+    ang = solve(rp)["neutral_angle"]  # null in a sticking zone: PyRolL's own hooks decide
+    return None if ang is None else -ang
 
 
 @RollPass.OutProfile.velocity(tryfirst=True)

@@ -8,6 +8,7 @@ cases, two of them refused by the schema (4 solves, about 3 s)."""
 from __future__ import annotations
 
 import csv
+import html
 import json
 import math
 import os
@@ -128,7 +129,7 @@ def _si(text: str, unit: str) -> list[float]:
 
 
 @pytest.mark.parametrize("key", ["roll_force", "roll_force_total", "roll_torque", "roll_power",
-                                 "forward_slip", "neutral_angle", "mean_pressure",
+                                 "forward_slip", "neutral_angle_flux", "mean_pressure",
                                  "contact_length", "mean_strain_rate", "exit_velocity",
                                  "mass_flux_error", "wall_time_s"])
 def test_run_page_numbers_are_the_summary_with_their_units(compared, key):
@@ -142,6 +143,19 @@ def test_run_page_numbers_are_the_summary_with_their_units(compared, key):
     assert float(number) == pytest.approx(s[key], rel=6e-6)
     assert si_unit.strip().replace("–", "-") == s["units"].get(key, "-")
     assert float(data) == s[key]
+
+
+def test_run_page_says_why_there_is_no_neutral_angle(compared):
+    """Example 1 sticks (a_f from (3.15)): the page has no neutral-angle number but the
+    summary's reason as a note, and the sticking zone in its unit."""
+    s = json.loads((compared / "fe" / "summary.json").read_text())
+    page = _page(compared / "report.html")
+    assert s["neutral_angle"] is None
+    assert not [c for a, c in page.rows if a.get("data-key") == "neutral_angle"]
+    text = " ".join((compared / "report.html").read_text().split())
+    assert f"no neutral angle: {s['neutral_angle_reason']}" in html.unescape(text)
+    shown, unit, _, _ = _summary_row(page, "sticking_zone")
+    assert _si(shown, unit) == pytest.approx(s["sticking_zone"], rel=6e-4)
 
 
 def test_run_page_units_everywhere_and_self_contained(compared):

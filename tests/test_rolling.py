@@ -111,10 +111,20 @@ def test_conservation(fixture, request):
 
 @pytest.mark.parametrize("fixture", ALL)
 def test_neutral_point_inside_arc(fixture, request):
+    """a_f = 3: the neutral point on the arc. a_f from (3.15) (about 1e4) sticks the arc: the
+    slip (about 1e-8 U) changes sign at random, so the neutral angle is null with the reason and
+    the sticking zone is the arc; the flux's neutral angle is on the arc either way."""
     s, c, _ = request.getfixturevalue(fixture)
     x_touch = 1.0 - math.sqrt(0.6**2 - 0.55**2)
-    assert x_touch < s["neutral_point"][0] < 1.0
-    assert 0.0 < s["neutral_angle"] < math.acos(1 - 0.05 / 0.6)
+    bite = math.acos(1 - 0.05 / 0.6)
+    if "estimated" in fixture:
+        assert s["neutral_angle"] is None and s["neutral_point"] is None
+        assert "sticking zone" in s["neutral_angle_reason"]
+        assert 0.0 <= s["sticking_zone"][1] < s["sticking_zone"][0] <= 1.25 * bite
+    else:
+        assert x_touch < s["neutral_point"][0] < 1.0 and s["neutral_angle_reason"] is None
+        assert 0.0 < s["neutral_angle"] < bite
+    assert 0.0 < s["neutral_angle_flux"] < bite
     assert s["forward_slip"] > 0 and s["exit_velocity"] > s["entry_velocity"]
 
 

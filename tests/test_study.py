@@ -180,6 +180,9 @@ def test_killed_and_run_again_ends_with_the_uninterrupted_table(files, serial, t
             # the solver's tolerance (1e-5 U; measured with exact contact 7e-9 on the slip,
             # 1.1e-6 on the torque)
             for k in ("roll_force", "roll_torque", "forward_slip", "neutral_angle"):
+                if a[k] is None:             # a sticking arc: no neutral point in either
+                    assert b[k] == "", (a["case"], k)
+                    continue
                 assert float(b[k]) == pytest.approx(a[k], rel=1e-5), (a["case"], k)
 
 

@@ -19,6 +19,7 @@ console = Console()
 err_console = Console(stderr=True)
 
 SUMMARY_KEYS = ["status", "free_surface", "h_contact", "neutral_point", "neutral_angle",
+                "neutral_angle_reason", "sticking_zone",
                 "roll_force", "roll_torque", "roll_power", "forward_slip", "mean_pressure",
                 "mean_flow_stress", "mean_strain_rate", "exit_strain", "roll_force_total",
                 "roll_torque_total", "mill_power", "a_f", "balance_error",
@@ -27,7 +28,8 @@ SUMMARY_KEYS = ["status", "free_surface", "h_contact", "neutral_point", "neutral
 THERMAL_KEYS = ["exit_temperature_mean", "exit_temperature_surface", "plastic_heat",
                 "friction_heat_to_strip", "heat_to_roll", "heat_to_air", "heat_balance_error"]
 #: Units of what the command line prints (per unit width of the upper roll).
-UNITS = {"h_contact": "m", "neutral_point": "m", "neutral_angle": "rad", "roll_force": "N/m",
+UNITS = {"h_contact": "m", "neutral_point": "m", "neutral_angle": "rad", "sticking_zone": "rad",
+         "roll_force": "N/m",
          "roll_torque": "N m/m", "roll_power": "W/m", "forward_slip": "-", "a_f": "m^-m",
          "balance_error": "-", "wall_time_s": "s", "time": "s", "m": "-"}
 

@@ -314,14 +314,20 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
     steady_solver = case.solver.method == "steady"
     mean = {k: float(np.nanmean([r[k] for r in solved])) if any(
         math.isfinite(r[k]) for r in solved) else math.nan for k in AVERAGED}
-    # the neutral angle: the split of the slip's signs (``Q.neutral_index``); where it lies in
-    # a sticking zone (slip below 1e-3 U) that is said, and the flux's (slab) neutral angle,
-    # which needs no slip sign, is given beside it
+    # the neutral angle: the split of the slip's signs (``Q.neutral_index``). Where it lies in
+    # a sticking zone (slip below 1e-3 U) in which the slip changes sign more than once, the
+    # sign is noise and no point is neutral: null with the reason. The flux's (slab) neutral
+    # angle, which needs no slip sign, is given beside it
     ang = mean["neutral_angle"]
     ang_flux = Q.flux_neutral_angle(rp, mean["mass_flux_in"])
     stick = Q.sticking_zone(prof, rp.u_roll, 2.0 * run.model.h)
     in_stick = stick is not None and math.isfinite(ang) and (
         stick[1] - run.model.h / rp.radius <= ang <= stick[0] + run.model.h / rp.radius)
+    flips = Q.slip_sign_changes(prof, stick) if in_stick else 0
+    no_neutral = (
+        f"the slip changes sign {flips} times in the sticking zone {stick[0]:.4g} .. "
+        f"{stick[1]:.4g} rad (|v_s| below {Q.STICKING_FLOOR:g} of the roll speed): the strip "
+        "moves with the roll, no point is neutral") if flips > 1 else None
     cx, cy = rp.centre
     outlet_driven = mean["outlet_penalty_power"] < -0.05 * mean["plastic_power"]
     steady = state.status == "steady"
@@ -353,8 +359,10 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "failure": state.failure or None,
         "converged": bool(steady and last["solver_converged"] and not outlet_driven),
         "steady_state": steady, "outlet_driven": bool(outlet_driven),
-        "neutral_point": [cx - rp.radius * math.sin(ang), cy - rp.radius * math.cos(ang)],
-        "neutral_angle": ang,
+        # docs/theory.md 1e: null with the reason where the slip's sign is noise
+        "neutral_point": None if no_neutral else [cx - rp.radius * math.sin(ang),
+                                                  cy - rp.radius * math.cos(ang)],
+        "neutral_angle": None if no_neutral else ang, "neutral_angle_reason": no_neutral,
         "neutral_angle_in_sticking_zone": bool(in_stick), "neutral_angle_flux": ang_flux,
         "sticking_zone": stick,
         **{k: mean[k] for k in ("roll_force", "roll_torque", "roll_power", "forward_slip",

@@ -76,6 +76,16 @@ def sticking_zone(profile: dict, u_roll: float, min_length: float,
     return [float(ang[best[0]]), float(ang[best[1]])]
 
 
+def slip_sign_changes(profile: dict, zone: list[float]) -> int:
+    """How often the slip changes sign between the nodes of ``zone`` ([start, end] angles,
+    rad); exact zeros are skipped. More than one: the neutral point is not unique there."""
+    ang = np.asarray(profile["angle"], dtype=float)
+    vs = np.asarray(profile["v_slip"], dtype=float)
+    sign = np.sign(vs[(ang <= zone[0]) & (ang >= zone[1])])
+    sign = sign[sign != 0]
+    return int(np.count_nonzero(np.diff(sign)))
+
+
 def flux_neutral_angle(rp, flux: float) -> float:
     """The neutral angle of the flux (the slab theory's): where the roll's horizontal speed
     U cos(phi) carries the strip's flux over its half-height, y(phi) U cos(phi) = q, with

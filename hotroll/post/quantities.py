@@ -14,7 +14,7 @@ from ..discretisation.rolling_form import TOP, RollingForm
 from ..process.contact import TopBoundary
 from .profile_figures import (STICKING_FLOOR, contact_loss, exit_corrected,  # noqa: F401
                               flux_neutral_angle, neutral_index, neutral_point, smoothed,
-                              sticking_zone)
+                              slip_sign_changes, sticking_zone)
 
 
 # --- nodal values on the top boundary ------------------------------------------------------

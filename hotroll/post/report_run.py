@@ -19,7 +19,7 @@ from .engineering import UNITS
 #: Summary keys of the table, by group (the remaining numbers follow under "other").
 GROUPS = {
     "Pass": ("roll_force", "roll_force_total", "roll_torque", "roll_torque_total", "roll_power",
-             "roll_power_total", "mill_power", "forward_slip", "neutral_angle", "neutral_point",
+             "roll_power_total", "mill_power", "forward_slip", "neutral_angle", "neutral_point", "sticking_zone",
              "mean_pressure", "mean_flow_stress", "mean_strain_rate", "contact_length",
              "entry_velocity", "exit_velocity", "exit_strain", "homogeneous_exit_strain",
              "horizontal_force", "a_f"),
@@ -40,6 +40,7 @@ LABELS = {
     "roll_power": "roll power, one roll", "roll_power_total": "roll power, whole width",
     "mill_power": "mill power, both rolls", "forward_slip": "forward slip",
     "neutral_angle": "neutral angle", "neutral_point": "neutral point (x, y)",
+    "sticking_zone": "sticking zone (from, to)",
     "mean_pressure": "mean roll pressure", "mean_flow_stress": "mean flow stress in the gap",
     "mean_strain_rate": "mean strain rate in the gap", "contact_length": "contact arc length",
     "entry_velocity": "entry velocity", "exit_velocity": "exit velocity",
@@ -169,6 +170,8 @@ def run_warnings(s: dict) -> list[dict]:
     for a, b in s.get("contact_loss") or []:
         add("warn", f"contact loss: the normal stress is tensile from x = {a:.4g} m to "
                     f"{b:.4g} m; the strip would leave the roll there")
+    if s.get("neutral_angle_reason"):
+        add("info", f"no neutral angle: {s['neutral_angle_reason']}")
     if (s.get("unconverged_steps_in_window") or 0) > 0:
         add("warn", f"{s['unconverged_steps_in_window']} step(s) of the averaging window did "
                     f"not converge (left out of the means)")
