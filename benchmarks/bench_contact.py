@@ -38,9 +38,9 @@ CASES = ["example1@C2", "example1@M2", "example2", "hot_strip_finishing", "rough
 
 def one(name: str, method: str, threads: int) -> dict:
     """Run one case in this process and return its row."""
-    from hotroll.app.config import load_case
-    from hotroll.app.examples import example_path
-    from hotroll.app.runner import run_case
+    from hotroll.config.case import load_case
+    from hotroll.examples import example_path
+    from hotroll.workflows.runner import run_case
 
     example, _, mesh = name.partition("@")
     over = {"solver.method": "steady", "solver.threads": threads, "output.figures": False,

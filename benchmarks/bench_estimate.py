@@ -1,5 +1,5 @@
-"""Benchmark (not a test): the memory and time estimate made before meshing (app/estimate.py)
-against what runs really take. The fits in app/estimate.py come from this table.
+"""Benchmark (not a test): the memory and time estimate made before meshing (workflows/estimate.py)
+against what runs really take. The fits in workflows/estimate.py come from this table.
 
 Part 1, the mesh count: for bundled passes, sizes and both methods, the estimated triangles
 against the mesh the solver builds (no solve). Part 2, the cost: Example 1, steady, one
@@ -32,10 +32,10 @@ MESH_CASES = [("example1", {"solver.method": "steady"}),
 
 COST = r'''
 import json, resource, sys, time
-from hotroll.app.config import load_case
-from hotroll.app.estimate import estimate
-from hotroll.app.examples import example_path
-from hotroll.app.runner import run_case
+from hotroll.config.case import load_case
+from hotroll.workflows.estimate import estimate
+from hotroll.examples import example_path
+from hotroll.workflows.runner import run_case
 h, out = float(sys.argv[1]), sys.argv[2]
 case = load_case(example_path("example1")).with_overrides(**{
     "solver.method": "steady", "mesh.h_contact": h, "solver.threads": 1,
@@ -51,12 +51,12 @@ print(json.dumps({"h_mm": 1e3 * h, "dofs": s["dofs"], "est_dofs": est.dofs,
 
 
 def mesh_rows() -> list[dict]:
-    from hotroll.algorithms.steady import SteadyRun
-    from hotroll.app.config import load_case
-    from hotroll.app.estimate import estimate
-    from hotroll.app.examples import example_path
-    from hotroll.app.runner import build_model, steady_settings
-    from hotroll.discretisation.mesh import build_plate_mesh
+    from hotroll.config.case import load_case
+    from hotroll.examples import example_path
+    from hotroll.fem.mesh import build_plate_mesh
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.estimate import estimate
+    from hotroll.workflows.runner import build_model, steady_settings
 
     rows = []
     for name, over in MESH_CASES:

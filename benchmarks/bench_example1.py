@@ -31,8 +31,18 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "scripts"))
 
-from _common import (add_common_args, common_overrides, flat, list_arg, make_case,  # noqa: E402
-                     mesh_arg, mesh_label, print_table, run, write_table)
+from _common import (  # noqa: E402
+    add_common_args,
+    common_overrides,
+    flat,
+    list_arg,
+    make_case,
+    mesh_arg,
+    mesh_label,
+    print_table,
+    run,
+    write_table,
+)
 
 METHODS = ("newton", "picard")
 COLUMNS = ["mesh", "method", "dofs", "steps", "status", "neutral_x", "neutral_y",

@@ -30,10 +30,10 @@ COLUMNS = ["case", "friction", "material", "h_contact_m", "dofs", "newton_iterat
 
 
 def one(name: str) -> dict:
-    from hotroll.app.examples import example_path
+    from hotroll.examples import example_path
 
     with tempfile.TemporaryDirectory() as tmp:
-        cmd = [sys.executable, "-m", "hotroll.app.cli", "run", str(example_path(name)),
+        cmd = [sys.executable, "-m", "hotroll.cli", "run", str(example_path(name)),
                "--out", tmp, "--no-figures"]
         over = ["--mesh", "auto"]
         t0 = time.perf_counter()

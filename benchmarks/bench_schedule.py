@@ -43,7 +43,7 @@ def _run(schedule: Path, threads: int, cold: bool) -> tuple[float, dict]:
         path = Path(tmp) / "schedule.toml"
         path.write_text(to_toml(data))
         t0 = time.perf_counter()
-        proc = subprocess.run([sys.executable, "-m", "hotroll.app.cli", "schedule", str(path),
+        proc = subprocess.run([sys.executable, "-m", "hotroll.cli", "schedule", str(path),
                                "--out", str(Path(tmp) / "out"), "--no-figures"],
                               capture_output=True, text=True)
         wall = time.perf_counter() - t0
@@ -53,7 +53,7 @@ def _run(schedule: Path, threads: int, cold: bool) -> tuple[float, dict]:
 
 
 def main(argv=None) -> int:
-    from hotroll.schedule.examples import schedule_path
+    from hotroll.examples import schedule_path
 
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--schedule", type=Path, default=schedule_path("finishing_mill"))

@@ -42,10 +42,10 @@ def one(mesh, threads: int, transient: bool, a_f: str = "estimate") -> dict:
     """Run one mesh in this process and return its row."""
     import ngsolve
 
-    from hotroll.algorithms.steady import SteadyRun
-    from hotroll.app.runner import build_model, run_case, steady_settings
-    from hotroll.physics.material import NortonHoff
-    from hotroll.post import quantities as Q
+    from hotroll.fem import quantities as Q
+    from hotroll.model.material import NortonHoff
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.runner import build_model, run_case, steady_settings
 
     ngsolve.SetNumThreads(threads)
     case = example1(**{"mesh.h_contact": mesh, "solver.method": "steady",

@@ -1,8 +1,9 @@
 """Benchmark (not a test): throughput of a 200-case study on 2 cores (issue 18), serial against
 a local dask cluster of 2 workers, warm starts on and off.
 
-The study: the hot strip finishing pass (hotroll/app/examples/hot_strip_finishing.toml, its
-automatic mesh, steady solver, figures and VTK off) over 20 exit thicknesses (8 mm -> 5.0-7.2 mm, 10-38 % reduction) x 10 roll speeds
+The study: the hot strip finishing pass (hotroll/examples/cases/hot_strip_finishing.toml, its
+automatic mesh, steady solver, figures and VTK off) over 20 exit thicknesses
+(8 mm -> 5.0-7.2 mm, 10-38 % reduction) x 10 roll speeds
 (7-21 rad/s, 2.5-7.4 m/s).
 Each mode is one fresh ``hotroll study`` process (imports, cluster start, meshing and form
 compilation included: cold); the table gives the wall time and cases per minute, and for the
@@ -48,7 +49,7 @@ def run_mode(mode: str, n_thick: int, n_speed: int, warm: bool) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "study.toml"
         path.write_text(study_text(n_thick, n_speed, warm))
-        cmd = [sys.executable, "-m", "hotroll.app.cli", "study", str(path), "--out",
+        cmd = [sys.executable, "-m", "hotroll.cli", "study", str(path), "--out",
                str(Path(tmp) / "out")]
         cmd += ["--serial"] if mode == "serial" else ["--workers", "2"]
         t0 = time.perf_counter()

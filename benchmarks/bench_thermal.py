@@ -49,7 +49,7 @@ def _run(name: str, threads: int, isothermal: bool) -> dict:
     """One cold `hotroll run` of case ``name`` (without [thermal] if ``isothermal``)."""
     import tomllib
 
-    from hotroll.app.examples import example_path
+    from hotroll.examples import example_path
 
     example, overrides = CASES[name]
     with tempfile.TemporaryDirectory() as tmp:
@@ -65,7 +65,7 @@ def _run(name: str, threads: int, isothermal: bool) -> dict:
         data.setdefault("output", {}).update(figures=False, vtk=False)
         case = Path(tmp) / "case.toml"
         case.write_text(to_toml(data))
-        cmd = [sys.executable, "-m", "hotroll.app.cli", "run", str(case), "--out",
+        cmd = [sys.executable, "-m", "hotroll.cli", "run", str(case), "--out",
                str(Path(tmp) / "out")]
         proc = subprocess.run(cmd, capture_output=True, text=True)
         if proc.returncode != 0:

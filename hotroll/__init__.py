@@ -1,8 +1,11 @@
 """hotroll: finite-element simulation of hot flat rolling (Touloupoulos 2020 scheme and beyond).
 
 From Python: ``hotroll.load_case``, ``hotroll.solve(case) -> Result``, ``hotroll.study``,
-``hotroll.roll_schedule`` (``hotroll/api.py``; the tutorial is docs/tutorial.md). (The
-packages ``hotroll.studies`` and ``hotroll.schedule`` hold their machinery.)
+``hotroll.roll_schedule`` (``hotroll/api.py``; the tutorial is docs/tutorial.md).
+
+Layers, each importing only those below it (the import contract in pyproject.toml):
+cli, api, pyroll -> workflows -> results -> solvers -> fem -> config -> theory -> model ->
+examples, files.
 """
 
 __version__ = "0.1.0"

@@ -5,7 +5,7 @@ for a ``RollPass`` whose groove is a ``FlatGroove`` the roll force, the roll tor
 forward slip, the neutral angle, the exit velocity, the exit strain and the exit temperature
 come from one steady thermo-mechanical hotroll solve of the pass; other passes return None
 and are left to PyRolL's other plugins. With ``Config.TRANSPORT_COOLING`` a ``Transport``
-cools the strip's mean temperature with hotroll's interpass model (``thermal/interpass.py``).
+cools the strip's mean temperature with hotroll's interpass model (``model/interpass.py``).
 
 PyRolL's conventions (docs/notes/pyroll-api.md): SI, heights are full thicknesses, the roll
 force is the force on one roll over the whole width (N), the torque that of one roll (N m),
@@ -17,7 +17,7 @@ What the FE pass takes from PyRolL:
   ``front_tension``;
 - the strip: ``in_profile.temperature``, ``in_profile.strain``; the flow stress
   ``in_profile.flow_stress_function`` (e.g. pyroll-freiberg-flow-stress) as a Hensel-Spittel
-  law fitted over the pass's range (``physics/flow_stress_fit.py``; the fit's error is in
+  law fitted over the pass's range (``model/flow_stress_fit.py``; the fit's error is in
   ``RollPass.hotroll_result``), or else the hotroll grade ``in_profile.material`` names;
   ``density``, ``specific_heat_capacity``, ``thermal_conductivity`` (else ``Config``);
 - friction ``RollPass.coulomb_friction_coefficient`` (else ``Config.FRICTION``), roll
@@ -28,8 +28,8 @@ PyRolL evaluates the force once and the torque about four times per iteration of
 ``Unit.solve``, and re-solves every unit on every iteration of a ``PassSequence``: the FE
 solve is cached on the pass, keyed on its case (inputs rounded: temperatures to 0.01 K,
 strains to 1e-6, lengths to 1 um); a pass whose inputs changed starts from its previous
-solution, a new pass from the last pass solved, mapped onto its mesh (``app/sweep.py``,
-``algorithms/transfer.py``). ``STATS`` counts the FE solves and cache hits.
+solution, a new pass from the last pass solved, mapped onto its mesh (``workflows/sweep.py``,
+``solvers/transfer.py``). ``STATS`` counts the FE solves and cache hits.
 """
 from __future__ import annotations
 
@@ -42,7 +42,7 @@ try:
 except ImportError as e:      # pragma: no cover - the extra is not installed
     raise ImportError("hotroll.pyroll needs pyroll-core: pip install 'hotroll[pyroll]'") from e
 
-from .app.config import Case, case_from_dict
+from hotroll.config.case import Case, case_from_dict
 
 
 class Config:
@@ -63,7 +63,7 @@ class Config:
 STATS = {"fe_solves": 0, "cache_hits": 0, "warm_starts": 0}
 
 
-_SWEEP = None    # the solved passes (app/sweep.py), shared by all passes
+_SWEEP = None    # the solved passes (workflows/sweep.py), shared by all passes
 
 
 def reset_stats() -> None:
@@ -110,7 +110,7 @@ def _material(rp, T0: float, e0: float, h0: float, h1: float, U: float, lc: floa
     ip = rp.in_profile
     func = _value(ip, "flow_stress_function", None)
     if func is not None:
-        from .physics.flow_stress_fit import fit_hensel_spittel
+        from hotroll.model.flow_stress_fit import fit_hensel_spittel
 
         # PyRolL asks a pass for its hooks dozens of times: the fit (343 calls of the
         # function, ~4 ms) once per pass and box
@@ -129,7 +129,7 @@ def _material(rp, T0: float, e0: float, h0: float, h1: float, U: float, lc: floa
                                  "temperature": fit.temperature})
         table, info = fits[box]
         return dict(table), dict(info)
-    from .physics.grades import list_grades
+    from hotroll.model.grades import list_grades
 
     names = _value(ip, "material", None)
     names = [names] if isinstance(names, str) else list(names or [])
@@ -202,8 +202,8 @@ def pass_case(rp) -> tuple[Case, dict]:
 def solve(rp) -> dict:
     """hotroll's summary of a flat pass: cached on the pass, keyed on its case; a changed
     case starts from the previous solution where the mesh is the same."""
-    from .app.runner import run_case
-    from .app.sweep import Sweep
+    from hotroll.workflows.runner import run_case
+    from hotroll.workflows.sweep import Sweep
 
     case, fit = pass_case(rp)
     key = case.to_toml()
@@ -239,8 +239,8 @@ def _outlet_means(case: Case, s: dict) -> tuple[float, float]:
     by its heat content)."""
     import numpy as np
 
-    from .process.profile import ThicknessProfile
-    from .thermal.interpass import enthalpy_mean
+    from hotroll.model.interpass import enthalpy_mean
+    from hotroll.model.profile import ThicknessProfile
 
     prof = s["exit_profile"]
     T = ThicknessProfile(tuple(prof["eta"]), tuple(prof["temperature"]))
@@ -311,8 +311,8 @@ def transport_temperature(self: Transport.OutProfile):
     1D conduction, convection and radiation (``thermal/interpass.cool``)."""
     if not Config.TRANSPORT_COOLING:
         return None
-    from .thermal.interpass import cool
-    from .thermal.properties import ThermalProperties
+    from hotroll.model.interpass import cool
+    from hotroll.model.thermal_properties import ThermalProperties
 
     tr = self.transport
     ip = tr.in_profile

@@ -13,9 +13,9 @@ import traceback
 from pathlib import Path
 from typing import Any, Iterable, Sequence
 
-from hotroll.app.config import MESH_TABLE, Case, CaseError, load_case
-from hotroll.app.examples import example_path
-from hotroll.app.output import write_csv
+from hotroll.config.case import MESH_TABLE, Case, CaseError, load_case
+from hotroll.examples import example_path
+from hotroll.results.output import write_csv
 
 #: Summary statuses after which re-running the same case would change nothing.
 FINISHED = ("steady", "end_time", "max_steps", "failed")
@@ -106,7 +106,7 @@ def finished_summary(case: Case, out: Path) -> dict | None:
     fingerprint (the physics; threads, limits and output options may differ)."""
     import json
 
-    from hotroll.app.runner import fingerprint
+    from hotroll.workflows.runner import fingerprint
 
     toml, summ = Path(out) / "case.toml", Path(out) / "summary.json"
     try:
@@ -121,7 +121,7 @@ def finished_summary(case: Case, out: Path) -> dict | None:
 
 def run(case: Case, out: Path, label: str, *, resume: bool = True) -> dict:
     """Run (or reuse) one case; an exception becomes ``status = "error: ..."`` in the result."""
-    from hotroll.app.runner import run_case
+    from hotroll.workflows.runner import run_case
 
     out = Path(out)
     if resume and (done := finished_summary(case, out)) is not None:

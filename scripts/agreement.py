@@ -24,10 +24,20 @@ import argparse
 import math
 import sys
 
-from _common import (add_common_args, common_overrides, has_output, list_arg, mesh_arg,
-                     mesh_label, print_table, run, write_table)
-from hotroll.app.config import CaseError, load_case
-from hotroll.app.examples import example_path
+from _common import (
+    add_common_args,
+    common_overrides,
+    has_output,
+    list_arg,
+    mesh_arg,
+    mesh_label,
+    print_table,
+    run,
+    write_table,
+)
+
+from hotroll.config.case import CaseError, load_case
+from hotroll.examples import example_path
 
 CASES = {"example1": "1", "example2": "2", "example3_m015": "3, m = 0.15",
          "example3_m025": "3, m = 0.25"}

@@ -17,16 +17,24 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-
 from pathlib import Path
 
 import numpy as np
+from _common import (
+    add_common_args,
+    common_overrides,
+    has_output,
+    list_arg,
+    make_case,
+    mesh_arg,
+    mesh_label,
+    print_table,
+    run,
+    write_table,
+)
 from scipy.optimize import brentq
 
-from hotroll.app.config import CaseError, load_case
-
-from _common import (add_common_args, common_overrides, has_output, list_arg, make_case,
-                     mesh_arg, mesh_label, print_table, run, write_table)
+from hotroll.config.case import CaseError, load_case
 
 MESHES = ["C1", "C2", "M1", "M2", "F1", "F2", 0.0015]
 BANDS = {"roll_force": ("force_band_pct", lambda d, v: 100.0 * d / abs(v.mean())),

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Mutation testing (mutmut 3) of the physics (hotroll/physics), the post-processed quantities
-# (hotroll/post/quantities.py, engineering.py) and hotroll/algorithms/settling.py (the steady-state
+# (hotroll/fem/quantities.py, engineering.py) and hotroll/solvers/settling.py (the steady-state
 # test and the summary windows); [tool.mutmut] in pyproject.toml says what is mutated and which
 # tests may run. mutmut changes one thing in one function at a time (a < for a <=, 2.0 for 3.0, a
 # dropped argument, ...) and runs the cheap tests that call that function: a mutant the tests
@@ -26,7 +26,7 @@
 #                 so run without it (the default: mutants/ is deleted) for a score to record.
 #     --report    no run: only write the two files below again from mutants/ (after re-testing
 #                 some mutants with `.venv/bin/mutmut run NAME`, say)
-#     MUTANT_GLOB only these mutants, e.g. 'hotroll.physics.friction_estimate.*'
+#     MUTANT_GLOB only these mutants, e.g. 'hotroll.model.friction_estimate.*'
 #                 (names as `.venv/bin/mutmut results` prints them); the files get a -partial suffix.
 #
 # Writes docs/mutation/results-<date>.txt (counts and score, per file, "no tests" per function)

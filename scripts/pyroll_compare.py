@@ -33,15 +33,15 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def _schedule(name: str):
-    from hotroll.schedule.config import load_schedule
-    from hotroll.schedule.examples import schedule_path
+    from hotroll.config.schedule import load_schedule
+    from hotroll.examples import schedule_path
 
     path = Path(name)
     return load_schedule(path if path.exists() else schedule_path(name))
 
 
 def run_hotroll(sch, out: Path) -> list[dict]:
-    from hotroll.schedule.run import run_schedule
+    from hotroll.workflows.schedule import run_schedule
 
     sch.output.figures = False
     for p in sch.passes:            # as PyRolL's Transport: full recrystallisation

@@ -1,6 +1,6 @@
 """FE against slab theory on thin strip: roll force, torque, neutral angle, forward slip.
 
-A grid of passes, each run through ``hotroll.app.compare.run_compare`` (steady FE, automatic
+A grid of passes, each run through ``hotroll.workflows.compare.run_compare`` (steady FE, automatic
 mesh, Coulomb friction) beside the slab (Orowan) solution and Sims' closed form. Grid: L/h_mean
 in {2, 4, 6} (L = sqrt(R dh), h_mean = (h0 + h1)/2), reduction r = dh/h0 in {0.1, 0.3, 0.5},
 Coulomb mu in {0.1, 0.2, 0.3}; one roll radius R (default 0.4 m) and roll surface speed U
@@ -37,12 +37,11 @@ from pathlib import Path
 from typing import Any, Sequence
 
 import numpy as np
-
-from hotroll.app.compare import _read_contact
-from hotroll.app.config import Case, CaseError, case_from_dict, load_case
-from hotroll.app.output import write_csv
-
 from _common import list_arg, print_table
+
+from hotroll.config.case import Case, CaseError, case_from_dict, load_case
+from hotroll.results.output import write_csv
+from hotroll.workflows.compare import _read_contact
 
 SQRT3 = math.sqrt(3.0)
 LH = [2.0, 4.0, 6.0]
@@ -154,7 +153,7 @@ def code_version() -> str:
 
 
 def _same_physics(case: Case, out: Path) -> bool:
-    from hotroll.app.runner import fingerprint
+    from hotroll.workflows.runner import fingerprint
 
     try:
         return fingerprint(load_case(out / "fe" / "case.toml")) == fingerprint(case)
@@ -165,7 +164,7 @@ def _same_physics(case: Case, out: Path) -> bool:
 def run_one(case: Case, out: Path, *, resume: bool) -> dict:
     """run_compare (or reuse its compare.json); returns {"compare", "summary", "wall_s",
     "reused"} or {"error": ...}."""
-    from hotroll.app.compare import run_compare
+    from hotroll.workflows.compare import run_compare
 
     out = Path(out)
     record = out / "study_run.json"
@@ -308,8 +307,8 @@ def fe_diagnostics(case: Case, fe_dir: Path, summary: dict, slab) -> dict:
 def slab_variants(case: Case, exit_speed: float | None) -> dict:
     """The case's slab with small-angle geometry, with a constant (arc-mean) flow stress, and
     its sticking share (the share of the contact angle where mu p > k)."""
-    from hotroll.app.compare import arc_mean_flow_stress, map_case
     from hotroll.theory import constant_flow_stress, solve_pass
+    from hotroll.workflows.compare import arc_mean_flow_stress, map_case
 
     s = map_case(case)
     args = (s.roll_radius, s.h0, s.h1, s.roll_speed, s.friction)
@@ -342,8 +341,8 @@ def slab_variants(case: Case, exit_speed: float | None) -> dict:
 
 def slab_force(case: Case, **options) -> float:
     """The case's slab force with extra ``solve_pass`` options (nan if it fails)."""
-    from hotroll.app.compare import map_case
     from hotroll.theory import solve_pass
+    from hotroll.workflows.compare import map_case
 
     s = map_case(case)
     try:
@@ -645,8 +644,8 @@ TENSION_MD = [
 
 
 def tension_mode(args: argparse.Namespace) -> int:
-    from hotroll.app.compare import map_case
     from hotroll.theory import constant_flow_stress, solve_pass
+    from hotroll.workflows.compare import map_case
 
     lh, r, mu = TENSION_CASE
     ref = build_case(lh, r, mu, args)

@@ -15,4 +15,7 @@ if ! command -v chromium >/dev/null && [ -z "${HOTROLL_SKIP_BROWSER:-}" ]; then
          "(or HOTROLL_SKIP_BROWSER=1 to skip the browser part)" >&2
   fi
 fi
+# the layers import one way and no package has an import cycle (docs/architecture.md)
+.venv/bin/lint-imports --no-cache
+.venv/bin/ruff check hotroll tests scripts benchmarks
 .venv/bin/python -m pytest -q -n 2 --dist loadfile "$@"

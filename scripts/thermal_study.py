@@ -1,4 +1,4 @@
-"""Thermal mesh study (docs/studies/thermal_mesh.md): hotroll/app/examples/thermal_pass.toml with the
+"""Thermal mesh study (docs/studies/thermal_mesh.md): hotroll/examples/cases/thermal_pass.toml with the
 temperature on its own strip mesh, the mechanics' contact size and the strip mesh's refinement
 varied; and the isothermal pass on each mechanics mesh (the cost ratio). Prints a Markdown
 table; one thread.
@@ -12,9 +12,9 @@ import os
 import time
 from pathlib import Path
 
-from hotroll.app.config import load_case
-from hotroll.app.examples import example_path
-from hotroll.app.runner import run_case
+from hotroll.config.case import load_case
+from hotroll.examples import example_path
+from hotroll.workflows.runner import run_case
 
 CASE = example_path("thermal_pass")
 KEYS = ("roll_force", "exit_temperature_mean", "exit_temperature_surface", "heat_to_roll",

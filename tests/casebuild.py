@@ -4,8 +4,7 @@ from __future__ import annotations
 import copy
 import math
 
-from hotroll.app.config import Case, case_from_dict
-
+from hotroll.config.case import Case, case_from_dict
 
 #: Example 1 on a coarse contact mesh, steady, no figures: the base of the study and report
 #: tests (about 1 s a run).

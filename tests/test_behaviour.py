@@ -3,19 +3,18 @@ through the command line with its exit codes, the VTU file read back, the figure
 their data. Coarse cases of Example 1's geometry (h = 0.02 m)."""
 from __future__ import annotations
 
-import re
 import math
+import re
 from pathlib import Path
 
 import numpy as np
 import pytest
+from casebuild import build_case, example1_coarse
 from typer.testing import CliRunner
 
-from hotroll.app.cli import app
-from hotroll.app.outcome import EXIT_CODES, exit_code
-from hotroll.app.runner import run_case
-
-from casebuild import build_case, example1_coarse
+from hotroll.cli import app
+from hotroll.results.outcome import EXIT_CODES, exit_code
+from hotroll.workflows.runner import run_case
 
 BASE = example1_coarse("behaviour", friction={"a_f": 3.0}, solver={
     "method": "transient", "end_time": 0.04, "threads": 1, "checkpoint_every": 4})
@@ -29,7 +28,7 @@ class _Counter:
     """Counts TransientRun._solve calls; raises KeyboardInterrupt (a kill) at call ``stop``."""
 
     def __init__(self, monkeypatch, stop=None):
-        from hotroll.algorithms.transient import TransientRun
+        from hotroll.solvers.transient import TransientRun
 
         self.n, self.stop, real = 0, stop, TransientRun._solve
 
@@ -85,8 +84,8 @@ def test_checkpoint_round_trip(tmp_path):
     bilateral contact set (even where a fresh detection would differ), the strain at the
     nodes, step, time and history; a checkpoint of another case (its fingerprint) is not
     used."""
-    from hotroll.algorithms.transient import TransientRun
-    from hotroll.app.runner import build_model
+    from hotroll.solvers.transient import TransientRun
+    from hotroll.workflows.runner import build_model
 
     case = build_case(BASE, "material", {"law": "hensel-spittel", "A": 1.0, "m2": 0.2,
                                          "m3": 0.2})
@@ -137,8 +136,8 @@ def test_transient_windows_by_hand():
     0.2 pi m/s, 3 h / (U dt) = 0.06 / (0.2 pi / 300) = 28.6 steps -> 3 periods of 10 = 30
     steps; steady window max(6, 3) periods = 60 steps. With checkpoints: the mesh is saved
     once at the start, in the run's checkpoint directory."""
-    from hotroll.algorithms.transient import TransientRun
-    from hotroll.app.runner import build_model
+    from hotroll.solvers.transient import TransientRun
+    from hotroll.workflows.runner import build_model
 
     model, settings = build_model(build_case(BASE))
     assert settings.project_every == 10 and settings.dt == pytest.approx(0.02 / 6)
@@ -155,7 +154,7 @@ def test_steady_test_looks_at_the_last_two_windows_only():
     a start-up transient (force 50 % higher) in the rows before them, or a NaN forward slip
     there (the head not yet past the exit at the start), does not keep a settled run from
     being steady; the same transient inside the windows does."""
-    from hotroll.algorithms.settling import steady_reached
+    from hotroll.solvers.settling import steady_reached
 
     def row(f, slip=0.03):
         return {"roll_force": 0.5 * f, "roll_torque": 0.1 * f, "strain_rate_measure": 0.09 * f,
@@ -236,8 +235,8 @@ def test_cli_exit_codes_of_real_runs(tmp_path, monkeypatch):
     assert s["outlet_driven"] and not s["converged"]
     assert s["outlet_penalty_power"] < -0.05 * s["plastic_power"]
 
-    import hotroll.algorithms.transient as T
-    from hotroll.algorithms.nonlinear import LinearSolveError
+    import hotroll.solvers.transient as T
+    from hotroll.solvers.nonlinear import LinearSolveError
 
     real, calls = T.solve, {"n": 0}
 
@@ -260,7 +259,7 @@ def test_vtu_has_the_fields_of_the_run(cli_run):
 
     _, out = cli_run
     s = json.loads((out / "summary.json").read_text())
-    import meshio     # an independent reader of the VTK XML format (what ParaView opens)
+    import meshio  # an independent reader of the VTK XML format (what ParaView opens)
 
     vtu = meshio.read(out / "fields.vtu")
     pts, data = vtu.points, {k: np.asarray(v).reshape(len(vtu.points), -1)
@@ -282,7 +281,7 @@ def test_vtu_has_the_fields_of_the_run(cli_run):
 def test_figures_show_finite_data_inside_their_axes(tmp_path, monkeypatch):
     """Every figure of a real run: each axes with data has finite lines inside its limits, and
     the contact figure's curves are the written contact profile."""
-    import hotroll.post.plots as P
+    import hotroll.results.figures as P
 
     s = run_case(build_case(BASE, **{"solver.method": "steady"}), tmp_path)
     figs = {}
@@ -321,13 +320,13 @@ def test_figures_show_finite_data_inside_their_axes(tmp_path, monkeypatch):
     a_vs, a_sn = figs["fig_contact.png"].axes[:2]
 
     def has(ax, y):
-        return any(len(l.get_xdata()) == len(y)
-                   and np.allclose(np.asarray(l.get_xdata(), float), contact["x"])
-                   and np.allclose(np.asarray(l.get_ydata(), float), y) for l in ax.get_lines())
+        return any(len(line.get_xdata()) == len(y)
+                   and np.allclose(np.asarray(line.get_xdata(), float), contact["x"])
+                   and np.allclose(np.asarray(line.get_ydata(), float), y) for line in ax.get_lines())
 
     assert has(a_vs, contact["v_slip"]) and has(a_sn, contact["normal_stress"])
-    assert any(np.allclose(np.asarray(l.get_xdata(), float), s["neutral_point"][0])
-               for l in a_vs.get_lines())
+    assert any(np.allclose(np.asarray(line.get_xdata(), float), s["neutral_point"][0])
+               for line in a_vs.get_lines())
     assert s["converged"]
 
 
@@ -337,9 +336,9 @@ def test_exit_figures_wait_for_the_head():
     by l_c/4 + 2h (Q.measure): before, the exit velocity, flux, thickness and forward slip are
     NaN; just past it they are the head face's (here the unsolved start: v = 0, so the forward
     slip is -1 and the thickness that of the head face, in the roll gap at the start)."""
-    from hotroll.algorithms.transient import TransientRun
-    from hotroll.app.runner import build_model
-    from hotroll.post import quantities as Q
+    from hotroll.fem import quantities as Q
+    from hotroll.solvers.transient import TransientRun
+    from hotroll.workflows.runner import build_model
 
     model, settings = build_model(build_case(BASE))
     run = TransientRun(model, settings)

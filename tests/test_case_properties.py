@@ -45,9 +45,9 @@ from hypothesis import HealthCheck, Phase, example, given, settings
 from hypothesis import strategies as st
 
 import hotroll
-from hotroll.app import config as C
-from hotroll.app.outcome import EXIT_CODES, exit_code
-from hotroll.app.runner import CONSERVATION_TOL
+from hotroll.config import case as C
+from hotroll.results.outcome import EXIT_CODES, exit_code
+from hotroll.workflows.runner import CONSERVATION_TOL
 
 # ------------------------------------------------------------------------------------------------
 # 1. invalid cases
@@ -246,7 +246,7 @@ LINE = re.compile(r"^[a-z_][a-z0-9_]*(\.[A-Za-z0-9_]+)*: \S")
 def refused(d: dict) -> list[str]:
     """The problem lines of the CaseError ``d`` is refused with (the mesher, if reached,
     raises: the case must be refused before anything is computed)."""
-    with mock.patch("hotroll.discretisation.mesh._graded_mesh", side_effect=AssertionError(
+    with mock.patch("hotroll.fem.mesh._graded_mesh", side_effect=AssertionError(
             "meshed a refused case")), pytest.raises(hotroll.CaseError) as info:
         hotroll.case_from_dict(d)
     problems = info.value.problems
@@ -476,11 +476,11 @@ def to_toml(d: dict) -> str:
 def test_hotroll_run_refuses_a_bad_case_file_with_exit_code_2(broken):
     from typer.testing import CliRunner
 
-    from hotroll.app.cli import app
+    from hotroll.cli import app
 
     d, dotted = broken
     with tempfile.TemporaryDirectory() as tmp, mock.patch(
-            "hotroll.discretisation.mesh._graded_mesh",
+            "hotroll.fem.mesh._graded_mesh",
             side_effect=AssertionError("meshed a refused case")):
         path = Path(tmp) / "case.toml"
         path.write_text(to_toml(d), encoding="utf-8")
@@ -671,7 +671,7 @@ def test_k_times_1000_multiplies_forces_and_powers_only(d):
 
 def test_conservation_check_of_the_runner_by_hand():
     """runner.conservation_problem: each check over its tolerance named, none under it."""
-    from hotroll.app.runner import conservation_problem
+    from hotroll.workflows.runner import conservation_problem
 
     ok = {"mass_flux_error": 0.0199, "power_balance_error": -0.0199, "roll_surface_speed": 0.05}
     assert conservation_problem(ok) is None
@@ -702,8 +702,8 @@ def test_a_failing_linear_solve_ends_a_steady_run_with_its_reason(monkeypatch):
     factor 1, R/h0 = 100, 50 %: no direct solver reached 1e-6) escaped the runner as a
     traceback; now the continuation in m is tried, and if that fails too the run ends with
     exit code 3 and the reason."""
-    import hotroll.algorithms.steady as S
-    from hotroll.algorithms.nonlinear import LinearSolveError
+    import hotroll.solvers.steady as S
+    from hotroll.solvers.nonlinear import LinearSolveError
 
     real, calls = S.newton, {"n": 0, "fail": {1}}
 

@@ -1,4 +1,4 @@
-"""``hotroll compare``: FE versus slab theory for one pass (app/compare.py).
+"""``hotroll compare``: FE versus slab theory for one pass (workflows/compare.py).
 
 One FE run of a small pass (R = 0.3 m, 0.1 -> 0.08 m full thickness, omega = 1 rad/s, Coulomb
 mu = 0.3, Norton-Hoff K = 1e8 Pa s^m, m = 0.15, auto mesh; about 2 s). The theory columns are
@@ -15,7 +15,7 @@ import shutil
 import numpy as np
 import pytest
 
-from hotroll.app.config import case_from_dict
+from hotroll.config.case import case_from_dict
 from hotroll.theory import Coulomb, NoNeutralPointError, Sticking, ford_alexander, sims, solve_pass
 
 CASE = {
@@ -74,7 +74,7 @@ def _contact(path):
 
 @pytest.fixture(scope="module")
 def compared(tmp_path_factory):
-    from hotroll.app.compare import run_compare
+    from hotroll.workflows.compare import run_compare
 
     out = tmp_path_factory.mktemp("compare")
     return out, run_compare(_case(), out)
@@ -175,7 +175,7 @@ def test_neutral_points_inside_the_arc_and_slip_same_sign(compared):
 
 
 def test_viscoplastic_is_compared_with_sticking():
-    from hotroll.app.compare import map_case
+    from hotroll.workflows.compare import map_case
 
     est = map_case(_case(law="viscoplastic"))
     num = map_case(_case(law="viscoplastic", a_f=5.0))
@@ -190,8 +190,8 @@ def test_slab_failure_is_recorded_not_raised(compared, tmp_path, monkeypatch):
     """A pass whose strip skids in slab theory (mu = 0.05 < ~alpha/2): the table records the
     reason and keeps the FE column. The FE run is replaced by the files of the fixture's run
     (its numbers belong to mu = 0.3; only the error path is under test here)."""
-    import hotroll.app.runner as runner
-    from hotroll.app.compare import run_compare
+    import hotroll.workflows.runner as runner
+    from hotroll.workflows.compare import run_compare
 
     with pytest.raises(NoNeutralPointError):
         _hand_slab(mu=0.05)
@@ -214,7 +214,7 @@ def test_slab_failure_is_recorded_not_raised(compared, tmp_path, monkeypatch):
 def test_compare_command_refuses_an_ambiguous_or_unknown_example(tmp_path):
     from typer.testing import CliRunner
 
-    from hotroll.app.cli import app
+    from hotroll.cli import app
 
     r = CliRunner().invoke(app, ["compare", "3", "--out", str(tmp_path)])
     assert r.exit_code == 2 and "several cases" in r.output

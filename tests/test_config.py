@@ -7,9 +7,16 @@ import types
 import pytest
 from typer.testing import CliRunner
 
-from hotroll.app.cli import app
-from hotroll.app.config import MESH_TABLE, Case, CaseError, case_from_dict, case_from_toml, load_case
-from hotroll.app.examples import EXAMPLES, example_path
+from hotroll.cli import app
+from hotroll.config.case import (
+    MESH_TABLE,
+    Case,
+    CaseError,
+    case_from_dict,
+    case_from_toml,
+    load_case,
+)
+from hotroll.examples import EXAMPLES, example_path
 
 NAMES = ["example1", "example2", "example3_m015", "example3_m025"]
 
@@ -178,7 +185,7 @@ def fake_runner(monkeypatch):
         progress and progress({"step": 1, "time": 0.1, "message": "started"})
         return {"roll_force": 1.25, "converged": True, "steps": 3}
 
-    monkeypatch.setitem(sys.modules, "hotroll.app.runner", types.SimpleNamespace(run_case=run_case))
+    monkeypatch.setitem(sys.modules, "hotroll.workflows.runner", types.SimpleNamespace(run_case=run_case))
     return calls
 
 
@@ -202,7 +209,7 @@ def test_cli_bad_option_before_run(tmp_path, fake_runner):
 def test_cli_example3(tmp_path, fake_runner, monkeypatch):
     compared = {}
     fake_plots = types.SimpleNamespace(plot_compare=lambda runs, png: compared.update(runs=runs, png=png))
-    monkeypatch.setitem(sys.modules, "hotroll.post.plots", fake_plots)
+    monkeypatch.setitem(sys.modules, "hotroll.results.figures", fake_plots)
     result = runner.invoke(app, ["example", "3", "--out", str(tmp_path), "--end-time", "0.1"])
     assert result.exit_code == 0, result.output
     assert [c.material.m for c, _, _ in fake_runner] == [0.15, 0.2, 0.25]

@@ -19,9 +19,8 @@ import numpy as np
 import pytest
 from casebuild import example1_coarse
 
-from hotroll.app.config import case_from_dict
-from hotroll.app.runner import run_case
-
+from hotroll.config.case import case_from_dict
+from hotroll.workflows.runner import run_case
 
 
 def _same(a, b, rel: float, abs_: float = 0.0) -> bool:
@@ -163,7 +162,7 @@ FINISHING = {   # a finishing-type pass (5 -> 3.6 mm, R = 0.35 m, 0.4 m/s, Coulo
 
 @pytest.fixture(scope="module")
 def finishing_runs():
-    from hotroll.discretisation.mesh import auto_contact_size
+    from hotroll.model.geometry import auto_contact_size
 
     h = auto_contact_size(case_from_dict(FINISHING).pass_.roll_pass())
     return {k: solve(with_(FINISHING, **{"mesh.h_contact": h / k})) for k in (1, 2)}
@@ -239,7 +238,7 @@ def test_held_to_the_arc_the_tensile_stretch_is_reported():
 def test_the_separated_top_stays_off_the_roll(example1_unilateral):
     """After the contact's end the traced exit top lies on or below the roll (no penetration)
     and the exit is thinner than the gap (the strip went on stretching)."""
-    from hotroll.process.free_surface import roll_height
+    from hotroll.fem.free_surface import roll_height
 
     s, _ = example1_unilateral
     case = case_from_dict(with_(example1_coarse("unilateral"), **{"contact.unilateral": True}))
@@ -286,7 +285,7 @@ def test_a_leaking_penalty_is_not_a_success():
 
 def test_the_penalty_is_an_option_of_the_steady_solver_only():
     """contact.method = "multiplier" with the report's scheme is refused, naming the field."""
-    from hotroll.app.config import CaseError
+    from hotroll.config.case import CaseError
 
     with pytest.raises(CaseError, match="contact.method"):
         case_from_dict(with_(example1_coarse("x"), **{"contact.method": "multiplier",
@@ -318,7 +317,7 @@ def test_the_written_pressure_and_shear_give_the_roll_force(finishing_runs):
 def test_sticking_zone_by_hand():
     """``Q.sticking_zone`` on profiles worked by hand: |v_s| < 1e-3 U over more than
     ``min_length``; the longest stretch; nodes at 0.95e-3 U stick, at 1.05e-3 U they slip."""
-    from hotroll.post.quantities import sticking_zone
+    from hotroll.fem.quantities import sticking_zone
 
     U = 2.0
     ang = np.linspace(0.3, 0.0, 7)
@@ -334,7 +333,7 @@ def test_sticking_zone_by_hand():
 def test_slip_sign_changes_by_hand():
     """``Q.slip_sign_changes`` counts the sign changes of v_s between the zone's nodes (its
     ends included, exact zeros skipped): by hand 3 on the whole arc, 1 and 0 on parts."""
-    from hotroll.post.quantities import slip_sign_changes
+    from hotroll.fem.quantities import slip_sign_changes
 
     ang = np.linspace(0.6, 0.0, 7)                          # 0.6, 0.5, ..., 0.0 rad
     prof = {"angle": ang, "v_slip": np.array([-1e-8, 2e-8, 0.0, 3e-8, -1e-8, -2e-8, 5e-2])}
@@ -347,8 +346,8 @@ def test_slip_sign_changes_by_hand():
 
 def test_flux_neutral_angle_by_hand():
     """y(phi) U cos(phi) = q solved for phi: back-substitution, and NaN outside the arc."""
-    from hotroll.post.quantities import flux_neutral_angle
-    from hotroll.process.geometry import RollPass
+    from hotroll.fem.quantities import flux_neutral_angle
+    from hotroll.model.geometry import RollPass
 
     rp = RollPass(0.3, 0.01, 0.008, 2.0)
     phi = 0.02
@@ -365,8 +364,8 @@ def test_example1_sticking_zone_is_the_same_on_every_mesh(tmp_path):
     in it, so the neutral angle is null with the reason on every mesh (the split of the signs
     was 0.043-0.050 rad over the meshes: noise), and the flux's neutral angle, which needs no
     slip sign, agrees within 0.002 rad (measured 0.0017: 0.1825 .. 0.1808)."""
-    from hotroll.app.config import load_case
-    from hotroll.app.examples import example_path
+    from hotroll.config.case import load_case
+    from hotroll.examples import example_path
 
     runs = {}
     for mesh in ("C1", "C2", "M1", "M2", "F1", "F2"):
@@ -417,8 +416,8 @@ def test_contact_figures_are_the_written_ones(finishing_runs):
     """min_contact_pressure = - the largest normal stress of contact.csv; exit_thickness =
     2 x flux / exit velocity (the head face); neutral_angle_flux = y(phi) U cos(phi) = q solved
     with the summary's own flux (plumbing over the by-hand checks of the functions)."""
-    from hotroll.post.quantities import flux_neutral_angle
-    from hotroll.process.geometry import RollPass
+    from hotroll.fem.quantities import flux_neutral_angle
+    from hotroll.model.geometry import RollPass
 
     for k, (s, prof) in finishing_runs.items():
         assert s["min_contact_pressure"] == pytest.approx(-np.max(prof["normal_stress"]),
@@ -435,7 +434,7 @@ def test_contact_figures_are_the_written_ones(finishing_runs):
 def test_pressure_last_update_is_the_last_newton_step(tmp_path, monkeypatch):
     """pressure_last_update (Pa) = the last Newton step's multiplier change x U x s x K of the
     run that wrote it (plumbing)."""
-    import hotroll.algorithms.steady as S
+    import hotroll.solvers.steady as S
 
     runs, solve_ = [], S.SteadyRun.solve
 

@@ -10,10 +10,10 @@ from pathlib import Path
 
 import pytest
 
-from hotroll.app.config import load_case
-from hotroll.app.estimate import ResourceError, check, estimate
-from hotroll.app.examples import example_path
+from hotroll.config.case import load_case
+from hotroll.examples import example_path
 from hotroll.files import DiskFullError
+from hotroll.workflows.estimate import ResourceError, check, estimate
 
 ENV = {**os.environ, "NGS_NUM_THREADS": "1"}
 
@@ -34,9 +34,9 @@ def _case(name: str = "example1", **over):
 def test_the_estimate_counts_the_mesh_before_it_is_made(name, over):
     """The estimated unknowns against the mesh the solver then builds: within 20 % on other
     passes, sizes, gradings and both methods (the fit used 9 cases, none of these)."""
-    from hotroll.algorithms.steady import SteadyRun
-    from hotroll.app.runner import build_model, steady_settings
-    from hotroll.discretisation.mesh import build_plate_mesh
+    from hotroll.fem.mesh import build_plate_mesh
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.runner import build_model, steady_settings
 
     case = _case(name, **over)
     est = estimate(case)
@@ -66,8 +66,8 @@ def test_the_estimate_grows_as_the_mesh_is_refined():
 def test_a_mesh_over_the_memory_limit_is_refused_before_meshing(tmp_path, monkeypatch):
     """Nothing is meshed nor written; the error names mesh.h_contact and gives the estimate;
     forced, the same case runs."""
-    from hotroll.app import runner
-    from hotroll.discretisation import mesh as mesh_mod
+    from hotroll.fem import mesh as mesh_mod
+    from hotroll.workflows import runner
 
     case = _case(**{"mesh.h_contact": 0.03, "solver.memory_limit": 1e6})
     called = []
@@ -89,7 +89,7 @@ def test_the_command_line_refuses_with_exit_code_8_and_runs_forced(tmp_path):
     text = example_path("example1").read_text().replace('method = "transient"',
                                                         'method = "steady"')
     case.write_text(text.replace("[solver]", "[solver]\nmemory_limit = 1e6"))
-    cmd = [sys.executable, "-m", "hotroll.app.cli", "run", str(case), "--mesh", "0.03",
+    cmd = [sys.executable, "-m", "hotroll.cli", "run", str(case), "--mesh", "0.03",
            "--no-figures", "--out", str(tmp_path / "o")]
     r = subprocess.run(cmd, capture_output=True, text=True, env=ENV, timeout=300)
     assert r.returncode == 8, r.stderr
@@ -99,8 +99,8 @@ def test_the_command_line_refuses_with_exit_code_8_and_runs_forced(tmp_path):
 
 
 def test_a_study_records_a_refused_case_and_goes_on(tmp_path):
-    from hotroll.studies.config import load_study
-    from hotroll.studies.run import run_study
+    from hotroll.config.study import load_study
+    from hotroll.workflows.study import run_study
 
     base = example_path("example1").read_text().replace('method = "transient"',
                                                         'method = "steady"')
@@ -113,7 +113,7 @@ def test_a_study_records_a_refused_case_and_goes_on(tmp_path):
     assert [r["status"] for r in rows] == ["done", "too_large"]
     assert rows[1]["exit_code"] == 8 and "mesh.h_contact" in rows[1]["reason"]
     assert not (tmp_path / "out" / "cases" / rows[1]["case"] / "summary.json").exists()
-    from hotroll.post.report_table import study_context
+    from hotroll.results.report_table import study_context
 
     page = study_context(tmp_path / "out")                 # the report shows it failed
     assert [t["failed"] for t in page["table"]] == [False, True]
@@ -123,7 +123,7 @@ def test_a_study_records_a_refused_case_and_goes_on(tmp_path):
 def test_a_full_disk_leaves_the_old_file_whole_and_names_the_file(tmp_path, monkeypatch):
     import errno
 
-    from hotroll.app import output
+    from hotroll.results import output
 
     path = tmp_path / "summary.json"
     output.write_json(path, {"roll_force": 1.0})
@@ -178,7 +178,7 @@ def test_a_real_full_disk_gives_a_clear_error(small_disk, tmp_path, command):
         (tmp_path / "s.toml").write_text('[base]\nfile = "base.toml"\n[vary]\n'
                                          '"mesh.h_contact" = [0.03, 0.02]\n')
         command = [str(tmp_path / "s.toml") if c == "STUDY" else c for c in command]
-    r = subprocess.run([sys.executable, "-m", "hotroll.app.cli", *command, "--out",
+    r = subprocess.run([sys.executable, "-m", "hotroll.cli", *command, "--out",
                         str(small_disk / "out")], capture_output=True, text=True, env=ENV,
                        timeout=300)
     assert r.returncode == 9, (r.returncode, r.stderr[-3000:])

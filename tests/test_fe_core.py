@@ -1,6 +1,6 @@
 """Known-answer checks of the FE core: Taylor-Hood P2/P1 + Norton-Hoff + Picard/Newton.
 
-The problems (hotroll.discretisation.analytic) use the same spaces, volume form, continuation in
+The problems (hotroll.solvers.verification) use the same spaces, volume form, continuation in
 m and solvers as the rolling problem. Measured values (ngsolve 6.2.2608, structured meshes,
 eps0 = 1e-6, tol = 1e-10) are quoted next to each assertion.
 """
@@ -11,7 +11,7 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from hotroll.discretisation.analytic import compression, poiseuille
+from hotroll.solvers.verification import compression, poiseuille
 
 
 @lru_cache(maxsize=None)
@@ -109,8 +109,8 @@ def test_nodal_update_measure_reads_p2_nodes():
     import ngsolve as ng
     from netgen.geom2d import unit_square
 
-    from hotroll.discretisation.forms import NonlinearProblem
-    from hotroll.discretisation.spaces import P2Nodes, taylor_hood
+    from hotroll.fem.forms import NonlinearProblem
+    from hotroll.fem.spaces import P2Nodes, taylor_hood
 
     mesh = ng.Mesh(unit_square.GenerateMesh(maxh=0.3))
     fes = taylor_hood(mesh, dirichlety="")

@@ -21,11 +21,10 @@ import math
 
 import numpy as np
 import pytest
-
-from hotroll.app.config import case_from_dict
-from hotroll.app.runner import run_case
-
 from casebuild import build_case, example1_coarse, gap_means_from_fields, shared_scope
+
+from hotroll.config.case import case_from_dict
+from hotroll.workflows.runner import run_case
 
 # cheap (one coarse steady solve per module, 0.6 s): in mutmut's test selection
 pytestmark = pytest.mark.mutation
@@ -181,9 +180,9 @@ def test_gap_means_from_the_written_fields(coarse):
 def test_gap_means_of_an_empty_band_are_nan():
     """A contact start at or past the roll gap leaves no deformation zone: the gap means are
     NaN (not a division by a zero area). The form of the coarse strip, not solved."""
-    from hotroll.algorithms.steady import SteadyRun
-    from hotroll.app.runner import build_model, steady_settings
-    from hotroll.post.engineering import gap_means
+    from hotroll.results.engineering import gap_means
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.runner import build_model, steady_settings
 
     # the report's penalties (by hand below); exact contact has none on the roll
     case = build_case(BASE, **{"solver.method": "steady", "contact.method": "penalty"})
@@ -265,9 +264,9 @@ def test_penalty_powers_and_forces_of_a_rigid_motion_by_hand():
     - tensions on the end faces: their force and power by hand."""
     from ngsolve import CF
 
-    from hotroll.algorithms.steady import SteadyRun
-    from hotroll.app.runner import build_model, steady_settings
-    from hotroll.post import quantities as Q
+    from hotroll.fem import quantities as Q
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.runner import build_model, steady_settings
 
     # the report's penalties (by hand below); exact contact has none on the roll
     case = build_case(BASE, **{"solver.method": "steady", "contact.method": "penalty"})
@@ -317,9 +316,9 @@ def test_contact_profile_vertex_flags_and_no_contact():
     entry to exit; its normal stress on a rigid motion is the penalty reaction by hand; with
     one contact vertex it has one node, with no contact at all it is empty, with every column
     present."""
-    from hotroll.algorithms.steady import SteadyRun
-    from hotroll.app.runner import build_model, steady_settings
-    from hotroll.post import quantities as Q
+    from hotroll.fem import quantities as Q
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.runner import build_model, steady_settings
 
     # the report's penalties (by hand below); exact contact has none on the roll
     case = build_case(BASE, **{"solver.method": "steady", "contact.method": "penalty"})
@@ -366,8 +365,8 @@ def test_history_rows_of_a_continuation_in_m_use_their_own_m():
     equals its reaction (measured <= 1.9 % apart, also at the loose stage solves)."""
     import dataclasses
 
-    from hotroll.algorithms.steady import SteadyRun
-    from hotroll.app.runner import build_model, steady_settings
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.runner import build_model, steady_settings
 
     case = build_case(BASE, **{"solver.method": "steady"})
     model, _ = build_model(case)
@@ -474,9 +473,9 @@ def test_mass_and_power_checks_fire_on_a_wrong_field():
     fire."""
     from ngsolve import CF, GridFunction, x
 
-    from hotroll.algorithms.steady import SteadyRun
-    from hotroll.app.runner import build_model, steady_settings
-    from hotroll.post import quantities as Q
+    from hotroll.fem import quantities as Q
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.runner import build_model, steady_settings
 
     case = build_case(BASE)
     model, _ = build_model(case)

@@ -1,4 +1,4 @@
-"""Flow-stress laws (hotroll.physics.flow_stress) and the grade library (hotroll.physics.grades).
+"""Flow-stress laws (hotroll.model.flow_stress) and the grade library (hotroll.model.grades).
 
 Reference numbers come from outside the implementation:
 
@@ -21,14 +21,14 @@ import numpy as np
 import pytest
 from casebuild import shared_scope
 
-from hotroll.physics.flow_stress import (
+from hotroll.model.flow_stress import (
     DEFAULT_STRAIN_MIN,
     HenselSpittel,
     NortonHoffStress,
     ValidityRange,
 )
-from hotroll.physics.grades import GradeData, get_grade, list_grades
-from hotroll.physics.material import NortonHoff
+from hotroll.model.grades import GradeData, get_grade, list_grades
+from hotroll.model.material import NortonHoff
 
 C2K = 273.15
 RNG = np.random.default_rng(20240611)
@@ -52,7 +52,7 @@ def test_hs_with_only_A_and_m3_is_norton_hoff(A, m3):
 
 
 def test_norton_hoff_stress_matches_material_module():
-    """NortonHoffStress against hotroll.physics.material.NortonHoff (independent code)."""
+    """NortonHoffStress against hotroll.model.material.NortonHoff (independent code)."""
     for K, m, eps0 in [(1.3e7, 0.15, 1e-4), (2e6, 1.0, 1e-6), (5e7, 0.3, 1e-2)]:
         law, ref = NortonHoffStress(K, m, eps0), NortonHoff(K=K, m=m, eps0=eps0)
         edot = 10 ** RNG.uniform(-5, 3, 40)

@@ -13,11 +13,10 @@ import math
 
 import numpy as np
 import pytest
-
-from hotroll.app.config import CaseError
-from hotroll.app.runner import run_case
-
 from casebuild import build_case, gap_means_from_fields, shared_scope
+
+from hotroll.config.case import CaseError
+from hotroll.workflows.runner import run_case
 
 BASE = {
     "name": "hs",
@@ -46,7 +45,7 @@ def test_strain_transport_is_exact_for_plane_strain_compression():
     from netgen.geom2d import SplineGeometry
     from ngsolve import CF, GridFunction, Integrate, Mesh, VectorH1, log, x, y
 
-    from hotroll.discretisation.strain import StrainField
+    from hotroll.fem.strain import StrainField
 
     errors = []
     for h in (0.1, 0.05):
@@ -161,7 +160,7 @@ def test_a_temperature_without_rate_sensitivity_is_refused(tmp_path):
 def test_grades_run(tmp_path_factory):
     """A library grade at 1100 deg C gives a hot-steel force: the mean pressure is of the order
     of the grade's flow stress at the pass's mean strain and rate (within a factor 2)."""
-    from hotroll.physics.grades import get_grade
+    from hotroll.model.grades import get_grade
 
     s = _run(tmp_path_factory, "s355", {"law": "hensel-spittel", "grade": "S355J2"})
     assert s["converged"]
@@ -177,7 +176,7 @@ def test_plastic_power_from_the_written_fields(hardening_run):
     """The plastic power of the solve equals int sigma_f(strain, edot, T) edot dx computed here
     from the written vertex fields (strain, rate) and the grade's formula on each triangle:
     a wrong consistency field in the form shows up as a wrong power."""
-    from hotroll.physics.flow_stress import HenselSpittel
+    from hotroll.model.flow_stress import HenselSpittel
 
     s, f = hardening_run
     law = HenselSpittel(A=1.5e8, m3=0.15, m2=0.2)
@@ -206,7 +205,7 @@ def test_a_uniform_consistency_ratio_scales_every_stress(tmp_path_factory, plain
     penalties (3.2), not scaled by c, break the scaling: measured 0.27 % on the force, 0.02 %
     on the torque, 0.11 % on the ratio. The stress force without the field in sigma_yy (the
     viscous part a third of it here) would move the ratio by 13 %."""
-    from hotroll.algorithms.transient import RollingModel
+    from hotroll.solvers.transient import RollingModel
 
     monkeypatch.setattr(RollingModel, "field_setup", lambda self, mesh: (None, None, 2.0))
     doubled = _run(tmp_path_factory, "hs_c2")

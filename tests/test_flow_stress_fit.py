@@ -1,4 +1,4 @@
-"""The Hensel-Spittel fit of a flow-stress function (hotroll/physics/flow_stress_fit.py, the
+"""The Hensel-Spittel fit of a flow-stress function (hotroll/model/flow_stress_fit.py, the
 PyRolL plugin's bridge to the FE law): a function of the fitted form is recovered to rounding;
 Freiberg's form (Spittel's S355J2 coefficients at strain + 0.1 and rate + 0.1, as
 pyroll-freiberg-flow-stress evaluates them, written out here) is fitted within 5 %, and the
@@ -10,8 +10,8 @@ import math
 import numpy as np
 import pytest
 
-from hotroll.physics.flow_stress import HenselSpittel
-from hotroll.physics.flow_stress_fit import fit_hensel_spittel
+from hotroll.model.flow_stress import HenselSpittel
+from hotroll.model.flow_stress_fit import fit_hensel_spittel
 
 pytestmark = pytest.mark.mutation
 

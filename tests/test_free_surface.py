@@ -11,13 +11,12 @@ import math
 
 import numpy as np
 import pytest
-
-from hotroll.algorithms.steady import SteadyRun
-from hotroll.app.runner import build_model, steady_settings
-from hotroll.process.free_surface import StripShape, kinematic_update, roll_height, roll_slope
-from hotroll.process.geometry import RollPass
-
 from test_rolling import _case
+
+from hotroll.fem.free_surface import StripShape, kinematic_update, roll_height, roll_slope
+from hotroll.model.geometry import RollPass
+from hotroll.solvers.steady import SteadyRun
+from hotroll.workflows.runner import build_model, steady_settings
 
 
 def _steady(**over) -> SteadyRun:
@@ -131,10 +130,10 @@ def test_kinematic_update_by_hand():
 def test_automatic_mesh_size(tmp_path):
     """A case without h_contact gets l_c/12, at most a sixth of the exit half-thickness;
     Example 1's file keeps the report's C2."""
-    from hotroll.app.config import case_from_dict, load_case
-    from hotroll.app.examples import example_path
-
     from test_rolling import BASE
+
+    from hotroll.config.case import case_from_dict, load_case
+    from hotroll.examples import example_path
 
     d = {k: dict(v) if isinstance(v, dict) else v for k, v in BASE.items()}
     d["mesh"] = {}
@@ -154,7 +153,7 @@ def test_smoothed_profile_keeps_linear_data_and_integrals():
     """The plotted contact profile (P1 projection of the P2 nodal values): a linear profile is
     reproduced exactly, a vertex/midpoint zigzag is removed, and the integral along the arc
     (the force of the profile) is kept."""
-    from hotroll.post.quantities import smoothed
+    from hotroll.fem.quantities import smoothed
 
     t = np.linspace(0.0, 1.0, 41)                       # 20 edges: vertex, midpoint, ...
     prof = {"x": 0.2 * np.cos(t), "y": 0.2 * np.sin(t)}
@@ -180,7 +179,7 @@ def test_hotroll_run_defaults_to_traced_tops_and_the_automatic_mesh(tmp_path):
 
     from typer.testing import CliRunner
 
-    from hotroll.app.cli import app
+    from hotroll.cli import app
 
     case = tmp_path / "pass.toml"
     case.write_text(

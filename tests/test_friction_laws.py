@@ -18,13 +18,12 @@ import math
 
 import numpy as np
 import pytest
+from casebuild import build_case, shared_scope
 from scipy.integrate import simpson
 
-from hotroll.app.config import CaseError
-from hotroll.app.runner import run_case
-
-from casebuild import build_case, shared_scope
-from hotroll.physics.friction import CoulombFriction, TrescaFriction, ViscoplasticFriction
+from hotroll.config.case import CaseError
+from hotroll.model.friction import CoulombFriction, TrescaFriction, ViscoplasticFriction
+from hotroll.workflows.runner import run_case
 
 BASE = {
     "name": "friction",

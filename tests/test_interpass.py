@@ -1,4 +1,4 @@
-"""Interpass cooling (hotroll/thermal/interpass.py, issue 17) against closed forms: the slab
+"""Interpass cooling (hotroll/model/interpass.py, issue 17) against closed forms: the slab
 with a convective surface (the Fourier series of Carslaw and Jaeger 3.11, Heisler's charts),
 radiation of a thin strip (lumped: T0 (1 + 3 eps sigma T0^3 t / (rho c H))^(-1/3)), the energy
 balance with temperature tables, and bad input."""
@@ -10,8 +10,9 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from hotroll.thermal import SIGMA_SB, ThermalInputError, ThermalProperties
-from hotroll.thermal.interpass import cool, enthalpy_mean
+from hotroll.fem.thermal_field import SIGMA_SB
+from hotroll.model.interpass import cool, enthalpy_mean
+from hotroll.model.thermal_properties import ThermalInputError, ThermalProperties
 
 pytestmark = pytest.mark.mutation
 STEEL = ThermalProperties(7600.0, 650.0, 28.0)
@@ -86,7 +87,8 @@ def test_no_losses_keep_the_profile_mean():
     y = np.linspace(0.0, 0.01, 6)
     T = np.array([1300.0, 1290.0, 1270.0, 1240.0, 1200.0, 1150.0])
     r = cool(y, T, 0.01, 30.0, STEEL, 0.0, 0.0, 300.0)
-    w = np.full(41, 0.01 / 40); w[[0, -1]] *= 0.5
+    w = np.full(41, 0.01 / 40)
+    w[[0, -1]] *= 0.5
     start = enthalpy_mean(STEEL, np.interp(np.linspace(0, 0.01, 41), y, T), w)
     assert r.mean == pytest.approx(start, rel=1e-9)
     assert np.ptp(r.temperature) < 1.0 and r.heat_lost == 0.0

@@ -21,11 +21,11 @@ import numpy as np
 import pytest
 from casebuild import shared_scope
 
-from hotroll.physics.flow_stress import HenselSpittel, NortonHoffStress, ValidityRange
-from hotroll.physics.friction import smooth_minimum, smooth_positive_part
-from hotroll.physics.friction_estimate import estimate_a_f
-from hotroll.physics.grades import GradeData, get_grade
-from hotroll.physics.material import NortonHoff, edot_squared
+from hotroll.model.flow_stress import HenselSpittel, NortonHoffStress, ValidityRange
+from hotroll.model.friction import smooth_minimum, smooth_positive_part
+from hotroll.model.friction_estimate import estimate_a_f
+from hotroll.model.grades import GradeData, get_grade
+from hotroll.model.material import NortonHoff, edot_squared
 
 pytestmark = pytest.mark.mutation   # cheap: in mutmut's test selection ([tool.mutmut])
 
@@ -469,7 +469,7 @@ def test_hensel_spittel_describe_literal():
 # =================================================================================================
 # Coefficients as published (A in MPa, T in degC), read in pyroll-freiberg-flow-stress
 # (pyroll/freiberg_flow_stress/materials.py: hooks s355j2, c45, c20) and, for Al99.5, in the
-# public transcription of the Landolt-Boernstein datasheet cited in hotroll/physics/grades.py
+# public transcription of the Landolt-Boernstein datasheet cited in hotroll/model/grades.py
 # ('al995_hot_deformed.py': A = 367.651, theta 250..550 degC, phi 0.03..1.50, phidot 0.01..500).
 # Expected values: Spittel's formula, each factor in 30-digit decimal (Python's decimal module,
 # x^y = exp(y ln x)), at points other than those of tests/test_flow_stress.py: the steels at
@@ -605,7 +605,7 @@ def test_estimate_a_f_message(args):
 def test_numpy_scalars_are_evaluated_in_double_precision():
     """float32 numpy scalars give the same flow stress as Python floats (double precision),
     as float32 arrays do."""
-    from hotroll.physics.grades import get_grade
+    from hotroll.model.grades import get_grade
 
     law = get_grade("S355J2").law()
     args = (0.3, 10.0, 1373.15)
@@ -622,7 +622,7 @@ def test_numpy_scalars_are_evaluated_in_double_precision():
 def test_regularised_effective_stress_by_hand():
     """(2.21): sigma_ef = K 3^((m+1)/2) (eps0^2 + edot^2)^(m/2); m and K default to the law's
     and are overridden when given (the form passes its own m and the consistency field)."""
-    from hotroll.physics.material import NortonHoff
+    from hotroll.model.material import NortonHoff
 
     law = NortonHoff(K=2.0, m=0.25, eps0=1e-3)
     # edot = 0: only the regularisation, 2 3^0.625 (1e-6)^0.125 = 2 3^0.625 10^-0.75

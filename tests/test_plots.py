@@ -1,4 +1,4 @@
-"""Tests for hotroll.post.plots on a synthetic run output directory."""
+"""Tests for hotroll.results.figures on a synthetic run output directory."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hotroll.post.plots import plot_all, plot_compare
+from hotroll.results.figures import plot_all, plot_compare
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 

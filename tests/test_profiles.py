@@ -1,5 +1,5 @@
 """Entry and exit profiles through the thickness (issue 17: what a schedule hands from pass
-to pass; process/profile.py, post/profiles.py): the inlet takes the given temperature
+to pass; model/profile.py, results/profiles.py): the inlet takes the given temperature
 profile exactly, a strain profile is carried along the streamlines (eta in = eta out in a
 steady strip with rigid ends), the exit profile's mean is the run's own exit strain, and bad
 profiles are refused."""
@@ -9,14 +9,13 @@ import math
 
 import numpy as np
 import pytest
-
-from hotroll.algorithms.steady import SteadyRun
-from hotroll.app.config import CaseError
-from hotroll.app.runner import build_model, steady_settings
-from hotroll.post.profiles import exit_profiles
-from hotroll.process.profile import ProfileError, ThicknessProfile
-
 from casebuild import build_case
+
+from hotroll.config.case import CaseError
+from hotroll.model.profile import ProfileError, ThicknessProfile
+from hotroll.results.profiles import exit_profiles
+from hotroll.solvers.steady import SteadyRun
+from hotroll.workflows.runner import build_model, steady_settings
 
 BASE = {
     "name": "profile",

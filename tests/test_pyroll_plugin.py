@@ -14,10 +14,10 @@ import pytest
 pr = pytest.importorskip("pyroll.core", reason="the [pyroll] extra (scripts/setup.sh installs it)")
 
 import hotroll.pyroll as hp  # noqa: E402
-from hotroll.app.config import case_from_dict  # noqa: E402
-from hotroll.app.runner import run_case  # noqa: E402
-from hotroll.thermal import ThermalProperties  # noqa: E402
-from hotroll.thermal.interpass import cool, enthalpy_mean  # noqa: E402
+from hotroll.config.case import case_from_dict  # noqa: E402
+from hotroll.model.interpass import cool, enthalpy_mean  # noqa: E402
+from hotroll.model.thermal_properties import ThermalProperties  # noqa: E402
+from hotroll.workflows.runner import run_case  # noqa: E402
 
 WIDTH, R, MU = 1.2, 0.3, 0.25
 PROPS = dict(density=7600.0, specific_heat_capacity=650.0, thermal_conductivity=30.0)
@@ -76,7 +76,7 @@ def _outlet_mean(s):
 
 
 def test_the_passes_are_hotrolls_own_runs(sequence, tmp_path):
-    from hotroll.app.sweep import Sweep
+    from hotroll.workflows.sweep import Sweep
 
     seq, stats = sequence
     r1, t1, r2 = seq.units
@@ -141,7 +141,7 @@ def test_a_flow_stress_function_is_fitted_and_used(sequence, tmp_path):
     function, PyRolL's convention for an explicit hook: a function of the profile returning
     it) is fitted over the pass's range (error < 1 %, the fit has no e^(m4/eps) term) and
     rolls R1 within 1 % of the force the grade itself gives."""
-    from hotroll.physics.grades import get_grade
+    from hotroll.model.grades import get_grade
 
     law = get_grade("S355J2").law()
     ip = pr.Profile.box(height=0.1, width=WIDTH, temperature=1373.15, strain=0.0,

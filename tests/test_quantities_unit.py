@@ -4,12 +4,12 @@ Every expected number is derived by hand from the formula the function's docstri
 report equation it cites) states; the comment next to each assertion says how. The numbers are
 chosen so that a planted bug (a constant off by 10 %, a flipped sign, < for <=, a clipping side
 dropped, a function returning [] or its input) changes at least one of them:
-- ``physics/friction_estimate.py``: (3.15) for a_f, its clipping and its error branches;
-- ``physics/friction.py``: the three friction laws' coefficient, shear and dissipation;
-- ``post/quantities.py``: exit-pressure correction, contact loss, neutral point, smoothing;
-- ``post/engineering.py``: display units and whole-width totals;
+- ``model/friction_estimate.py``: (3.15) for a_f, its clipping and its error branches;
+- ``model/friction.py``: the three friction laws' coefficient, shear and dissipation;
+- ``fem/quantities.py``: exit-pressure correction, contact loss, neutral point, smoothing;
+- ``results/engineering.py``: display units and whole-width totals;
 - ``algorithms``: the continuation path, default strip lengths, the steady-state test's scales
-  (and ``app/runner.py``'s contact tolerance and default end time).
+  (and ``workflows/runner.py``'s contact tolerance and default end time).
 """
 from __future__ import annotations
 
@@ -18,12 +18,23 @@ import math
 import numpy as np
 import pytest
 
-from hotroll.physics.friction import (CoulombFriction, TrescaFriction, ViscoplasticFriction,
-                                      _Law, smooth_minimum, smooth_positive_part)
-from hotroll.physics.friction_estimate import estimate_a_f, lambda_factor
-from hotroll.post.engineering import UNITS, display, width_totals
-from hotroll.post.quantities import (contact_loss, exit_corrected, neutral_index, neutral_point,
-                                     smoothed)
+from hotroll.fem.quantities import (
+    contact_loss,
+    exit_corrected,
+    neutral_index,
+    neutral_point,
+    smoothed,
+)
+from hotroll.model.friction import (
+    CoulombFriction,
+    TrescaFriction,
+    ViscoplasticFriction,
+    _Law,
+    smooth_minimum,
+    smooth_positive_part,
+)
+from hotroll.model.friction_estimate import estimate_a_f, lambda_factor
+from hotroll.results.engineering import UNITS, display, width_totals
 
 
 # =============================================================================================
@@ -247,7 +258,7 @@ def test_coulomb_default_rounding_below_at_and_above_the_kink():
 
 
 # =============================================================================================
-# 3. post/quantities.py
+# 3. fem/quantities.py
 # =============================================================================================
 class _Roll:
     """Stand-in for RollPass: the neutral point is centre - R (sin a, cos a)."""
@@ -513,7 +524,7 @@ def test_smoothed_falls_back_to_the_raw_values():
 
 
 # =============================================================================================
-# 4. post/engineering.py
+# 4. results/engineering.py
 # =============================================================================================
 def test_display_scales_and_units():
     # N/m -> MN/m at >= 1e6: 1.23e6 N/m = 1.23 MN/m
@@ -579,7 +590,7 @@ class _Pass:
 
 
 def test_continuation_path_by_hand():
-    from hotroll.algorithms.steady import continuation_path
+    from hotroll.solvers.steady import continuation_path
 
     # n = ceil(log2(1/m)) geometric steps 1 -> m (each at most a factor 2)
     assert continuation_path(0.5) == pytest.approx([0.5], rel=1e-14)              # n = 1
@@ -597,7 +608,7 @@ def test_continuation_path_by_hand():
 
 
 def test_default_lengths_by_hand():
-    from hotroll.algorithms.steady import default_lengths
+    from hotroll.solvers.steady import default_lengths
 
     # max(l_c, 4 h0/2), max(l_c, 4 h1/2): a long contact wins both
     assert default_lengths(_Pass(0.2, 0.01, 0.008)) == pytest.approx((0.2, 0.2))
@@ -606,7 +617,7 @@ def test_default_lengths_by_hand():
 
 
 def test_runner_contact_tolerance_and_end_time():
-    from hotroll.app.runner import contact_tolerance, default_end_time
+    from hotroll.workflows.runner import contact_tolerance, default_end_time
 
     # R = 0.6, U = 1, dt = 1e-3: drift 10 (1e-3)^2 / 1.2 = 8.333e-6, 6 x = 5e-5 > 1e-5
     assert contact_tolerance(_Pass(radius=0.6, u_roll=1.0), 1e-3) == pytest.approx(5e-5)
@@ -627,7 +638,7 @@ def _rows(n_old, n_new, **shift):
 
 
 def test_steady_reached_scales_per_key():
-    from hotroll.algorithms.settling import steady_reached
+    from hotroll.solvers.settling import steady_reached
 
     tol, bite = 1e-3, 0.4
     args = (4, 2, tol, bite)                   # window 4 rows, period 2: no noise here
@@ -656,7 +667,7 @@ def test_steady_reached_scales_per_key():
 
 
 def test_steady_reached_noise_allowance_by_hand():
-    from hotroll.algorithms.settling import steady_reached
+    from hotroll.solvers.settling import steady_reached
 
     # period 1, window 4: force batch means older [10, 12, 10, 12], newer the same + 1 (+1.7):
     # sample variances 4/3 each, noise = 2 sqrt((4/3 + 4/3) / 4) = 1.63299; tol x 11 = 0.011
@@ -674,7 +685,7 @@ def test_steady_reached_noise_allowance_by_hand():
 def test_summary_windows_by_hand():
     """Whole projection periods covering 3 h of roll travel (ceil, not round); the steady
     window at least 6 periods; no projection (0) counts as a period of one step."""
-    from hotroll.algorithms.settling import summary_windows
+    from hotroll.solvers.settling import summary_windows
 
     # 3 h / (U dt) = 0.06 / (0.2 pi / 300) = 28.65 steps -> 3 periods of 10; steady: 6 periods
     assert summary_windows(0.02, 0.2 * math.pi, 1.0 / 300.0, 10) == (30, 60)
@@ -691,7 +702,7 @@ def test_transit_time_by_hand():
     """One contact transit l_c / U; with a carried strain, at the entry speed U h1/h0 plus 20 %."""
     from types import SimpleNamespace
 
-    from hotroll.algorithms.settling import transit_time
+    from hotroll.solvers.settling import transit_time
 
     rp = SimpleNamespace(contact_length=0.1, u_roll=0.5, half_entry=0.25, half_exit=0.2)
     assert transit_time(rp, False) == pytest.approx(0.2, rel=1e-14)

@@ -17,11 +17,10 @@ from html.parser import HTMLParser
 from pathlib import Path
 
 import pytest
+from casebuild import EX1_COARSE_TOML, example1_coarse
 from typer.testing import CliRunner
 
-from casebuild import EX1_COARSE_TOML, example1_coarse
-
-#: A shown unit -> its SI factor (written here, not taken from hotroll.post.report*).
+#: A shown unit -> its SI factor (written here, not taken from hotroll.results.report*).
 TO_SI = {"N/m": 1.0, "kN/m": 1e3, "MN/m": 1e6, "N": 1.0, "kN": 1e3, "MN": 1e6,
          "N m/m": 1.0, "kN m/m": 1e3, "MN m/m": 1e6, "N m": 1.0, "kN m": 1e3,
          "W/m": 1.0, "kW/m": 1e3, "MW/m": 1e6, "W": 1.0, "kW": 1e3, "Pa": 1.0, "kPa": 1e3,
@@ -42,7 +41,7 @@ file = "base.toml"
 
 
 def _cli(*args: str):
-    from hotroll.app.cli import app
+    from hotroll.cli import app
 
     return CliRunner().invoke(app, list(args))
 
@@ -51,8 +50,8 @@ def _cli(*args: str):
 def compared(tmp_path_factory):
     """A coarse Example 1 pass, 1.2 m wide, run by ``compare`` (FE in fe/, slab theory beside),
     then ``hotroll report`` on it."""
-    from hotroll.app.compare import run_compare
-    from hotroll.app.config import case_from_dict
+    from hotroll.config.case import case_from_dict
+    from hotroll.workflows.compare import run_compare
 
     d = tmp_path_factory.mktemp("report") / "cmp"
     base = example1_coarse("ex1c", output={"figures": False, "vtk": False})

@@ -13,8 +13,8 @@ import math
 import numpy as np
 import pytest
 
-from hotroll.app.config import case_from_dict
-from hotroll.app.runner import run_case
+from hotroll.config.case import case_from_dict
+from hotroll.workflows.runner import run_case
 
 BASE = {
     "name": "coarse",
@@ -177,8 +177,8 @@ def test_outputs_written(slipping):
 def test_linear_solver_failure_keeps_finished_steps(tmp_path, monkeypatch):
     """A step whose linear systems cannot be solved ends the run as 'failed' with the reason;
     the finished steps' history, fields and summary are written, not lost."""
-    import hotroll.algorithms.transient as T
-    from hotroll.algorithms.nonlinear import LinearSolveError
+    import hotroll.solvers.transient as T
+    from hotroll.solvers.nonlinear import LinearSolveError
 
     real, calls = T.solve, {"n": 0}
 
@@ -199,8 +199,8 @@ def test_linear_solver_failure_keeps_finished_steps(tmp_path, monkeypatch):
 
 def test_tangled_mesh_is_detected():
     """An element turned inside out by the Lagrangian update stops the run with its place."""
-    from hotroll.algorithms.transient import TangledMeshError, TransientRun
-    from hotroll.app.runner import build_model
+    from hotroll.solvers.transient import TangledMeshError, TransientRun
+    from hotroll.workflows.runner import build_model
 
     model, settings = build_model(_case(**{"friction.a_f": 3.0}))
     run = TransientRun(model, settings)
@@ -219,8 +219,8 @@ def test_contact_is_bilateral_until_the_exit():
     roll between projections stays in contact (and is put back on the roll by the next
     projection); without ``bilateral`` the report's distance rule releases it; a node past
     the exit point M is always released; a far node never gets caught."""
-    from hotroll.algorithms.transient import TransientRun
-    from hotroll.app.runner import build_model
+    from hotroll.solvers.transient import TransientRun
+    from hotroll.workflows.runner import build_model
 
     model, settings = build_model(_case(**{"friction.a_f": 3.0}))
     run = TransientRun(model, settings)
@@ -261,7 +261,7 @@ def _history(drift: float, n: int = 120, seed: int = 0) -> list:
 
 
 def test_steady_criterion_separates_drift_from_periodic_noise():
-    from hotroll.algorithms.settling import steady_reached
+    from hotroll.solvers.settling import steady_reached
 
     args = (60, 10, 2e-3, 0.39)
     assert steady_reached(_history(0.0), *args)         # +-20 % spikes, no drift: steady
@@ -278,8 +278,8 @@ def test_free_exit_surface_penalises_vertical_motion_only():
     the mesh normal is kept."""
     from ngsolve import BND, Integrate, specialcf
 
-    from hotroll.algorithms.steady import SteadyRun
-    from hotroll.app.runner import build_model, steady_settings
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.runner import build_model, steady_settings
 
     case = _case(**{"solver.method": "steady"})
     model, _ = build_model(case)
@@ -426,11 +426,10 @@ def test_newton_jacobian_is_the_exact_linearisation(hand, law):
     penalties, for each friction law."""
     import numpy as np
 
-    from hotroll.algorithms.steady import SteadyRun
-    from hotroll.app.runner import build_model, steady_settings
-    from hotroll.discretisation.forms import NonlinearProblem
-
-    import hotroll.discretisation.rolling_form as RF
+    import hotroll.fem.rolling_form as RF
+    from hotroll.fem.forms import NonlinearProblem
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.runner import build_model, steady_settings
 
     case = _case(**{"solver.method": "steady", **FRICTION_LAWS[law]})
     model, _ = build_model(case)

@@ -13,13 +13,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from casebuild import shared_scope
 from scipy.optimize import brentq
 
-from hotroll.app.config import CaseError
-from hotroll.schedule.config import load_schedule, schedule_from_dict
-from hotroll.schedule.run import run_schedule
-
-from casebuild import shared_scope
+from hotroll.config.case import CaseError
+from hotroll.config.schedule import load_schedule, schedule_from_dict
+from hotroll.workflows.schedule import run_schedule
 
 DATA = Path(__file__).with_name("data") / "two_pass_schedule.toml"
 
@@ -160,13 +159,13 @@ def test_bad_schedules_name_the_field(change, field):
 
 
 def test_the_warm_starts_do_not_change_the_answer(rolled, tmp_path):
-    """Pass 2 started from pass 1 mapped onto its mesh (algorithms/transfer.py), then from
+    """Pass 2 started from pass 1 mapped onto its mesh (solvers/transfer.py), then from
     itself at the corrected speed: its final case solved again from cold gives the same force,
     torque and forward slip to the coupling's tolerances (the strain field's fixed point stops
     at a relative change of 1e-3, strain_rtol: 1.2e-3 measured on this coarse pass, 2e-4 on the
     finishing mill's)."""
-    from hotroll.app.config import load_case
-    from hotroll.app.runner import run_case
+    from hotroll.config.case import load_case
+    from hotroll.workflows.runner import run_case
 
     sch, rows, record, out = rolled
     case = load_case(out / rows[1]["case"] / "case.toml")
@@ -181,7 +180,7 @@ def test_the_warm_starts_do_not_change_the_answer(rolled, tmp_path):
 
 def test_the_handed_over_temperature_is_the_runs_exit_temperature(rolled):
     """The outlet profile's mean (handed to the transport) against the run's mixing-cup mean
-    over 2h after the gap (thermal/coupling.py, computed on its own): the outlet lies a few mm
+    over 2h after the gap (solvers/thermal_coupling.py, computed on its own): the outlet lies a few mm
     further on, where air has cooled the strip by 0.1-0.2 K (measured): within 1 K and not
     warmer."""
     sch, rows, record, out = rolled

@@ -8,12 +8,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
-from hotroll.algorithms.nonlinear import newton
-from hotroll.algorithms.steady import SteadyRun
-from hotroll.app.runner import build_model, run_case, steady_settings
-
 from test_rolling import _case
+
+from hotroll.solvers.nonlinear import newton
+from hotroll.solvers.steady import SteadyRun
+from hotroll.workflows.runner import build_model, run_case, steady_settings
 
 
 def _steady_run(**settings) -> SteadyRun:
@@ -81,7 +80,7 @@ def test_sweep_warm_starts_agree_with_cold_solves(tmp_path):
     nearest solved one on the same mesh, in fewer Newton iterations, and lands on the cold
     solve's answer (both converge their free surface to 1e-3 h). The run is kept (no new mesh)
     when only m changes and rebuilt when the speed does."""
-    from hotroll.app.sweep import Sweep
+    from hotroll.workflows.sweep import Sweep
 
     plate = {"solver.method": "steady", "plate.length": 4.0}
     sweep, cases = Sweep(), {
@@ -108,7 +107,7 @@ def test_sweep_warm_starts_agree_with_cold_solves(tmp_path):
 
 
 def test_warm_start_from_another_mesh_is_refused():
-    from hotroll.app.sweep import Sweep
+    from hotroll.workflows.sweep import Sweep
 
     coarse = _steady_run()
     coarse.run()
@@ -127,7 +126,7 @@ def test_failed_warm_start_falls_back_to_a_cold_solve(tmp_path):
     again from cold, lands on the cold answer and says so in the summary."""
     from dataclasses import replace
 
-    from hotroll.app.sweep import Sweep
+    from hotroll.workflows.sweep import Sweep
 
     case = _case(**{"solver.method": "steady", "friction.a_f": 3.0})
     cold = run_case(case, tmp_path / "cold")
@@ -146,7 +145,7 @@ def test_failed_warm_start_falls_back_to_a_cold_solve(tmp_path):
 def test_warm_start_never_crosses_free_surface_models():
     """A constrained case does not start from a traced neighbour's (sagged) shape: the sweep
     skips it, and the run refuses it."""
-    from hotroll.app.sweep import Sweep
+    from hotroll.workflows.sweep import Sweep
 
     traced = _steady_run()
     traced.run()

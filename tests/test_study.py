@@ -9,12 +9,11 @@ import csv
 from pathlib import Path
 
 import pytest
-
-from hotroll.app.config import CaseError
-from hotroll.studies.config import expand, load_study
-from hotroll.studies.run import groups, run_study
-
 from casebuild import EX1_COARSE_TOML, assert_same_table
+
+from hotroll.config.case import CaseError
+from hotroll.config.study import expand, load_study
+from hotroll.workflows.study import groups, run_study
 
 BASE = EX1_COARSE_TOML
 
@@ -148,7 +147,7 @@ def test_killed_and_run_again_ends_with_the_uninterrupted_table(files, serial, t
     import time
 
     out = tmp_path / "killed"
-    cmd = [sys.executable, "-m", "hotroll.app.cli", "study", str(files / "study.toml"), "--out",
+    cmd = [sys.executable, "-m", "hotroll.cli", "study", str(files / "study.toml"), "--out",
            str(out), "--serial", "--workers", "2"]
     env = dict(os.environ, NGS_NUM_THREADS="1")
 
@@ -201,7 +200,7 @@ def test_a_worker_killed_mid_study_loses_nothing(files, serial, tmp_path):
     out = tmp_path / "killed_worker"
     study, base = load_study(files / "study.toml")
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                      dashboard_address=None) as cluster, Client(cluster) as client:
+                      dashboard_address=None) as cluster, Client(cluster):
         killed = []
 
         # cases with more of their group after them: a worker that has just finished one is
@@ -213,7 +212,7 @@ def test_a_worker_killed_mid_study_loses_nothing(files, serial, tmp_path):
             summary and its final state written (killed between the two, the case is solved
             again and not read back: the next test's scenario; waiting for the summary alone
             raced with the state's write, seen in CI)."""
-            from hotroll.studies.run import WARM_FILE
+            from hotroll.workflows.study import WARM_FILE
 
             while not (done := [p for p in out.glob("cases/*/summary.json")
                                 if p.parent.name in middle
@@ -241,8 +240,8 @@ def test_the_table_is_each_cases_own_run(files, serial, tmp_path):
     row's values."""
     import json
 
-    from hotroll.app.config import load_case
-    from hotroll.app.runner import run_case
+    from hotroll.config.case import load_case
+    from hotroll.workflows.runner import run_case
 
     keys = ("roll_force", "roll_torque", "forward_slip", "neutral_angle", "exit_code")
     for r in serial:

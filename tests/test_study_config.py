@@ -9,8 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from hotroll.app.config import CaseError
-from hotroll.studies.config import expand, key_unit, label, load_study
+from hotroll.config.case import CaseError
+from hotroll.config.study import expand, key_unit, label, load_study
 
 BASE = """
 [pass]
@@ -119,14 +119,14 @@ def test_units_of_varied_keys_come_from_the_case_schema():
 
 @pytest.mark.parametrize("name, n", [("mesh_table", 6), ("report_examples", 4), ("af_study", 8)])
 def test_bundled_studies_are_valid(name, n):
-    from hotroll.studies.examples import study_path
+    from hotroll.examples import study_path
 
     st, base = load_study(study_path(name))
     cases = expand(st, base)
     assert len(cases) == n and all(c.case is not None for c in cases)
     assert all(c.case.solver.method == "steady" for c in cases)
     if name == "mesh_table":
-        from hotroll.app.config import MESH_TABLE
+        from hotroll.config.case import MESH_TABLE
 
         assert [c.case.mesh.h for c in cases] == [MESH_TABLE[k] for k in MESH_TABLE]
     elif name == "af_study":
@@ -146,8 +146,8 @@ def test_the_figure_is_drawn_from_the_table(tmp_path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from hotroll.studies.config import PlotConfig
-    from hotroll.studies.plot import plot_table
+    from hotroll.config.study import PlotConfig
+    from hotroll.results.study_plot import plot_table
 
     rows = [{"case": f"c{i}", "status": "done", "material.m": m, "pass.roll_angular_velocity": w,
              "roll_force": 10 * m + w} for i, (m, w) in enumerate(
@@ -177,8 +177,8 @@ def test_the_figure_is_drawn_from_the_table(tmp_path):
 
 
 def test_command_line_overrides_go_on_the_base_after_the_files_own(tmp_path):
-    from hotroll.app.cli_runs import _key_values
-    from hotroll.studies.examples import study_path
+    from hotroll.cli.runs import _key_values
+    from hotroll.examples import study_path
 
     over = _key_values(["solver.method=transient", "solver.end_time=0.01", "material.m = 0.3"])
     assert over == {"solver.method": "transient", "solver.end_time": 0.01, "material.m": 0.3}
@@ -222,9 +222,9 @@ def test_bad_schedule_combinations_are_rows_naming_the_field(tmp_path, vary, fie
 def test_a_schedule_study_row_is_its_schedules_own_table(tmp_path):
     """Each row's per-pass columns = the case directory's schedule.csv; the first case = a
     separate run_schedule of the same schedule; the hotter strip needs less force."""
-    from hotroll.schedule.config import load_schedule
-    from hotroll.schedule.run import run_schedule
-    from hotroll.studies.run import run_study
+    from hotroll.config.schedule import load_schedule
+    from hotroll.workflows.schedule import run_schedule
+    from hotroll.workflows.study import run_study
 
     st, base = _schedule_study(tmp_path, '"strip.temperature" = [1323.15, 1373.15]\n')
     rows = run_study(st, base, tmp_path / "out", serial=True)
@@ -250,7 +250,7 @@ def test_a_schedule_study_row_is_its_schedules_own_table(tmp_path):
     own = run_schedule(sch, tmp_path / "own", figure=False)
     for p in own:
         assert rows[0][f"{p['name']}.roll_force"] == pytest.approx(p["roll_force"], rel=1e-9)
-    from hotroll.post.report import write_report       # each case linked to its schedule's page
+    from hotroll.results.report import write_report  # each case linked to its schedule's page
 
     html = write_report(tmp_path / "out").read_text()
     for r in rows:
@@ -291,8 +291,8 @@ def test_plot_lines_may_name_a_column_of_the_cases_file(tmp_path):
 
 
 def test_a_figure_against_names_and_a_missing_column(tmp_path):
-    from hotroll.studies.config import PlotConfig
-    from hotroll.studies.plot import plot_table
+    from hotroll.config.study import PlotConfig
+    from hotroll.results.study_plot import plot_table
 
     rows = [{"case": "a", "status": "done", "friction.law": "coulomb", "roll_force": 2.0},
             {"case": "b", "status": "done", "friction.law": "tresca", "roll_force": 3.0}]
@@ -303,7 +303,7 @@ def test_a_figure_against_names_and_a_missing_column(tmp_path):
 
 def test_the_api_takes_a_bundled_study_and_overrides(tmp_path, monkeypatch):
     import hotroll
-    from hotroll.studies import run as run_mod
+    from hotroll.workflows import study as run_mod
 
     seen = {}
     monkeypatch.setattr(run_mod, "run_study", lambda st, base, out, **k: seen.update(
@@ -316,8 +316,8 @@ def test_the_api_takes_a_bundled_study_and_overrides(tmp_path, monkeypatch):
 
 
 def test_a_schedule_whose_pass_fails_is_a_row_with_the_passes_before(tmp_path, monkeypatch):
-    from hotroll.app import runner
-    from hotroll.studies.run import run_study
+    from hotroll.workflows import runner
+    from hotroll.workflows.study import run_study
 
     real = runner.run_case
 
@@ -336,7 +336,7 @@ def test_a_schedule_whose_pass_fails_is_a_row_with_the_passes_before(tmp_path, m
 def test_groups_are_cut_for_the_workers_a_scheduler_has():
     from distributed import LocalCluster
 
-    from hotroll.studies.run import _scheduler_workers
+    from hotroll.workflows.study import _scheduler_workers
 
     with LocalCluster(n_workers=3, threads_per_worker=1, processes=False,
                       dashboard_address=None) as cluster:

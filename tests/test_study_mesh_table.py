@@ -8,12 +8,11 @@ import csv
 import math
 
 import pytest
-
-from hotroll.studies.config import load_study
-from hotroll.studies.examples import study_path
-from hotroll.studies.run import run_study
-
 from casebuild import assert_same_table
+
+from hotroll.config.study import load_study
+from hotroll.examples import study_path
+from hotroll.workflows.study import run_study
 
 
 @pytest.fixture(scope="module")

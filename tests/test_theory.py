@@ -11,9 +11,17 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from hotroll.theory import (Coulomb, NoNeutralPointError, Sticking, Tresca,
-                            constant_flow_stress, ford_alexander, sims, sims_force_factor,
-                            solve_pass)
+from hotroll.theory import (
+    Coulomb,
+    NoNeutralPointError,
+    Sticking,
+    Tresca,
+    constant_flow_stress,
+    ford_alexander,
+    sims,
+    sims_force_factor,
+    solve_pass,
+)
 
 SQ3 = math.sqrt(3.0)
 T_HOT = 1273.0
@@ -359,7 +367,7 @@ def test_rate_dependent_law_accepts_tensions():
     at the exit, so 2k = 0 there).  With tensions of 10 % of the end 2k: back tension moves the
     neutral point to the exit and lowers the forward slip, front tension the opposite, both
     lower the force; the end pressures are 2k_end - sigma; a tension above w 2k_end is refused."""
-    from hotroll.physics.grades import get_grade
+    from hotroll.model.grades import get_grade
 
     law = get_grade("S355J2").law().sigma
     args = (0.35, 0.008, 0.006, 5.0, Coulomb(0.3), law, 1273.15)

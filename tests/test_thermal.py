@@ -14,8 +14,8 @@ import re
 import numpy as np
 import pytest
 
-from hotroll.thermal import (SIGMA_SB, TemperatureField, ThermalBoundary, ThermalInputError,
-                             ThermalProperties)
+from hotroll.fem.thermal_field import SIGMA_SB, TemperatureField
+from hotroll.model.thermal_properties import ThermalBoundary, ThermalInputError, ThermalProperties
 
 ngsolve = pytest.importorskip("ngsolve")
 

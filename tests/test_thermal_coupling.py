@@ -1,18 +1,19 @@
 """The coupled steady pass (issue 16): the thermal figures of summary.json, contact.csv,
-top.csv and fields.npz against independent numbers, and the direction of the coupling. The case is hotroll/app/examples/thermal_pass.toml (R = 0.3 m, 100 -> 80 mm,
+top.csv and fields.npz against independent numbers, and the direction of the coupling.
+The case is hotroll/examples/cases/thermal_pass.toml (R = 0.3 m, 100 -> 80 mm,
 Hensel-Spittel with a temperature term, rho c = 7600 x 650 J/(m^3 K)), auto mesh."""
 from __future__ import annotations
 
-import re
 import math
+import re
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from hotroll.app.config import load_case
-from hotroll.app.examples import example_path
-from hotroll.app.runner import run_case
+from hotroll.config.case import load_case
+from hotroll.examples import example_path
+from hotroll.workflows.runner import run_case
 
 CASE = example_path("thermal_pass")
 RHO_C = 7600.0 * 650.0
@@ -33,7 +34,7 @@ def adiabatic(tmp_path_factory):
 def test_adiabatic_exit_temperature_rise(adiabatic):
     """Adiabatic limit: the mixing-cup exit temperature rises by (beta x plastic power +
     f_s x friction power) / (rho c Q), Q the inlet's flux (the strip mesh carries it through
-    every section: thermal/coupling.py) (measured 0.02 % apart on a 5.5 K rise; the issue's
+    every section: solvers/thermal_coupling.py) (measured 0.02 % apart on a 5.5 K rise; the issue's
     bound is 1 %). The heat sources are the mechanics' powers carried to the strip mesh:
     plastic heat = 0.9 x plastic power (measured +0.5 %: the density at the strip's vertices,
     integrated as P1), friction heat = 0.5 x friction power (measured -5.4 %: Coulomb's flux
@@ -151,7 +152,7 @@ def test_written_flow_stress_is_the_law_at_the_local_temperature(chilled):
     """fields.npz's sigma_ef is Hensel-Spittel at each vertex's own strain rate and flow
     temperature (the mechanics elements' means of the strip field): the plastic power int
     sigma edot dx from the written fields against the solve's (measured +1.1 %)."""
-    from hotroll.physics.flow_stress import HenselSpittel
+    from hotroll.model.flow_stress import HenselSpittel
 
     s, out = chilled
     f = dict(np.load(out / "fields.npz"))
@@ -194,8 +195,9 @@ def test_temperature_figure_shows_the_written_data(chilled, monkeypatch):
     """fig_temperature.png by its data: both field panels colour thermal.npz's vertex
     temperatures (the strip mesh), the surface panel draws top.csv's temperature against x, the exit mean and
     surface temperatures as horizontal lines, and the contact's heat flux (MW/m^2)."""
-    import hotroll.post.plots as P
     from matplotlib.figure import Figure
+
+    import hotroll.results.figures as P
 
     s, out = chilled
     figs = {}
@@ -219,8 +221,8 @@ def test_temperature_figure_shows_the_written_data(chilled, monkeypatch):
         assert any(np.allclose(np.asarray(a, float), fields["temperature"]) for a in colours)
 
     def lines(ax):
-        return [(np.asarray(l.get_xdata(), float), np.asarray(l.get_ydata(), float))
-                for l in ax.get_lines()]
+        return [(np.asarray(line.get_xdata(), float), np.asarray(line.get_ydata(), float))
+                for line in ax.get_lines()]
 
     assert any(len(x) == len(top) and np.allclose(x, top["x"]) and
                np.allclose(y, top["temperature"]) for x, y in lines(surface))
@@ -235,10 +237,10 @@ def test_form_stress_is_the_law_with_a_temperature_dependent_rate_exponent():
     T)/K_ref 3^((m(T)+1)/2) edot^m(T), its consistency and rate offset at each element's
     temperature, is the law's sigma(eps, edot, T) at every point and rate, in a temperature
     field from 900 to 1373 K (exponent 0.24 to 0.29 against m_ref 0.29)."""
-    from hotroll.algorithms.steady import SteadyRun
-    from hotroll.app.runner import build_model, steady_settings
-    from hotroll.discretisation.forms import strain_rate
-    from hotroll.physics.material import edot_squared
+    from hotroll.fem.forms import strain_rate
+    from hotroll.model.material import edot_squared
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.runner import build_model, steady_settings
 
     case = load_case(CASE).with_overrides(**{"material.m8": 1e-4, "material.m3": 0.15})
     model, _ = build_model(case)

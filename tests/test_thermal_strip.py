@@ -1,4 +1,4 @@
-"""The temperature's strip mesh (hotroll/thermal/strip_mesh.py, issue 16) against known answers:
+"""The temperature's strip mesh (hotroll/fem/strip_mesh.py, issue 16) against known answers:
 the Graetz series on the strip mesh itself with its convergence rate under refinement, the
 stream-function velocity's flux and tangency, and the grading rules by hand. Steel-like data
 as in test_thermal.py."""
@@ -9,12 +9,11 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
-
-from hotroll.thermal import TemperatureField, ThermalBoundary, ThermalProperties
-from hotroll.thermal.strip_mesh import (FIRST_CELL, ThermalStrip, graded_axis, layer_thickness,
-                                        top_rows)
-
 from test_thermal import ALPHA, K, graetz_theta
+
+from hotroll.fem.strip_mesh import FIRST_CELL, ThermalStrip, graded_axis, layer_thickness, top_rows
+from hotroll.fem.thermal_field import TemperatureField
+from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 
 ngsolve = pytest.importorskip("ngsolve")
 pytestmark = pytest.mark.mutation
@@ -150,8 +149,8 @@ def test_element_temperature_has_the_mean_consistency_by_hand():
     T_e = ln(sum w exp(m1 T) / sum w) / m1, by hand; without a law the plain weighted mean.
     Two elements: one chilled at its top (900 K on a third of its weight, 1300 K elsewhere),
     one uniform."""
-    from hotroll.physics.flow_stress import HenselSpittel
-    from hotroll.thermal.coupling import ThermalCoupling
+    from hotroll.model.flow_stress import HenselSpittel
+    from hotroll.solvers.thermal_coupling import ThermalCoupling
 
     m1 = -0.0025
     vals = np.array([900.0, 1300.0, 1300.0, 1250.0, 1250.0])
@@ -174,7 +173,7 @@ def test_structured_mesh_from_arrays_is_ngsolves():
     orientation) and named boundaries as NGSolve's MakeStructured2DMesh mapped onto the axes."""
     from ngsolve.meshes import MakeStructured2DMesh
 
-    from hotroll.discretisation.mesh import mesh_triangles, structured_triangle_mesh
+    from hotroll.fem.mesh import mesh_triangles, structured_triangle_mesh
 
     X = np.sort(np.random.default_rng(3).uniform(0.0, 2.0, 9))
     Y = np.array([0.0, 0.1, 0.5, 0.55, 1.0])

@@ -1,13 +1,12 @@
 """The temperature carried with the material in the report's transient scheme (issue 16,
-hotroll/thermal/lagrangian.py): an adiabatic pass run to its steady state on the coarse
+hotroll/solvers/thermal_lagrangian.py): an adiabatic pass run to its steady state on the coarse
 Example 1 geometry, against the energy balance of the material that has passed the gap."""
 from __future__ import annotations
 
 import pytest
-
-from hotroll.app.runner import run_case
-
 from casebuild import build_case, example1_coarse
+
+from hotroll.workflows.runner import run_case
 
 RHO, C = 7600.0, 650.0
 T0 = 1373.15
@@ -32,7 +31,7 @@ def test_adiabatic_transient_exit_rise(adiabatic):
     the plastic and friction heat of the bite: the mixing-cup rise is (beta x plastic power +
     f_s x friction power) / (rho c Q), Q the entry flux. Measured +1.2 % here (the summary
     window's means of an oscillating transient; a hard Coulomb pass of
-    hotroll/app/examples/thermal_pass.toml on h = 0.01: -0.16 %). The step's energy identity (the
+    hotroll/examples/cases/thermal_pass.toml on h = 0.01: -0.16 %). The step's energy identity (the
     lumped enthalpy change against the heat flows) closes (measured 6e-13: nothing leaves an
     adiabatic plate, so only the plastic heat's quadrature is in it, 2.6e-4 from 0.9 x the
     plastic power)."""
@@ -55,8 +54,8 @@ def test_checkpoint_carries_the_temperature(tmp_path):
     case with another fingerprint starts from the entry temperature)."""
     import numpy as np
 
-    from hotroll.algorithms.transient import TransientRun
-    from hotroll.app.runner import build_model
+    from hotroll.solvers.transient import TransientRun
+    from hotroll.workflows.runner import build_model
 
     model, settings = build_model(build_case(BASE))
     ckpt = tmp_path / "ckpt"

@@ -50,8 +50,8 @@ def test_the_api_names_are_not_shadowed_by_packages():
     packages behind them are imported (a package attribute would shadow a function of the
     same name)."""
     import hotroll
-    import hotroll.schedule.run  # noqa: F401
-    import hotroll.studies.run  # noqa: F401
+    import hotroll.workflows.schedule  # noqa: F401
+    import hotroll.workflows.study  # noqa: F401
 
     assert callable(hotroll.study) and callable(hotroll.roll_schedule)
     assert hotroll.study.__module__ == "hotroll.api"

@@ -9,10 +9,17 @@ Per unit width, SI units.  numpy + scipy only.
 * :func:`ford_alexander` -- Ford & Alexander (1963/64) simplified load formula.
 """
 
-from .ford_alexander import FordAlexanderResult, ford_alexander, ford_alexander_factor
-from .sims import SimsResult, sims, sims_force_factor, sims_neutral_angle
-from .slab import (Coulomb, NoNeutralPointError, SlabResult, Sticking, Tresca,
-                   constant_flow_stress, solve_pass)
+from hotroll.theory.ford_alexander import FordAlexanderResult, ford_alexander, ford_alexander_factor
+from hotroll.theory.sims import SimsResult, sims, sims_force_factor, sims_neutral_angle
+from hotroll.theory.slab import (
+    Coulomb,
+    NoNeutralPointError,
+    SlabResult,
+    Sticking,
+    Tresca,
+    constant_flow_stress,
+    solve_pass,
+)
 
 __all__ = [
     "Coulomb", "Tresca", "Sticking", "constant_flow_stress", "solve_pass", "SlabResult",

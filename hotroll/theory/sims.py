@@ -33,7 +33,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .slab import SQRT3, _check_number, _check_pass
+from hotroll.theory.slab import SQRT3, _check_number, _check_pass
 
 
 @dataclass(frozen=True)

@@ -70,7 +70,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from ..physics.flow_stress import _finite
+from hotroll.model.flow_stress import _finite
 
 SQRT3 = math.sqrt(3.0)
 

@@ -1,0 +1,4 @@
+"""``python -m hotroll.cli``: the ``hotroll`` command."""
+from hotroll.cli import main
+
+main()

@@ -1,0 +1,144 @@
+"""The command line's batch commands (``hotroll schedule``, ``hotroll study``), registered on
+``cli.app`` when ``cli`` imports this module."""
+
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+from rich.markup import escape
+from rich.table import Table
+from rich.text import Text
+
+from hotroll.cli.common import OutOpt, ResumeOpt, console, err_console, fail
+from hotroll.config.case import CaseError
+
+
+def schedule(
+    schedule_file: Annotated[Path, typer.Argument(
+        help="Schedule file (TOML) or a bundled schedule's name (finishing_mill, ...).")],
+    out: OutOpt,
+    no_figures: Annotated[bool, typer.Option("--no-figures", help="Do not write figures.")] = False,
+    resume: ResumeOpt = True,
+) -> None:
+    """Roll a pass schedule: every pass from the previous exit state (thickness, temperature
+    and strain through the thickness), interpass cooling; OUT/schedule.csv, schedule.json,
+    schedule.png and one directory per pass."""
+    from hotroll import examples as sched_examples
+    from hotroll.config.schedule import load_schedule
+    from hotroll.workflows.schedule import ScheduleError, run_schedule
+
+    if not schedule_file.exists():
+        try:
+            schedule_file = sched_examples.schedule_path(str(schedule_file))
+        except FileNotFoundError as e:
+            raise fail(f"schedule: {schedule_file} is neither a file nor a bundled schedule "
+                        f"({e})") from None
+    try:
+        sch = load_schedule(schedule_file)
+        if no_figures:
+            sch.output.figures = False
+    except CaseError as e:
+        raise fail(str(e)) from None
+    console.print(Text(f"rolling {sch.name}: {len(sch.passes)} passes -> {out}", style="bold"))
+    try:
+        rows = run_schedule(sch, out, resume=resume, figure=not no_figures,
+                            progress=lambda line: console.print(Text("  " + line)))
+    except ScheduleError as e:
+        err_console.print(Text(str(e), style="yellow"), soft_wrap=True)
+        raise typer.Exit(int(e.summary.get("exit_code") or 1)) from None
+    width = sch.strip.width
+    table = Table(title=escape(f"{sch.name}: schedule"))
+    heads = ["pass", "h mm", "U m/s", "F MN" if width else "F MN/m",
+             "M kNm" if width else "M kNm/m", "T out K", "strain", "FE", "s"]
+    for h in heads:
+        table.add_column(h, justify="left" if h == "pass" else "right")
+    for r in rows:
+        w = width or 1.0
+        table.add_row(
+            escape(r["name"]), f"{1e3 * r['entry_thickness']:.1f}>{1e3 * r['exit_thickness']:.1f}",
+            f"{r['roll_surface_speed']:.2f}", f"{1e-6 * w * r['roll_force']:.2f}",
+            f"{1e-3 * w * r['roll_torque']:.0f}", f"{r['exit_temperature_mean']:.1f}",
+            f"{r['exit_strain_mean']:.3f}", str(r["fe_solves"]), f"{r['wall_time']:.1f}")
+    console.print(table)
+    console.print(f"force and torque per roll{', whole width' if width else ''}; exit "
+                  f"temperature: mixing-cup mean after the gap; all columns (power, surface "
+                  f"temperature, transports) in {out / 'schedule.csv'}; figure "
+                  f"{out / 'schedule.png'}")
+
+
+
+def study(
+    study_file: Annotated[Path, typer.Argument(
+        help="Study file (TOML): [base] and [vary]/[[cases]], or a bundled study's name "
+             "(mesh_table, report_examples, af_study).")],
+    out: OutOpt,
+    scheduler: Annotated[Optional[str], typer.Option(
+        help="Address of a running dask scheduler (default: DASK_SCHEDULER_ADDRESS, else a "
+             "local cluster).")] = None,
+    workers: Annotated[Optional[int], typer.Option(
+        help="Workers the groups are cut for; a local cluster starts that many processes, one "
+             "thread each (default: one per core, or the workers a --scheduler has).")] = None,
+    serial: Annotated[bool, typer.Option("--serial", help="No cluster: the groups one after "
+                                         "another in this process.")] = False,
+    set_: Annotated[Optional[list[str]], typer.Option(
+        "--set", help="KEY=VALUE: a dotted case key set on the base case (repeatable), e.g. "
+                      "--set solver.method=transient.")] = None,
+) -> None:
+    """Run every combination of a study's vary lists on dask.distributed into OUT/cases/;
+    the table OUT/study.csv and OUT/study.parquet (a column per varied key). Finished cases
+    are read back when run again. Exit code: 0, or 64 + the number of failed cases (max 63)."""
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from hotroll.config.study import load_study
+    from hotroll.examples import find_study
+    from hotroll.workflows.study import FAILED, run_study
+
+    try:
+        study_file = find_study(study_file)
+    except FileNotFoundError as e:
+        raise fail(f"study: {e}") from None
+    try:
+        st, base = load_study(study_file, overrides=_key_values(set_ or []))
+    except CaseError as e:
+        raise fail(str(e)) from None
+    n = len(st.combinations())
+    console.print(Text(f"study {st.name}: {n} cases -> {out}", style="bold"))
+    with Progress(TextColumn("{task.description}"), BarColumn(), TextColumn(
+            "{task.completed}/{task.total}"), TimeElapsedColumn(), TextColumn("{task.fields[info]}"),
+            console=console) as bar:
+        task = bar.add_task("cases", total=n, info="")
+
+        def progress(p: dict) -> None:
+            eta = p["remaining_s"]
+            info = f"failed {p['failed']}, running {p.get('running', 0)}"
+            bar.update(task, completed=p["done"], info=info + (
+                f", about {eta:.0f} s left" if eta == eta else ""))
+
+        rows = run_study(st, base, out, scheduler=scheduler, workers=workers, serial=serial,
+                         progress=progress)
+    failed = [r for r in rows if r["status"] in FAILED]
+    for r in failed:
+        err_console.print(Text(f"{r['case']}: {r['status']}: {r['reason']}", style="yellow"),
+                          soft_wrap=True)
+    console.print(f"{len(rows) - len(failed)} of {len(rows)} cases done; table "
+                  f"{out / 'study.csv'} and {out / 'study.parquet'}")
+    for name in ("study.png", "study_profiles.png"):
+        if st.plot is not None and (out / name).is_file():
+            console.print(f"figure {out / name}")
+    from hotroll.cli.report import study_report
+    study_report(out, st.name)
+    if failed:
+        raise typer.Exit(64 + min(len(failed), 63))
+
+
+def _key_values(items: list[str]) -> dict:
+    """``KEY=VALUE`` options as a dict (``studies.config.parse_value``)."""
+    from hotroll.config.study import parse_value
+
+    out = {}
+    for item in items:
+        key, sep, text = item.partition("=")
+        if not sep or "." not in key:
+            raise fail(f"--set {item!r}: expected section.key=value, e.g. solver.method=steady")
+        out[key.strip()] = parse_value(text)
+    return out

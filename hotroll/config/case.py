@@ -1,0 +1,252 @@
+"""Validated case description (TOML -> pydantic models), SI units throughout.
+
+A case file has the sections ``[pass]``, ``[plate]``, ``[material]`` (required)
+and ``[friction]``, ``[mesh]``, ``[solver]``, ``[output]``, ``[thermal]`` (optional).  Every
+problem is reported as ``<section.key>: <what is wrong; allowed range>`` in a
+single :class:`CaseError`. The shared helpers are in ``config_base.py``, the law sections
+(``[material]``, ``[friction]``) in ``config_laws.py``, the geometry and numerics sections in
+``config_sections.py``, ``[thermal]`` in ``config_thermal.py``.
+"""
+
+from __future__ import annotations
+
+import json
+import tomllib
+import typing
+from pathlib import Path
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic.fields import FieldInfo
+
+from hotroll.config.base import MESH_TABLE, CaseError, _fields, _Problems, _Section
+from hotroll.config.laws import FrictionConfig, MaterialConfig
+from hotroll.config.sections import (  # noqa: F401 (re-exported)
+    MAX_LENGTH,
+    ContactConfig,
+    MeshConfig,
+    OutputConfig,
+    PassConfig,
+    PlateConfig,
+    SolverConfig,
+    check_profile,
+)
+from hotroll.config.thermal import ThermalConfig
+
+__all__ = ["MESH_TABLE", "Case", "CaseError", "FrictionConfig", "MaterialConfig", "case_from_dict",
+           "case_from_toml", "load_case", "flat"]
+
+
+class Case(_Section):
+    """A complete rolling case."""
+
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, populate_by_name=True)
+
+    name: str = Field("case", description="case name (used for output folders)")
+    pass_: PassConfig = Field(..., alias="pass", description="roll and pass geometry")
+    plate: PlateConfig = Field(..., description="plate")
+    material: MaterialConfig = Field(..., description="Norton-Hoff material")
+    friction: FrictionConfig = Field(default_factory=FrictionConfig, description="friction law")
+    mesh: MeshConfig = Field(default_factory=MeshConfig, description="mesh sizes")
+    solver: SolverConfig = Field(default_factory=SolverConfig, description="solver settings")
+    contact: ContactConfig = Field(default_factory=ContactConfig,
+                                   description="roll contact formulation")
+    output: OutputConfig = Field(default_factory=OutputConfig, description="output switches")
+    thermal: ThermalConfig | None = Field(
+        None, description="heat sources and losses; present: the coupled thermo-mechanical "
+        "problem, absent: isothermal at plate.temperature")
+
+    @model_validator(mode="after")
+    def _check_sizes(self) -> Case:
+        lc, problems = self.pass_.contact_length, []
+        if self.mesh.h_contact == "auto":
+            from hotroll.model.geometry import auto_contact_size
+
+            self.mesh._auto_h = auto_contact_size(self.pass_.roll_pass())
+        if self.plate.length < 3 * lc:
+            problems.append(f"plate.length: must be >= 3 x projected contact length = "
+                            f"{3 * lc:.6g} m, got {self.plate.length:g} m")
+        h = self.mesh.h
+        if h >= lc / 4:
+            shown = f"{self.mesh.h_contact} = {h:g}" if isinstance(self.mesh.h_contact, str) else f"{h:g}"
+            problems.append(f"mesh.h_contact: must be < contact_length/4 = {lc / 4:.6g} m, "
+                            f"got {shown} m")
+        half_exit = self.pass_.exit_thickness / 2
+        if h > half_exit / 4:
+            problems.append(f"mesh.h_contact: must be <= exit half-thickness/4 = "
+                            f"{half_exit / 4:.6g} m (4 elements through the exit half-"
+                            f"thickness), got {h:g} m")
+        if self.mesh.h_far is not None and self.mesh.h_far < h:
+            problems.append(f"mesh.h_far: must be >= mesh.h_contact ({h:g} m), "
+                            f"got {self.mesh.h_far:g} m")
+        problems += self.material.problems_at(self.plate.temperature,
+                                              self.plate.mean_entry_strain)
+        if self.thermal is not None:
+            problems += [f"material.{key}: missing, required with a [thermal] section "
+                         f"({_fields(MaterialConfig)[key].description})"
+                         for key in ("density", "specific_heat", "conductivity")
+                         if getattr(self.material, key) is None]
+        for key in ("temperature_profile", "strain_profile"):
+            if getattr(self.plate, key) is not None and self.solver.method != "steady":
+                problems.append(f"plate.{key}: needs solver.method = \"steady\" (the report's "
+                                f"scheme starts from a uniform plate), got "
+                                f"\"{self.solver.method}\"")
+        if self.contact.method == "multiplier" and self.solver.method != "steady":
+            problems.append('contact.method: "multiplier" needs solver.method = "steady" (the '
+                            'report\'s scheme has the penalty contact of Table 1), got '
+                            f'"{self.solver.method}"')
+        if self.plate.temperature_profile is not None and self.thermal is None:
+            problems.append("plate.temperature_profile: needs a [thermal] section (an isothermal "
+                            "run has one temperature, plate.temperature)")
+        if problems:
+            raise _Problems(problems)
+        return self
+
+    @property
+    def dt(self) -> float:
+        """Time step in s (rule "h/6" resolved with the contact mesh size)."""
+        ts = self.solver.time_step
+        return self.mesh.h / 6.0 if ts == "h/6" else float(ts)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain dict with TOML names (``pass``); unset optional keys left out."""
+        return self.model_dump(by_alias=True, exclude_none=True)
+
+    def with_overrides(self, **dotted: Any) -> Case:
+        """New validated Case with ``{"section.key": value}`` replaced (None = automatic)."""
+        return case_from_dict(set_dotted(self.to_dict(), dotted))
+
+    def to_toml(self) -> str:
+        """TOML text that round-trips through :func:`case_from_toml`."""
+        data = self.to_dict()
+        lines = [f"name = {_toml_value(data.pop('name'))}"]
+        for section, values in data.items():
+            model = _model_of(Case, section)
+            lines += ["", f"[{section}]"]
+            for key, value in values.items():
+                info = _fields(model)[key]
+                lines.append(f"{key} = {_toml_value(value)}".ljust(36) + f"  # {info.description}")
+        return "\n".join(lines) + "\n"
+
+
+# --------------------------------------------------------------------------- I/O
+
+
+def set_dotted(data: dict, dotted: dict[str, Any]) -> dict:
+    """``data`` (a case dict, TOML names) with ``{"section.key": value}`` set in place."""
+    for key, value in dotted.items():
+        parts = key.split(".")
+        parts[0] = "pass" if parts[0] == "pass_" else parts[0]
+        node = data
+        for p in parts[:-1]:
+            node = node.setdefault(p, {})
+            if not isinstance(node, dict):
+                raise CaseError(f"{key}: '{p}' is not a section")
+        node[parts[-1]] = value
+    return data
+
+
+def case_from_dict(d: Any, source: str | None = None) -> Case:
+    """Validate a plain dict (TOML names) into a Case; raises CaseError."""
+    if not isinstance(d, dict):
+        raise CaseError(f"case: must be a table of sections, got {type(d).__name__}", source)
+    try:
+        return Case.model_validate(d)
+    except ValidationError as e:
+        raise CaseError(_problems(e), source) from None
+
+
+def case_from_toml(text: str, source: str | None = None) -> Case:
+    """Parse and validate TOML text; raises CaseError."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise CaseError(f"TOML syntax error: {e}", source) from None
+    return case_from_dict(data, source)
+
+
+def load_case(path: str | Path) -> Case:
+    """Read a TOML case file; ``name`` defaults to the file stem."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as e:
+        raise CaseError(f"cannot read case file: {e.strerror or e}", str(path)) from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise CaseError(f"TOML syntax error: {e}", str(path)) from None
+    data.setdefault("name", path.stem)
+    return case_from_dict(data, str(path))
+
+
+# ------------------------------------------------------------------ error text
+
+
+def _model_of(model: type[BaseModel], key: str) -> type[BaseModel] | None:
+    """The section model of ``key`` (an optional section: the model inside ``X | None``)."""
+    ann = _fields(model)[key].annotation
+    for a in (ann, *typing.get_args(ann)):
+        if isinstance(a, type) and issubclass(a, BaseModel):
+            return a
+    return None
+
+
+def _problems(err: ValidationError) -> list[str]:
+    """Turn pydantic errors into ``section.key: message`` lines (one per field)."""
+    out: dict[str, str] = {}
+    for e in err.errors():
+        exc = (e.get("ctx") or {}).get("error")
+        if isinstance(exc, _Problems):
+            out.update({p: p for p in exc.problems})
+            continue
+        path, parent, info = [], Case, None
+        for item in e["loc"]:
+            fields = _fields(parent) if parent else {}
+            path.append(str(item))
+            if item not in fields:
+                break
+            info, parent = fields[item], _model_of(parent, item)
+            if parent is None:
+                break
+        dotted = ".".join(path)
+        out.setdefault(dotted, f"{dotted}: {_message(e, path, parent, info)}")
+    return list(out.values())
+
+
+def _message(e: dict, path: list[str], parent: type[BaseModel] | None, info: FieldInfo | None) -> str:
+    kind, got = e["type"], e.get("input")
+    if kind == "extra_forbidden":
+        what = "unknown section or key" if len(path) == 1 else "unknown key"
+        return f"{what} (allowed: {', '.join(_fields(parent))})"
+    is_section = info is not None and parent is not None and len(path) == 1
+    if kind == "missing":
+        if is_section or info is None:
+            return "missing required section" if is_section else "missing"
+        return f"missing required key ({info.description})"
+    if is_section:
+        return f"must be a table [{path[0]}], got {got!r}"
+    allowed = (info.json_schema_extra or {}).get("allowed") if info else None
+    if allowed:
+        return f"must be {allowed}, got {got!r}"
+    return e["msg"][0].lower() + e["msg"][1:]
+
+
+def _toml_value(v: Any) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return repr(v)
+    if isinstance(v, str):
+        return json.dumps(v, ensure_ascii=False)
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    raise TypeError(f"cannot write {type(v).__name__} to TOML")
+
+
+def flat(d: dict, pre: str = "") -> dict:
+    """Nested dict -> {"section.key": value}."""
+    out = {}
+    for k, v in d.items():
+        out.update(flat(v, f"{pre}{k}.") if isinstance(v, dict) else {f"{pre}{k}": v})
+    return out

@@ -1,0 +1,264 @@
+"""A pass schedule file (issue 17), validated before anything runs, SI units throughout.
+
+    name = "finishing"
+    [strip]            entry strip: thickness, width, temperature (or temperature_profile),
+                       strain (or strain_profile)
+    [mill]             speeds = "given" (each pass its roll speed) or "mass_flow" (tandem:
+                       the first pass's speed, the others set so that every stand passes the
+                       same mass flux)
+    [material]         as in a case (the flow stress and the thermal data)
+    [friction]         default of every pass (a pass may give its own table)
+    [thermal]          as in a case: roll contact, air; required (a schedule carries T)
+    [mesh] [solver] [output]   defaults of every pass's case
+    [[pass]]           roll_radius, exit_thickness, roll_surface_speed or
+                       roll_angular_velocity, back_tension, front_tension, friction, name
+    [pass.transport]   after the pass: duration (s) or distance (m, at the exit speed),
+                       htc_air, emissivity (default [thermal]'s), strain_retained
+
+Every pass becomes a ``Case`` (``Schedule.pass_case``) whose entry is the previous exit; the
+errors name ``pass[k].key`` (k from 1) or the section.
+"""
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+from typing import Any, Literal
+
+from pydantic import Field, ValidationError, field_validator, model_validator
+
+from hotroll.config.base import PosFloat, _field, _Problems, _Section, problem_lines
+from hotroll.config.case import (
+    Case,
+    CaseError,
+    FrictionConfig,
+    MaterialConfig,
+    MeshConfig,
+    OutputConfig,
+    SolverConfig,
+    case_from_dict,
+    check_profile,
+)
+from hotroll.config.thermal import ThermalConfig
+
+#: The plate length of each pass's steady strip, in contact lengths.
+PLATE_CONTACT_LENGTHS = 5.0
+
+
+class StripConfig(_Section):
+    thickness: float = _field(..., "full strip thickness entering the first pass", "m", "> 0",
+                              gt=0)
+    width: PosFloat | None = _field(None, "strip width (omit: results per unit width only)",
+                                    "m", "> 0")
+    temperature: float = _field(..., "entry temperature (uniform, or the reference with a "
+                                "profile)", "K", "> 0", gt=0)
+    temperature_profile: list[tuple[float, float]] | None = _field(
+        None, "entry temperature through the half thickness [[eta, T], ...]", "K",
+        "pairs with eta increasing strictly from 0 to 1 and T > 0")
+    strain: float = _field(0.0, "equivalent strain the strip enters with", "", ">= 0", ge=0)
+    strain_profile: list[tuple[float, float]] | None = _field(
+        None, "entry strain through the half thickness [[eta, strain], ...]", "",
+        "pairs with eta increasing strictly from 0 to 1 and strain >= 0")
+
+
+    @field_validator("temperature_profile", "strain_profile")
+    @classmethod
+    def _profile(cls, v: Any, info) -> Any:
+        return check_profile(info.field_name, v)
+
+
+class MillConfig(_Section):
+    speeds: Literal["given", "mass_flow"] = _field(
+        "given", "roll speeds: each pass's own (given), or the first pass's and the others "
+        "from the constant mass flux of a tandem mill (mass_flow)", "",
+        '"given" or "mass_flow"')
+    start_from_previous: bool = _field(
+        True, "start each pass's Newton from the previous pass mapped onto its mesh "
+        "(solvers/transfer.py; false: from the slab guess, cold)", "", "true or false")
+    mass_flow_tolerance: float = _field(
+        1e-3, "mass_flow: relative flux difference between stands at which a stand's speed "
+        "is accepted", "", "in (0, 0.1]", gt=0, le=0.1)
+
+
+class TransportConfig(_Section):
+    duration: PosFloat | None = _field(None, "time between the two passes", "s", "> 0")
+    distance: PosFloat | None = _field(
+        None, "distance to the next pass (the duration is this over the strip's exit speed)",
+        "m", "> 0")
+    htc_air: float | None = _field(None, "convection coefficient (omit: thermal.htc_air)",
+                                   "W/(m^2 K)", ">= 0", ge=0)
+    emissivity: float | None = _field(None, "emissivity (omit: thermal.emissivity)", "",
+                                      "in [0, 1]", ge=0, le=1)
+    strain_retained: float = _field(
+        1.0, "share of the strain the strip keeps (1: no softening; 0: fully recrystallised)",
+        "", "in [0, 1]", ge=0, le=1)
+
+    @model_validator(mode="after")
+    def _one_time(self) -> TransportConfig:
+        if (self.duration is None) == (self.distance is None):
+            raise _Problems(["transport: give exactly one of duration (s) and distance (m)"])
+        return self
+
+
+class PassEntry(_Section):
+    name: str | None = Field(None, description="pass name (default P1, P2, ...)")
+    roll_radius: float = _field(..., "roll radius", "m", "> 0", gt=0)
+    exit_thickness: float = _field(..., "full exit thickness (the roll gap: rigid rolls)", "m",
+                                   "> 0 and < the entry thickness", gt=0)
+    roll_surface_speed: PosFloat | None = _field(None, "roll surface speed", "m/s", "> 0")
+    roll_angular_velocity: PosFloat | None = _field(None, "roll angular velocity", "rad/s",
+                                                    "> 0")
+    back_tension: float = _field(0.0, "back tension", "Pa", ">= 0", ge=0)
+    front_tension: float = _field(0.0, "front tension", "Pa", ">= 0", ge=0)
+    friction: FrictionConfig | None = Field(None, description="this pass's friction (omit: "
+                                            "the schedule's [friction])")
+    transport: TransportConfig | None = Field(None, description="the transport after the pass")
+
+    def angular_velocity(self) -> float | None:
+        if self.roll_angular_velocity is not None:
+            return self.roll_angular_velocity
+        if self.roll_surface_speed is not None:
+            return self.roll_surface_speed / self.roll_radius
+        return None
+
+
+class Schedule(_Section):
+    name: str = Field("schedule", description="schedule name")
+    strip: StripConfig
+    mill: MillConfig = Field(default_factory=MillConfig)
+    material: MaterialConfig
+    friction: FrictionConfig = Field(default_factory=FrictionConfig)
+    thermal: ThermalConfig
+    mesh: MeshConfig = Field(default_factory=MeshConfig)
+    solver: SolverConfig = Field(default_factory=SolverConfig)
+    output: OutputConfig = Field(default_factory=OutputConfig)
+    passes: list[PassEntry] = Field(..., alias="pass", min_length=1)
+
+    @model_validator(mode="after")
+    def _check(self) -> Schedule:
+        problems = []
+        h = self.strip.thickness
+        for k, p in enumerate(self.passes, 1):
+            if p.exit_thickness >= h:
+                problems.append(f"pass[{k}].exit_thickness: must be < the entry thickness "
+                                f"{h:g} m (the previous exit), got {p.exit_thickness:g} m")
+            h = p.exit_thickness
+            speed = [x for x in (p.roll_surface_speed, p.roll_angular_velocity) if x is not None]
+            if self.mill.speeds == "given" or k == 1:
+                if len(speed) != 1:
+                    problems.append(f"pass[{k}]: give exactly one of roll_surface_speed (m/s) "
+                                    f"and roll_angular_velocity (rad/s)")
+            elif speed:
+                problems.append(f"pass[{k}]: no roll speed with mill.speeds = \"mass_flow\" "
+                                f"(it follows from the first pass's mass flux)")
+            if k < len(self.passes) and p.transport is None:
+                problems.append(f"pass[{k}].transport: missing; the time (or distance) to the "
+                                f"next pass is needed ([pass.transport] duration or distance)")
+        if self.solver.method != "steady":
+            problems.append("solver.method: a schedule runs the steady solver, got "
+                            f"\"{self.solver.method}\"")
+        if problems:
+            raise _Problems(problems)
+        return self
+
+    def pass_name(self, k: int) -> str:
+        """The k-th pass's name (k from 0)."""
+        return self.passes[k].name or f"P{k + 1}"
+
+    def pass_case(self, k: int, entry_thickness: float, temperature: float,
+                  temperature_profile=None, strain: float = 0.0, strain_profile=None,
+                  angular_velocity: float | None = None) -> Case:
+        """The k-th pass (from 0) as a validated case entering with this state (profiles:
+        ``process.profile.ThicknessProfile`` or None)."""
+        p = self.passes[k]
+        omega = angular_velocity if angular_velocity is not None else p.angular_velocity()
+        lc = (p.roll_radius * 0.5 * (entry_thickness - p.exit_thickness)) ** 0.5
+        d = {
+            "name": f"{k + 1:02d}_{self.pass_name(k)}",
+            "pass": {"roll_radius": p.roll_radius, "entry_thickness": entry_thickness,
+                     "exit_thickness": p.exit_thickness, "roll_angular_velocity": omega,
+                     "back_tension": p.back_tension, "front_tension": p.front_tension},
+            "plate": {"length": PLATE_CONTACT_LENGTHS * lc, "temperature": temperature,
+                      "entry_strain": strain},
+            "material": self.material.model_dump(exclude_none=True),
+            "friction": (p.friction or self.friction).model_dump(exclude_none=True),
+            "mesh": self.mesh.model_dump(exclude_none=True),
+            "solver": self.solver.model_dump(exclude_none=True),
+            "output": self.output.model_dump(exclude_none=True),
+            "thermal": self.thermal.model_dump(exclude_none=True),
+        }
+        if self.strip.width is not None:
+            d["pass"]["width"] = self.strip.width
+        if temperature_profile is not None:
+            d["plate"]["temperature_profile"] = temperature_profile.pairs()
+        if strain_profile is not None:
+            d["plate"]["strain_profile"] = strain_profile.pairs()
+        try:
+            return case_from_dict(d)
+        except CaseError as e:
+            raise CaseError([_pass_problem(k, q) for q in e.problems]) from None
+
+    def entry_profiles(self):
+        """The entry strip's (temperature, strain) profiles or None each."""
+        from hotroll.model.profile import ThicknessProfile
+
+        return tuple(None if p is None else ThicknessProfile.from_pairs(p)
+                     for p in (self.strip.temperature_profile, self.strip.strain_profile))
+
+    def check_cases(self) -> list[Case]:
+        """Every pass as a case at the nominal entry state (the geometry, laws, meshes checked
+        before any computation); raises one CaseError with all problems."""
+        cases, problems, h = [], [], self.strip.thickness
+        omega1 = self.passes[0].angular_velocity()
+        for k, p in enumerate(self.passes):
+            omega = p.angular_velocity()
+            if omega is None:      # mass_flow: a volume-constant guess (checks only)
+                omega = omega1 * self.passes[0].roll_radius / p.roll_radius * \
+                    self.passes[0].exit_thickness / p.exit_thickness
+            try:
+                cases.append(self.pass_case(k, h, self.strip.temperature, None,
+                                            self.strip.strain, None, omega))
+            except CaseError as e:
+                problems += [q for q in e.problems if q not in problems]
+            h = p.exit_thickness
+        if problems:
+            raise CaseError(problems, "schedule")
+        return cases
+
+
+def _pass_problem(k: int, problem: str) -> str:
+    """A pass case's problem in the schedule's terms."""
+    if problem.startswith("pass."):
+        return f"pass[{k + 1}]." + problem[len("pass."):]
+    if problem.startswith("plate."):
+        return f"pass[{k + 1}] (its entry strip) " + problem
+    if problem.startswith("mesh."):          # the mesh rules depend on the pass's size
+        return f"{problem} (in pass[{k + 1}])"
+    return problem
+
+
+def schedule_from_dict(d: Any, source: str | None = None) -> Schedule:
+    if not isinstance(d, dict):
+        raise CaseError(f"schedule: must be a table of sections, got {type(d).__name__}", source,
+                        "schedule")
+    try:
+        sch = Schedule.model_validate(d)
+    except ValidationError as e:
+        raise CaseError(problem_lines(e), source, "schedule") from None
+    try:
+        sch.check_cases()
+    except CaseError as e:
+        raise CaseError(e.problems, source, "schedule") from None
+    return sch
+
+
+def load_schedule(path: str | Path) -> Schedule:
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except OSError as e:
+        raise CaseError(f"cannot read schedule file: {e.strerror or e}", str(path),
+                        "schedule") from None
+    except tomllib.TOMLDecodeError as e:
+        raise CaseError(f"TOML syntax error: {e}", str(path), "schedule") from None
+    data.setdefault("name", path.stem)
+    return schedule_from_dict(data, str(path))

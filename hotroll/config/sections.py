@@ -1,0 +1,229 @@
+"""The geometry and numerics sections of a case: ``[pass]``, ``[plate]``, ``[mesh]``,
+``[solver]``, ``[output]`` (``config.py`` assembles the case; the laws are in
+``config_laws.py``, the temperature in ``config_thermal.py``)."""
+
+from __future__ import annotations
+
+from typing import Any, Literal
+
+from pydantic import PrivateAttr, field_validator, model_validator
+
+from hotroll.config.base import MESH_TABLE, MeshName, PosFloat, _field, _Problems, _Section
+from hotroll.model.geometry import RollPass
+
+#: Largest length of a case (m): roll radius, thicknesses, plate length, |roll_axis_x|. Beyond
+#: it the geometry's squares overflow (R = 1e300 m) or the roll position swamps the contact
+#: length in double precision (roll_axis_x = 1e300 m: l_c = 0); mills are metres in size.
+MAX_LENGTH = 1e3
+
+
+class PassConfig(_Section):
+    """Roll and pass geometry (roll centre at x = roll_axis_x, y = exit/2 + R)."""
+
+    roll_radius: float = _field(..., "roll radius R", "m", f"> 0 and <= {MAX_LENGTH:g}", gt=0,
+                                le=MAX_LENGTH)
+    entry_thickness: float = _field(..., "full plate thickness at entry", "m",
+                                    f"> 0 and <= {MAX_LENGTH:g}", gt=0, le=MAX_LENGTH)
+    exit_thickness: float = _field(..., "full plate thickness at exit (roll gap)", "m",
+                                   "> 0 and < entry_thickness", gt=0)
+    roll_angular_velocity: float = _field(..., "roll angular velocity omega", "rad/s", "> 0", gt=0)
+    roll_axis_x: float = _field(1.0, "x of the roll centre (initial plate head position)", "m",
+                                f"in [-{MAX_LENGTH:g}, {MAX_LENGTH:g}]", ge=-MAX_LENGTH,
+                                le=MAX_LENGTH)
+    back_tension: float = _field(0.0, "back tension: mean tensile stress on the entry strip",
+                                 "Pa", ">= 0", ge=0)
+    front_tension: float = _field(0.0, "front tension: mean tensile stress on the exit strip",
+                                  "Pa", ">= 0", ge=0)
+    width: PosFloat | None = _field(None, "strip width (omit: results per unit width only)", "m",
+                                    "> 0")
+
+    @model_validator(mode="after")
+    def _check_geometry(self) -> PassConfig:
+        problems = []
+        if self.exit_thickness >= self.entry_thickness:
+            problems.append(
+                f"pass.exit_thickness: must be smaller than pass.entry_thickness "
+                f"({self.entry_thickness:g} m), got {self.exit_thickness:g} m")
+        elif self.draft >= self.roll_radius:
+            problems.append(
+                f"pass.roll_radius: must exceed the draft per side (entry - exit)/2 = "
+                f"{self.draft:g} m, otherwise the roll cannot bite the plate; allowed: "
+                f"roll_radius > {self.draft:g} m, got {self.roll_radius:g} m")
+        if problems:
+            raise _Problems(problems)
+        return self
+
+    @property
+    def draft(self) -> float:
+        """Thickness reduction per side (m)."""
+        return 0.5 * (self.entry_thickness - self.exit_thickness)
+
+    def roll_pass(self) -> RollPass:
+        """The geometry object the solver uses (all derived quantities live there)."""
+        return RollPass(self.roll_radius, 0.5 * self.entry_thickness, 0.5 * self.exit_thickness,
+                        self.roll_angular_velocity, self.roll_axis_x)
+
+    @property
+    def half_entry(self) -> float:
+        return self.roll_pass().half_entry
+
+    @property
+    def half_exit(self) -> float:
+        return self.roll_pass().half_exit
+
+    @property
+    def roll_centre(self) -> tuple[float, float]:
+        return self.roll_pass().centre
+
+    @property
+    def roll_surface_speed(self) -> float:
+        return self.roll_pass().u_roll
+
+    @property
+    def contact_length(self) -> float:
+        """Projected contact length (m)."""
+        return self.roll_pass().contact_length
+
+    @property
+    def bite_angle(self) -> float:
+        """Bite angle acos(1 - draft/R) (rad)."""
+        return self.roll_pass().bite_angle
+
+
+def check_profile(key: str, v: Any) -> Any:
+    """A through-thickness profile [[eta, value], ...] (``process.profile``): eta from 0 to 1,
+    temperatures > 0 K, strains >= 0; ValueError with what is wrong."""
+    from hotroll.model.profile import ProfileError, ThicknessProfile
+
+    if v is None:
+        return None
+    try:
+        prof = ThicknessProfile.from_pairs(v)
+    except ProfileError as e:
+        raise ValueError(str(e)) from None
+    low = min(prof.values)
+    if key == "temperature_profile" and low <= 0.0:
+        raise ValueError(f"temperatures must be > 0 K, got {low:g} K")
+    if key == "strain_profile" and low < 0.0:
+        raise ValueError(f"strains must be >= 0, got {low:g}")
+    return [tuple(p) for p in prof.pairs()]
+
+
+class PlateConfig(_Section):
+    length: float = _field(
+        ..., "initial plate length, at least 3 x the projected contact length", "m",
+        f"> 0 and <= {MAX_LENGTH:g}", gt=0, le=MAX_LENGTH)
+    temperature: float = _field(
+        1373.15, "plate temperature: uniform (isothermal run) or at the entry (with [thermal])",
+        "K", "> 0", gt=0)
+    entry_strain: float = _field(0.0, "equivalent plastic strain the plate enters with", "",
+                                 ">= 0", ge=0)
+    free_surface: Literal["traced", "constrained"] = _field(
+        "traced", "free tops before and after the bite: traction-free streamlines (traced) or "
+        "held flat by the penalty (3.2d) (constrained)", "", '"traced" or "constrained"')
+    temperature_profile: list[tuple[float, float]] | None = _field(
+        None, "entry temperature through the half thickness, [[eta, T], ...] with eta = "
+        "y / half thickness from 0 (centre) to 1 (surface), linear between (omit: uniform "
+        "plate.temperature; needs [thermal] and the steady method)", "K",
+        "pairs with eta increasing strictly from 0 to 1 and T > 0")
+    strain_profile: list[tuple[float, float]] | None = _field(
+        None, "entry strain through the half thickness, [[eta, strain], ...] as "
+        "temperature_profile (omit: uniform plate.entry_strain; steady method)", "",
+        "pairs with eta increasing strictly from 0 to 1 and strain >= 0")
+
+    @field_validator("temperature_profile", "strain_profile")
+    @classmethod
+    def _profile(cls, v: Any, info) -> Any:
+        return check_profile(info.field_name, v)
+
+    @property
+    def mean_entry_strain(self) -> float:
+        """The strain profile's section mean, or entry_strain."""
+        prof = self.entry_profiles()[1]
+        return self.entry_strain if prof is None else prof.mean()
+
+    def entry_profiles(self):
+        """(temperature, strain) ``ThicknessProfile`` or None each."""
+        from hotroll.model.profile import ThicknessProfile
+
+        return tuple(None if p is None else ThicknessProfile.from_pairs(p)
+                     for p in (self.temperature_profile, self.strain_profile))
+
+
+class MeshConfig(_Section):
+    h_contact: Literal["auto"] | MeshName | PosFloat = _field(
+        "auto", "mesh size along the contact (auto: the coarsest size whose roll force is within "
+        "1 % of the mesh-converged one, docs/theory.md 4e)", "m",
+        '"auto", one of C1, C2, M1, M2, F1, F2 or a number > 0')
+    h_far: PosFloat | None = _field(None, "coarse mesh size far from the roll (omit: automatic)",
+                                    "m", "> 0 and >= h_contact")
+    grading: float = _field(0.3, "mesh grading (size growth rate)", "", "in (0, 1]", gt=0, le=1)
+
+    _auto_h: float = PrivateAttr(default=float("nan"))   # set by Case from the pass geometry
+
+    @field_validator("h_contact", mode="before")
+    @classmethod
+    def _upper_name(cls, v: Any) -> Any:
+        if isinstance(v, str):
+            v = v.strip()
+            return "auto" if v.lower() == "auto" else v.upper()
+        return v
+
+    @property
+    def h(self) -> float:
+        """Contact mesh size in m (Table 2 names and "auto" resolved)."""
+        if self.h_contact == "auto":
+            return self._auto_h
+        return MESH_TABLE[self.h_contact] if isinstance(self.h_contact, str) else self.h_contact
+
+
+class SolverConfig(_Section):
+    method: Literal["steady", "transient"] = _field(
+        "steady", "solution method: direct steady state or the report's time stepping", "",
+        '"steady" or "transient"')
+    nonlinear: Literal["newton", "picard"] = _field("newton", "nonlinear solver", "",
+                                                    '"newton" or "picard"')
+    tolerance: float = _field(1e-5, "nonlinear tolerance (Newton update / roll speed)", "",
+                              "in (0, 0.1]", gt=0, le=0.1)
+    max_iterations: int = _field(20, "nonlinear iterations per step", "", "an integer >= 1", ge=1)
+    end_time: PosFloat | None = _field(None, "simulated time (omit: automatic)", "s", "> 0")
+    time_step: Literal["h/6"] | PosFloat = _field(
+        "h/6", 'time step ("h/6": dt = h_contact/6)', "s", '"h/6" or a number > 0')
+    steady_tolerance: float = _field(2e-3, "steady-state detection tolerance (relative change)",
+                                     "", "in (0, 0.1]", gt=0, le=0.1)
+    max_steps: int = _field(100000, "maximum number of time steps", "", "an integer >= 1", ge=1)
+    wall_time_limit: PosFloat | None = _field(None, "wall-clock limit (omit: none)", "s", "> 0")
+    checkpoint_every: int = _field(25, "steps between checkpoints", "", "an integer >= 1", ge=1)
+    threads: int = _field(2, "worker threads", "", "an integer in [1, 1024]", ge=1, le=1024)
+    memory_limit: PosFloat | None = _field(
+        None, "refuse a mesh whose estimated memory is above this (omit: the machine's free "
+        "memory; workflows/estimate.py)", "B", "> 0")
+    force: bool = _field(False, "run even when the memory estimate is above the limit", "",
+                         "true or false")
+    steady_entry_length: PosFloat | None = _field(
+        None, "steady strip: flat length before the touching point (omit: automatic)", "m", "> 0")
+    steady_exit_length: PosFloat | None = _field(
+        None, "steady strip: flat length after the roll gap (omit: automatic)", "m", "> 0")
+    exit_pressure_correction: bool = _field(True, "correct the exit pressure", "", "true or false")
+
+
+class ContactConfig(_Section):
+    method: Literal["auto", "multiplier", "penalty"] = _field(
+        "auto", "roll contact: exact (the pressure a Lagrange multiplier on the arc) or the "
+        "report's penalty (Table 1); auto: multiplier for the steady solver, penalty for the "
+        "report's scheme", "", '"auto", "multiplier" (steady only) or "penalty"')
+    unilateral: bool = _field(
+        False, "exact contact: the strip may leave the roll where the contact pressure would be "
+        "tensile (active set); false: bilateral, the strip held to the whole arc", "",
+        "true or false")
+
+    def resolved(self, solver_method: str) -> str:
+        """The method a run uses: "auto" resolved by the solver."""
+        if self.method != "auto":
+            return self.method
+        return "multiplier" if solver_method == "steady" else "penalty"
+
+
+class OutputConfig(_Section):
+    figures: bool = _field(True, "write figures", "", "true or false")
+    vtk: bool = _field(True, "write VTK files", "", "true or false")

@@ -1,0 +1,158 @@
+"""Shape of the steady strip and its free tops (steady counterpart of (3.7) + (3.9)).
+
+Two free-surface models (``[plate] free_surface``):
+
+- ``"constrained"``: the report's (3.2d) holds the free tops flat (entry thickness before the
+  bite, the gap after it); the contact is the geometric arc from the touching point to the gap.
+- ``"traced"``: the tops are traction-free and follow the flow. In a steady flow a free top is a
+  streamline, u_x eta'(x) = u_y (the kinematic condition v.n = 0). The strip's shape is then
+  three numbers and two curves: the contact start x_c where the entry top meets the roll, the
+  entry top eta_in(x) on [x_in, x_c] (flat far upstream, where the strip is rigid) and the exit
+  top eta_out(x) on [X_roll, x_out] (leaving the roll at the gap).
+
+``StripMap`` maps the reference mesh (flat tops, contact from the geometric touching point
+x_touch) onto such a shape: a piecewise-linear stretch in x moves the reference touching point to
+x_c (the contact set is always the same chain of edges, so x_c is a continuous unknown), and
+every P2 node is scaled vertically, y' = y H(x') / H_ref(x), with H the new top height.
+
+``kinematic_update`` is the fixed-point map on the shape: trace the streamlines of the computed
+flow along the free tops; on the exit side the traced curve is the new top; on the entry side
+the traced curve misses the roll at x_c by a gap g, and the contact start moves by g / s_roll
+(s_roll the roll's slope there) with the traced sag profile carried along. The gap contracts by
+about 10x per update (measured, docs/theory.md 4b).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from hotroll.fem.spaces import P2Nodes
+from hotroll.model.geometry import RollPass
+
+
+@dataclass
+class StripShape:
+    """Contact start and the free tops as curves (x, y) in the current configuration."""
+
+    x_c: float
+    entry_x: np.ndarray      # entry top, increasing x, ending at x_c
+    entry_y: np.ndarray
+    exit_x: np.ndarray       # exit top, increasing x, starting at X_roll
+    exit_y: np.ndarray
+
+    @classmethod
+    def flat(cls, rp: RollPass) -> "StripShape":
+        """The reference shape: flat tops, contact from the geometric touching point."""
+        return cls(rp.x_touch, np.array([rp.x_touch - 1e3, rp.x_touch]),
+                   np.full(2, rp.half_entry), np.array([rp.axis_x, rp.axis_x + 1e3]),
+                   np.full(2, rp.half_exit))
+
+    def copy(self) -> "StripShape":
+        return StripShape(self.x_c, self.entry_x.copy(), self.entry_y.copy(),
+                          self.exit_x.copy(), self.exit_y.copy())
+
+
+def roll_height(rp: RollPass, x):
+    """Height of the roll surface above the axis at x (lower half of the roll)."""
+    cx, cy = rp.centre
+    return cy - np.sqrt(np.maximum(rp.radius**2 - (np.asarray(x, float) - cx) ** 2, 0.0))
+
+
+def roll_slope(rp: RollPass, x: float) -> float:
+    cx, _ = rp.centre
+    return float((x - cx) / np.sqrt(max(rp.radius**2 - (x - cx) ** 2, 1e-300)))
+
+
+class StripMap:
+    """All P2 nodes of the reference strip mesh and their map onto a ``StripShape``."""
+
+    def __init__(self, rp: RollPass, mesh, n_scalar: int, d_ref: np.ndarray, x_in: float):
+        self.rp = rp
+        self.nodes = P2Nodes(mesh, n_scalar)
+        self.P = self.nodes.X0 + self.nodes.values(d_ref).T     # reference positions
+        X = self.P[:, 0]
+        on_arc = (X > rp.x_touch) & (X < rp.axis_x)
+        self.H_ref = np.where(X >= rp.axis_x, rp.half_exit, rp.half_entry)
+        self.H_ref[on_arc] = roll_height(rp, X[on_arc])
+        # the stretch acts between x_a (half a contact length before the bite) and X_roll
+        self.x_a = max(rp.x_touch - 0.5 * rp.contact_length, 0.5 * (x_in + rp.x_touch))
+
+    def x_bounds(self) -> tuple[float, float]:
+        """Allowed range of the contact start (keeps the stretch within a factor ~2)."""
+        rp = self.rp
+        return (0.5 * (self.x_a + rp.x_touch), rp.axis_x - 0.5 * rp.contact_length)
+
+    def stretch(self, X: np.ndarray, x_c: float) -> np.ndarray:
+        rp, xa = self.rp, self.x_a
+        x = X.copy()
+        a = (X > xa) & (X <= rp.x_touch)
+        x[a] = xa + (X[a] - xa) * (x_c - xa) / (rp.x_touch - xa)
+        b = (X > rp.x_touch) & (X < rp.axis_x)
+        x[b] = x_c + (X[b] - rp.x_touch) * (rp.axis_x - x_c) / (rp.axis_x - rp.x_touch)
+        return x
+
+    def displacement(self, shape: StripShape) -> np.ndarray:
+        """Coefficient vector of the P2 displacement that maps the reference mesh onto ``shape``."""
+        rp, X = self.rp, self.P[:, 0]
+        x = self.stretch(X, shape.x_c)
+        H = roll_height(rp, x)
+        ent, ex = X < rp.x_touch, X > rp.axis_x
+        H[ent] = np.interp(x[ent], shape.entry_x, shape.entry_y)
+        H[ex] = np.interp(x[ex], shape.exit_x, shape.exit_y)
+        # the strip has left the roll before the gap (unilateral contact): below the roll
+        left = ~ex & ~ent & (x > shape.exit_x[0])
+        H[left] = np.minimum(H[left], np.interp(x[left], shape.exit_x, shape.exit_y))
+        new = np.stack([x, self.P[:, 1] * H / self.H_ref], axis=1)
+        return self.nodes.coefficients((new - self.nodes.X0).T)
+
+
+def _trace(xs: np.ndarray, slope: np.ndarray, y0: float) -> np.ndarray:
+    """Streamline heights by the trapezoidal rule on dy/dx = slope from y0 at xs[0]."""
+    y = np.empty_like(xs)
+    y[0] = y0
+    y[1:] = y0 + np.cumsum(0.5 * (slope[1:] + slope[:-1]) * np.diff(xs))
+    return y
+
+
+def kinematic_update(rp: RollPass, shape: StripShape, x: np.ndarray, v: np.ndarray,
+                     part: np.ndarray, x_up: float, bounds: tuple[float, float]):
+    """One fixed-point update of the free tops from the flow at the top nodes.
+
+    ``x``, ``v``: positions and velocities of the top P2 nodes, sorted by x; ``part``: 0 entry
+    free top, 1 contact, 2 exit free top. The entry top is traced from the entry thickness at
+    ``x_up`` (upstream the strip is rigid and flat) to the first contact node; the exit top from
+    the gap at X_roll. Returns (new shape, residual in m): the residual is the largest distance
+    between a traced top and the current one (the gap at the contact start included).
+    """
+    vx = np.where(np.abs(v[:, 0]) > 1e-300, v[:, 0], 1e-300)
+    slope = v[:, 1] / vx
+    # entry: free nodes from x_up, then the contact start node
+    ent = np.nonzero((part == 0) & (x[:, 0] >= x_up))[0]
+    first = np.nonzero(part == 1)[0][0]
+    idx = np.append(ent, first)
+    xs = x[idx, 0]
+    eta = _trace(xs, slope[idx], rp.half_entry)
+    x_c = shape.x_c
+    gap = eta[-1] - float(roll_height(rp, x_c))
+    lo, hi = bounds
+    x_new = float(np.clip(x_c + gap / roll_slope(rp, x_c), lo, hi))
+    # the traced sag, as a function of the distance to the contact start, moves with it; a
+    # linear blend from x_up closes the remaining gap at the new contact start
+    dist, sag = x_c - xs, rp.half_entry - eta
+    ent_x = np.concatenate([[x_up - 1e3], x_new - dist])
+    ent_y = np.concatenate([[rp.half_entry], rp.half_entry - sag])
+    w = np.clip((ent_x - x_up) / max(x_new - x_up, 1e-300), 0.0, 1.0)
+    ent_y += w * (float(roll_height(rp, x_new)) - ent_y[-1])
+    residual = float(np.max(np.abs(eta - x[idx, 1])))
+    # exit: from the last contact node (the gap at X_roll unless the strip left the roll
+    # before it) along the exit nodes
+    last = np.nonzero(part == 1)[0][-1]
+    ex = np.nonzero((part == 2) & (x[:, 0] > x[last, 0]))[0]
+    xs2 = np.concatenate([[x[last, 0]], x[ex, 0]])
+    eta2 = _trace(xs2, np.concatenate([[slope[last]], slope[ex]]), x[last, 1])
+    if len(ex):
+        residual = max(residual, float(np.max(np.abs(eta2[1:] - x[ex, 1]))))
+    ex_x = np.concatenate([xs2, [xs2[-1] + 1e3]])
+    ex_y = np.concatenate([eta2, [eta2[-1]]])
+    return StripShape(x_new, ent_x, ent_y, ex_x, ex_y), residual

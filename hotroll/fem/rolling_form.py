@@ -1,0 +1,380 @@
+"""The penalised weak form of the rolling problem, report (3.2), (3.3), (3.6).
+
+Terms (all divided by K: the discrete problem is solved for p/K, so it is identical for every K
+and stresses are K times the reduced ones; this is how the penalties of Table 1 "scale with K"):
+
+- Norton-Hoff volume term (2.21) with the pressure as Lagrange multiplier (2.24);
+- on the contact Gamma_C (edges flagged by ``chi``): the friction law (viscoplastic (2.29a),
+  Coulomb or Tresca, ``model/friction.py``) on the slip v_s = (v - U_roll).t t (2.27), and the
+  bilateral penalty gamma_vC (dv.n)(phi.n) for (2.28a); n and t are the roll's normal and
+  tangent at the point, so U_roll.n = 0 exactly. Coulomb's pressure is the penalty reaction
+  gamma_vC (v.n) at the same point; the shear flow stress k = sigma_ef/sqrt3 of the Coulomb cap
+  and of Tresca is that of the adjacent element's strain rate (element-boundary integral: a
+  boundary integral sees only the surface gradient); both inside Newton;
+- on the free top Gamma_0 (top edges not in contact): the one-sided inlet penalty (3.2a) for
+  x <= X_roll (Gamma_0L) or outlet penalty (3.2b) for x > X_roll (Gamma_0R), and, in the
+  ``"constrained"`` free-surface model only, gamma_v0 (v.n)(phi.n) (3.2d), n the mesh normal on
+  Gamma_0L and e_y on the flat exit surface Gamma_0R (``free_normal``); ``"traced"`` tops are
+  traction-free;
+- on the tail face Gamma_in: (3.2a); on the head face Gamma_out: (3.2b) plus gamma_v0 v_y phi_y,
+  the vertical-motion correction T* the report adds on Gamma_out; the back and front tensions
+  as the normal traction sigma n on Gamma_in and Gamma_out (reduced by K like the rest).
+Penalty parameters follow Table 1: gamma_v0 = gamma_vC = 10/h in the soft zone I around the
+first touching point, 25/h elsewhere; gamma_in = gamma_out = 2/h^(m+1).
+
+Exact contact (``contact="multiplier"``, the steady solver's default, docs/theory.md 1e): the
+roll's impermeability u.n = 0 on the arc holds weakly against a continuous P1 multiplier
+lambda on the arc, the contact pressure itself (no penalty: nothing leaks through the roll,
+nothing depends on the roll speed or the units). The multiplier is carried scaled to a velocity,
+p_c = s lambda~ with s = mu_ref / l_c (mu_ref the secant viscosity at the strain rate U / l_c),
+so the constraint rows and the stopping test are in the units of the momentum rows and of the
+velocity. The remaining penalties (inlet/outlet (3.2a,b), the head face's T*, the constrained
+tops (3.2d)) scale with the same mu_ref / h (``ScaledPenalties``): unit-free.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from hotroll.fem.forms import NonlinearProblem, norton_hoff_tangent, norton_hoff_volume, one_sided
+from hotroll.fem.spaces import taylor_hood
+from hotroll.model.friction import _Law as FrictionLaw
+from hotroll.model.geometry import RollPass
+from hotroll.model.material import NortonHoff
+
+TOP = "top|arc|exit"   # the whole top boundary (the steady strip adds "exit")
+
+
+@dataclass(frozen=True)
+class PenaltyTable:
+    """Table 1 of the report (for K = 1), with h the contact mesh size."""
+
+    h: float
+    soft: float = 10.0   # gamma_v0 = gamma_vC in the zone I
+    hard: float = 25.0   # gamma_v0 = gamma_vC elsewhere
+    inout: float = 2.0   # gamma_in = gamma_out = inout / h^(m+1)
+
+    def surface(self, x, zone):
+        from ngsolve import IfPos
+
+        lo, hi = zone
+        return IfPos((x - lo) * (hi - x), self.soft / self.h, self.hard / self.h)
+
+    def inlet_outlet(self, m):
+        return self.inout / self.h ** (m + 1.0)
+
+    def at_nodes(self, x, zone):
+        """gamma_vC at the points x (numpy)."""
+        import numpy as np
+
+        lo, hi = zone
+        return np.where((x - lo) * (hi - x) > 0, self.soft, self.hard) / self.h
+
+
+@dataclass(frozen=True)
+class ScaledPenalties:
+    """The penalties that stay beside exact contact, scaled with the viscosity (Nitsche's
+    gamma = gamma0 mu / h): gamma_v0 = 25 mu_ref / h, gamma_in = gamma_out = 2 mu_ref / h, with
+    mu_ref the reduced secant viscosity at the pass's reference strain rate. Under a change of
+    roll speed, time or length unit they scale as the stresses do; no soft zone."""
+
+    h: float
+    mu_ref: float
+    hard: float = 25.0
+    inout: float = 2.0
+
+    def surface(self, x, zone):
+        return self.hard * self.mu_ref / self.h
+
+    def inlet_outlet(self, m):
+        return self.inout * self.mu_ref / self.h
+
+    def at_nodes(self, x, zone):
+        import numpy as np
+
+        return np.full(np.shape(x), self.hard * self.mu_ref / self.h)
+
+
+#: Contact methods of the steady solver: the exact one (default) and the report's penalty.
+CONTACT_METHODS = ("multiplier", "penalty")
+#: Relative weight of the -delta s lambda xi term that only the Newton matrix carries (never the
+#: residual): it gives the multiplier rows a non-zero pivot so that the LDL^T factorisation
+#: (no pivoting) works; the solution is the exact one (docs/theory.md 1e).
+MATRIX_REGULARISATION = 1e-8
+
+
+def reference_viscosity(material: NortonHoff, rp: RollPass) -> float:
+    """Reduced secant viscosity at the strain rate U / l_c: the scale of every unit-free
+    penalty and of the multiplier."""
+    rate = rp.u_roll / rp.contact_length
+    return float(material.viscosity(rate * rate))
+
+
+def _elements_on(mesh, regions: str):
+    """BitArray of the volume elements with an edge on the boundary ``regions``."""
+    import re
+
+    from ngsolve import BND, BitArray
+
+    pattern = re.compile(f"^({regions})$")
+    edges = {el.edges[0].nr for el in mesh.Elements(BND) if pattern.match(el.mat)}
+    ba = BitArray(mesh.ne)
+    ba.Clear()
+    for el in mesh.Elements():
+        if any(e.nr in edges for e in el.edges):
+            ba.Set(el.nr)
+    return ba
+
+
+class RollingForm:
+    """Spaces, parameters and the Newton/Picard forms of (3.6) on one (moving) mesh."""
+
+    def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: FrictionLaw,
+                 penalties: PenaltyTable, free_surface: str, tensions: tuple = (0.0, 0.0),
+                 consistency=1.0, rate_offset=None, contact: str = "penalty"):
+        from ngsolve import FacetFESpace, GridFunction, Parameter
+
+        if contact not in CONTACT_METHODS:
+            raise ValueError(f"contact.method must be one of {CONTACT_METHODS}, got {contact!r}")
+        self.mesh, self.rp = mesh, rp
+        self.free_surface = free_surface
+        self.contact = contact
+        self.mu_ref = reference_viscosity(material, rp)
+        if contact == "multiplier":
+            penalties = ScaledPenalties(penalties.h, self.mu_ref)
+        # p_c = lam_scale * lambda~ (reduced): lambda~ is a velocity, of the order of U where
+        # the pressure is of the order of the reference stress mu_ref U / l_c
+        self.lam_scale = self.mu_ref / rp.contact_length
+        self.material, self.friction, self.penalties = material, friction, penalties
+        # K(strain, T) / K_ref of a strain-dependent flow stress (a CF of the strain field,
+        # fem/strain.py), 1 for Norton-Hoff
+        self.consistency = consistency
+        self.fes = taylor_hood(mesh, dirichlety="sym",
+                               multiplier_on="arc" if contact == "multiplier" else None)
+        self.m = Parameter(material.m)      # set to 1 for the very first iterate (Section 3.4)
+        # the material's rate exponent: m, plus m(T) - m_ref (a CF) where a temperature-
+        # dependent law's exponent varies (solvers/thermal_feedback.py); the friction law keeps m
+        self.m_material = self.m if rate_offset is None else self.m + rate_offset
+        self.a_f = Parameter(1.0)           # friction parameter, updated by (3.15) every step
+        # free tops before this x are the entry's (3.2a), after it the exit's (3.2b): the roll
+        # axis, or (steady solver) a point inside the contact, which may end before the axis
+        self.x_split = Parameter(rp.axis_x)
+        self.chi = GridFunction(FacetFESpace(mesh, order=0))  # 1 on contact edges
+        # back / front tension over K (reduced, like every stress in the form)
+        self.tension_back, self.tension_front = Parameter(tensions[0]), Parameter(tensions[1])
+        self.top_elements = _elements_on(mesh, TOP) if friction.uses_k else None
+        self.problem = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll,
+                                        jacobian=self.jacobian,
+                                        pressure_row_scale=self.mu_ref)
+
+    # --- geometry of the roll as coefficient functions ------------------------------------
+    def roll_frame(self):
+        """(n, t): roll normal (out of the plate, into the roll) and tangent along U_roll."""
+        from ngsolve import CF, sqrt, x, y
+
+        cx, cy = self.rp.centre
+        r = sqrt((x - cx) ** 2 + (y - cy) ** 2)
+        n = CF(((cx - x) / r, (cy - y) / r))
+        t = CF((-(y - cy) / r, (x - cx) / r))
+        return n, t
+
+    def free_normal(self, u):
+        """u.n on the free top for (3.2d): the mesh normal before the gap, the normal of the
+        flat exit surface, e_y, after it (x > X_roll). The Lagrangian exit surface is never
+        exactly flat: with its own normal, (3.2d) pins u_x wherever it wrinkles, the wrinkles
+        grow and the mesh tangles (see docs/theory.md, "Free exit surface")."""
+        from ngsolve import IfPos, specialcf, x
+
+        return IfPos(x - self.rp.axis_x, u[1], u * specialcf.normal(2))
+
+    def slip(self, u):
+        """Scalar slip v_s . t = u.t - |U_roll| (2.27); negative where the plate lags the roll."""
+        _, t = self.roll_frame()
+        return u * t - self.rp.u_roll
+
+    @property
+    def exact(self) -> bool:
+        return self.contact == "multiplier"
+
+    @property
+    def multiplier(self):
+        """The solution's scaled multiplier lambda~ (a GridFunction on the arc; None with
+        penalties)."""
+        return self.problem.gf.components[2] if self.exact else None
+
+    def multiplier_vertices(self):
+        """(vertex numbers, multiplier DOFs) of the arc's P1 multiplier, in the component's
+        numbering (cached)."""
+        cached = getattr(self, "_mult_vertices", None)
+        if cached is None:
+            import numpy as np
+            from ngsolve import VERTEX, NodeId
+
+            L = self.fes.components[2]
+            verts, dofs = [], []
+            for v in range(self.mesh.nv):
+                d = L.GetDofNrs(NodeId(VERTEX, v))
+                if len(d) and d[0] >= 0:
+                    verts.append(v)
+                    dofs.append(d[0])
+            cached = self._mult_vertices = (np.array(verts, int), np.array(dofs, int))
+        return cached
+
+    def vertex_pressure(self):
+        """The multiplier's contact pressure (reduced) at every mesh vertex (0 off the arc)."""
+        import numpy as np
+
+        out = np.zeros(self.mesh.nv)
+        verts, dofs = self.multiplier_vertices()
+        out[verts] = self.lam_scale * self.multiplier.vec.FV().NumPy()[dofs]
+        return out
+
+    def pressure(self, u, lam=None):
+        """Contact pressure (reduced units): the multiplier s lambda~ (``lam``: a trial function
+        or the solution's by default) or the penalty reaction gamma_vC (u.n)."""
+        from ngsolve import x
+
+        if self.exact:
+            return self.lam_scale * (self.multiplier if lam is None else lam)
+        n, _ = self.roll_frame()
+        return self.penalties.surface(x, self.rp.soft_zone) * (u * n)
+
+    def shear_flow_stress(self, w):
+        """k = sigma_ef / sqrt3 of the strain rate of w (reduced; regularised (2.21)). Needs
+        the volume gradient: valid in volume and element-boundary integrals only."""
+        from hotroll.fem.forms import strain_rate
+        from hotroll.model.material import edot_squared
+
+        e2 = edot_squared(strain_rate(w))
+        return self.material.sigma_ef_reg(e2, m=self.m_material, K=self.consistency) / 3.0**0.5
+
+    def friction_arguments(self, w, k=None, lam=None) -> dict:
+        """The friction law's keyword arguments at the velocity w (and multiplier ``lam``):
+        a_f, m, and the pressure and k = sigma_ef/sqrt3 where the law takes them (``k`` given:
+        that CF instead, e.g. a P1 field where the volume gradient is not at hand)."""
+        law = self.friction
+        if law.uses_k and k is None:
+            k = self.shear_flow_stress(w)
+        return dict(a_f=self.a_f, m=self.m,
+                    pressure=self.pressure(w, lam) if law.uses_pressure else None,
+                    k=k if law.uses_k else None)
+
+    def friction_coefficient(self, w, k=None, lam=None):
+        """The friction law's secant coefficient k_f at the velocity w (T_tau = -k_f v_s)."""
+        s = self.slip(w)
+        return self.friction.coefficient(s * s, **self.friction_arguments(w, k, lam))
+
+    def friction_measure(self):
+        """Where the friction term is integrated: the top boundary, or, for a law with k (which
+        needs the volume gradient: a boundary integral sees only the surface gradient), the
+        boundaries of the elements along the top, the contact picked by chi."""
+        from ngsolve import ds, dx
+
+        if self.top_elements is None:
+            return ds(TOP)
+        return dx(element_boundary=True, definedonelements=self.top_elements)
+
+    def integrate_friction(self, cf) -> float:
+        """Integral of ``cf`` (with chi in it) over the contact, on ``friction_measure``."""
+        from ngsolve import Integrate
+
+        return float(Integrate(cf.Compile() * self.friction_measure(), self.mesh))
+
+    def inlet_penalty(self, u, w):
+        """(3.2a) per unit test v_x: gamma_in [v_x - |U_roll|]_+, active set taken at w."""
+        U = self.rp.u_roll
+        return self.penalties.inlet_outlet(self.m) * one_sided(u[0] - U, w[0] - U)
+
+    def outlet_penalty(self, u, w):
+        """(3.2b) per unit test v_x: -gamma_out [|U_roll| - v_x]_+, active set taken at w."""
+        U = self.rp.u_roll
+        return -self.penalties.inlet_outlet(self.m) * one_sided(U - u[0], U - w[0])
+
+    # --- the form ---------------------------------------------------------------------------
+    def integrand(self, u, p, w, v, q, lam=None, xi=None):
+        """The residual form (3.6), coefficients at w (w = u: Newton; the last iterate: Picard);
+        exact contact: the multiplier's trial and test ``lam``, ``xi`` (Newton: w = u)."""
+        from ngsolve import dx
+
+        vol = norton_hoff_volume(self.material, self.m_material, u, p, w, v, q,
+                                 K=self.consistency)
+        out = vol * dx + self.boundary(u, w, v, lam=lam)
+        return out + self.constraint(u, v, lam, xi) if self.exact else out
+
+    def constraint(self, u, v, lam, xi, regularise: float = 0.0):
+        """s (lambda~ v.n + xi u.n) on the arc: the contact pressure's work and the weak
+        impermeability int xi u.n = 0; ``regularise`` adds -delta s lambda~ xi (matrix only)."""
+        from ngsolve import ds
+
+        n, _ = self.roll_frame()
+        term = self.lam_scale * (lam * (v * n) + xi * (u * n))
+        if regularise:
+            term = term - regularise * self.lam_scale * lam * xi
+        return term * ds("arc", bonus_intorder=2)
+
+    def jacobian(self, w, u, p, v, q, lam=None, xi=None, lam_w=None):
+        """Newton's Jacobian of (3.6) at w: the Norton-Hoff tangent and the friction tangent
+        by hand, the other boundary terms differentiated symbolically (w is the iterate's
+        GridFunction component); exact contact: the constraint (linear) with the matrix-only
+        regularisation, and Coulomb's dependence on the multiplier."""
+        from ngsolve import dx
+
+        vol = norton_hoff_tangent(self.material, self.m_material, w, u, p, v, q,
+                                  K=self.consistency)
+        out = (vol * dx + self.friction_tangent(w, u, v, lam, lam_w) * self.friction_measure()
+               + self.boundary(w, w, v, friction=False).Diff(w, u))
+        if self.exact:
+            out = out + self.constraint(u, v, lam, xi, regularise=MATRIX_REGULARISATION)
+        return out
+
+    def friction_tangent(self, w, u, v, lam=None, lam_w=None):
+        """d/dw of the friction term chi k_f(w) s(w) (v.t) along u (and the multiplier's
+        direction ``lam``; ``lam_w`` the multiplier at the iterate), by the chain rule through
+        the law's ``coefficient_partials`` (slip^2, pressure, k of the strain rate)."""
+        from ngsolve import InnerProduct
+
+        from hotroll.fem.forms import strain_rate
+        from hotroll.model.material import edot_squared
+
+        n, t = self.roll_frame()
+        law, s, s_u = self.friction, self.slip(w), u * t
+        kw = self.friction_arguments(w, lam=lam_w)
+        kf = law.coefficient(s * s, **kw)
+        d_s2, d_p, d_k = law.coefficient_partials(s * s, **kw)
+        k = kw["k"]
+        d_kf = d_s2 * 2.0 * s * s_u
+        if law.uses_pressure:      # p = gamma (w.n) or s lambda~
+            d_kf = d_kf + d_p * self.pressure(u, lam)
+        if law.uses_k:             # k ~ (eps0^2 + e2)^(m/2), e2 = 2/3 eps(w):eps(w)
+            ew = strain_rate(w)
+            e2 = edot_squared(ew)
+            dk_de2 = k * self.m_material / (2.0 * (self.material.eps0**2 + e2))
+            d_kf = d_kf + d_k * dk_de2 * (4.0 / 3.0) * InnerProduct(ew, strain_rate(u))
+        return self.chi * (kf * s_u + s * d_kf) * (v * t)
+
+    def boundary(self, u, w, v, friction: bool = True, lam=None):
+        """Friction law, penalty terms (3.2), (3.3) and tensions on the boundary, coefficients at w
+        (without the friction law if not ``friction``); ``lam`` the multiplier at w (exact
+        contact: Coulomb's pressure)."""
+        from ngsolve import IfPos, ds, specialcf, x
+
+        rp, pen = self.rp, self.penalties
+        n, t = self.roll_frame()
+        gam_s = pen.surface(x, rp.soft_zone)
+        chi = self.chi
+
+        friction_term = (chi * self.friction_coefficient(w, lam=lam) * self.slip(u) * (v * t)
+                         if friction else None)
+        # the penalty contact; exact contact: the constraint (``constraint``) instead
+        contact = 0.0 if self.exact else gam_s * (u * n) * (v * n)
+
+        inlet = self.inlet_penalty(u, w) * v[0]
+        outlet = self.outlet_penalty(u, w) * v[0]
+        free = IfPos(x - self.x_split, outlet, inlet)
+        if self.free_surface == "constrained":
+            free = free + gam_s * self.free_normal(u) * self.free_normal(v)
+
+        nh = specialcf.normal(2)
+        rest = ((chi * contact + (1.0 - chi) * free) * ds(TOP)
+                + (inlet - self.tension_back * (v * nh)) * ds("in")
+                + (outlet + gam_s * u[1] * v[1] - self.tension_front * (v * nh)) * ds("out"))
+        return friction_term * self.friction_measure() + rest if friction else rest

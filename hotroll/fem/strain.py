@@ -1,0 +1,100 @@
+"""The equivalent plastic strain carried with the material (issue 15; beyond the report).
+
+A strain-dependent flow stress (Hensel-Spittel) needs the strain eps at every point:
+d eps / dt = edot along the material path, edot = sqrt(2/3 eps_dot:eps_dot) (2.16).
+
+- Steady strip (``transport``): v . grad eps = edot with eps = eps_entry on the inlet face,
+  a stabilised (SUPG) P1 solve on the current strip: ``int (v.grad eps)(w + tau v.grad w) =
+  int edot (w + tau v.grad w)``, tau = h / (2 |v|) (the strip always flows forward, no
+  recirculation, so the inlet is the whole inflow boundary).
+- Report's scheme (``integrate``): the mesh moves with the material (3.7), so the nodes are
+  material points: eps_node += dt edot_node after each step (edot the P1 projection).
+
+The flow stress enters the form as the consistency ratio K(eps, T) / K_ref
+(``RollingForm(consistency=...)``).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+class StrainField:
+    """P1 strain on a (moving) mesh, with its steady transport and transient update."""
+
+    def __init__(self, mesh, entry_strain: float, inlet: str = "in", profile=None):
+        """``profile``: the inlet's strain over eta = y / (the inlet's highest y) in the
+        undeformed mesh (a ``process.profile.ThicknessProfile``), or None: ``entry_strain``."""
+        from ngsolve import H1, GridFunction
+
+        self.mesh, self.entry = mesh, float(entry_strain)
+        self.space = H1(mesh, order=1, dirichlet=inlet)
+        self.gf = GridFunction(self.space)
+        self._inlet = np.full(self.space.ndof, self.entry)
+        if profile is not None:
+            fixed = ~np.array(list(self.space.FreeDofs()), dtype=bool)
+            y = np.asarray(mesh.ngmesh.Coordinates())[: mesh.nv, 1][fixed]
+            self._inlet[fixed] = profile(y / np.max(y))
+            self.entry = float(profile.mean())
+            self._inlet[~fixed] = self.entry
+        self.gf.vec.FV().NumPy()[:] = self._inlet
+        self._edot = GridFunction(H1(mesh, order=1))
+
+    @property
+    def values(self) -> np.ndarray:
+        return self.gf.vec.FV().NumPy()
+
+    def _rate(self, velocity):
+        from ngsolve import sqrt
+
+        from hotroll.fem.forms import strain_rate
+        from hotroll.model.material import edot_squared
+
+        return sqrt(edot_squared(strain_rate(velocity)) + 1e-300)
+
+    def transport(self, velocity) -> float:
+        """Solve v . grad eps = edot (SUPG, P1) with eps = entry on the inlet; returns the
+        largest change over the largest strain (1 on the first call from a flat field)."""
+        from ngsolve import BilinearForm, InnerProduct, LinearForm, dx, grad, specialcf, sqrt
+
+        old = self.values.copy()
+        e, w = self.space.TnT()
+        speed = sqrt(InnerProduct(velocity, velocity) + 1e-300)
+        tau = specialcf.mesh_size / (2.0 * speed)
+        test = w + tau * (velocity * grad(w))
+        a = BilinearForm(self.space)
+        a += (velocity * grad(e)) * test * dx
+        f = LinearForm(self.space)
+        f += self._rate(velocity) * test * dx
+        a.Assemble()
+        f.Assemble()
+        self.values[:] = self._inlet          # Dirichlet values on the inlet
+        r = f.vec.CreateVector()
+        r.data = f.vec - a.mat * self.gf.vec
+        self.gf.vec.data += a.mat.Inverse(self.space.FreeDofs(), inverse="umfpack") * r
+        scale = max(float(np.max(np.abs(self.values))), 1e-300)
+        return float(np.max(np.abs(self.values - old))) / scale
+
+    def integrate(self, velocity, dt: float) -> None:
+        """One step of the material update: eps += dt edot at the (material) nodes."""
+        self._edot.Set(self._rate(velocity))
+        self.values[:] += dt * np.maximum(self._edot.vec.FV().NumPy(), 0.0)
+
+    def mean_where(self, vertex_mask) -> float:
+        """Mean strain over the elements whose vertices are all in ``vertex_mask`` (P1
+        indicator; the rest of the mesh weighs nothing)."""
+        from ngsolve import H1, GridFunction, IfPos, Integrate
+
+        ind = GridFunction(H1(self.mesh, order=1))
+        ind.vec.FV().NumPy()[:] = np.asarray(vertex_mask, dtype=float)
+        full = IfPos(ind - 0.999, 1.0, 0.0)
+        area = float(Integrate(full, self.mesh))
+        return float(Integrate(full * self.gf, self.mesh)) / area if area > 0 else float("nan")
+
+    def mean_between(self, x0: float, x1: float) -> float:
+        """Mean strain over the strip between x0 and x1 (current coordinates): the
+        thickness-weighted mean of a cross-section where the strip is rigid."""
+        from ngsolve import IfPos, Integrate, x
+
+        band = IfPos(x - x0, IfPos(x1 - x, 1.0, 0.0), 0.0)
+        area = float(Integrate(band, self.mesh))
+        return float(Integrate(band * self.gf, self.mesh)) / area if area > 0 else float("nan")

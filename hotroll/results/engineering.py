@@ -1,0 +1,77 @@
+"""Engineering figures of a pass for the summary: means over the roll gap, whole-width totals,
+and the unit of every number (issue 15).
+
+The FE figures are per unit width of the upper roll and its half of the strip (the strip's
+upper half is all the upper roll touches): roll force = the separating force of one roll,
+torque and power = one roll's. ``[pass] width`` turns them into a whole strip's figures; the
+mill (drive) power is both rolls'.
+"""
+from __future__ import annotations
+
+import math
+
+#: Unit of each summary key (SI; per unit width where the key is per unit width).
+UNITS: dict[str, str] = {
+    "roll_force": "N/m", "roll_torque": "N m/m", "roll_power": "W/m", "horizontal_force": "N/m",
+    "forward_slip": "-", "neutral_angle": "rad", "neutral_point": "m", "contact_length": "m",
+    "entry_velocity": "m/s", "exit_velocity": "m/s", "mass_flux_in": "m^2/s",
+    "mass_flux_out": "m^2/s", "plastic_power": "W/m", "friction_power": "W/m",
+    "penalty_power": "W/m", "outlet_penalty_power": "W/m", "tension_power": "W/m",
+    "a_f": "m^-m", "balance_error": "-", "power_balance_error": "-", "penalty_share": "-",
+    "mass_flux_error": "-", "symmetry_stress_force_y": "N/m", "free_top_force_share": "-",
+    "h_contact": "m", "wall_time_s": "s", "estimated_memory": "B", "estimated_seconds": "s",
+    "time": "s", "dt": "s", "K": "Pa s^m", "m": "-",
+    "roll_centre": "m", "roll_radius": "m", "roll_surface_speed": "m/s",
+    "contact_start": "m", "contact_end": "m", "back_tension": "Pa", "front_tension": "Pa",
+    "exit_strain": "-", "homogeneous_exit_strain": "-", "mean_flow_stress": "Pa",
+    "mean_strain_rate": "1/s", "mean_pressure": "Pa", "width": "m", "roll_force_total": "N",
+    "roll_torque_total": "N m", "roll_power_total": "W", "mill_power": "W",
+    "temperature": "K", "surface_residual_h": "h", "force_balance": "N/m",
+    "neutral_angle_flux": "rad", "sticking_zone": "rad",
+    "contact_start_angle": "rad", "contact_end_angle": "rad", "min_contact_pressure": "Pa",
+    "leak_to_slip": "-", "exit_thickness": "m", "pressure_last_update": "Pa",
+}
+
+
+def gap_means(form, rp, x_start: float, K: float) -> dict:
+    """Volume means over the deformation zone (the strip between the contact start x_start and
+    the roll gap X_roll): the flow stress sigma_ef (Pa) and the equivalent strain rate (1/s)."""
+    from ngsolve import IfPos, Integrate, sqrt, x
+
+    from hotroll.fem.forms import strain_rate
+    from hotroll.model.material import edot_squared
+
+    band = IfPos(x - x_start, IfPos(rp.axis_x - x, 1.0, 0.0), 0.0)
+    area = float(Integrate(band, form.mesh))
+    if not area > 0:
+        return {"mean_flow_stress": math.nan, "mean_strain_rate": math.nan}
+    e2 = edot_squared(strain_rate(form.problem.velocity))
+    sigma = form.material.sigma_ef_reg(e2, m=form.m_material, K=form.consistency)
+    return {"mean_flow_stress": K * float(Integrate(band * sigma, form.mesh)) / area,
+            "mean_strain_rate": float(Integrate(band * sqrt(e2 + 1e-300), form.mesh)) / area}
+
+
+def width_totals(summary: dict, width: float | None) -> dict:
+    """Whole-width figures (one roll's force and torque, the mill power of both rolls)."""
+    if width is None:
+        return {"width": None}
+    return {"width": width,
+            "roll_force_total": summary["roll_force"] * width,
+            "roll_torque_total": summary["roll_torque"] * width,
+            "roll_power_total": summary["roll_power"] * width,
+            "mill_power": 2.0 * summary["roll_power"] * width}
+
+
+def display(key: str, value, unit: str | None = None):
+    """(text, unit) for a person: forces in MN/m (MN), torques in kN m/m (kN m), powers in
+    kW/m (kW), stresses in MPa, where the magnitude calls for it; SI otherwise. ``unit``: the
+    SI unit when ``UNITS`` does not know the key (e.g. summary.json's ``units``)."""
+    unit = UNITS.get(key, unit or "")
+    if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
+        return None, unit
+    scale = {"N/m": (1e6, "MN/m"), "N": (1e6, "MN"), "N m/m": (1e3, "kN m/m"),
+             "N m": (1e3, "kN m"), "W/m": (1e3, "kW/m"), "W": (1e3, "kW"), "Pa": (1e6, "MPa")}
+    if unit in scale and abs(value) >= scale[unit][0] and key not in ("K",):
+        factor, unit = scale[unit]
+        return f"{value / factor:.4g}", unit
+    return f"{value:.6g}", unit

@@ -1,0 +1,347 @@
+"""Thermo-mechanical coupling of a steady rolling form and its temperature field (issue 16;
+beyond the report: Touloupoulos 2020 is isothermal).
+
+The temperature lives on its own mesh (``strip_mesh.ThermalStrip``: structured, thin rows at
+the top for the roll-chill layer), the mechanics on theirs. Each coupling update:
+1. places the strip mesh on the current strip (the mechanics' displacement at its reference
+   points);
+2. carries the flow over as a stream function: psi = the flux below each strip vertex along
+   its column, rescaled per column to the inlet's flux, and v = curl psi. That velocity is
+   divergence-free, tangent to the top and the symmetry line, and carries the same flux
+   through every section, so the advected heat balances exactly (the mechanics' discrete
+   velocity has a mass-flux error of ~1e-3, which times rho c T would be a heat source the
+   size of the plastic heat);
+3. evaluates the plastic power density and the friction flux of the mechanics' fields at the
+   strip's vertices (found once in the reference mesh, evaluated on the deformed one), and
+   takes the contact as the x-range of the contact edges;
+4. solves the steady temperature there and carries it back: as each mechanics element's mean
+   (the strip's vertices inside it, weighted by their lumped areas), which the flow stress
+   reads, and as the values at the mechanics' vertices (the profiles, fields.npz). A vertex
+   value would spread the chilled surface over the whole element (the layer is a fraction
+   of it): measured +4.4 % on the force against -0.7 % with the element means.
+
+Mechanics -> heat: the plastic power density s:eps_dot = K_ref mu eps_dot:eps_dot (W/m^3, the
+form's law, reduced stresses times K_ref) and the friction power per area K_ref k_f |v_s|^2
+(W/m^2) on the contact feed ``TemperatureField`` (``field.py``); for the laws with
+k = sigma/sqrt3 (Coulomb's cap, Tresca), k is the volume gradient's at the strip's points.
+
+Heat -> mechanics: the form's consistency K(eps, T)/K_ref and rate exponent m(T) at the elements'
+temperatures (``feedback.FlowStressFeedback``).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from hotroll.fem.mesh import mesh_triangles
+from hotroll.fem.strip_mesh import ThermalStrip, layer_thickness
+from hotroll.fem.thermal_field import TemperatureField
+from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
+from hotroll.solvers.thermal_feedback import FlowStressFeedback
+
+SUBSAMPLES = 4   # points per strip row interval for the flux integral along a column
+CHORD_BELOW = 1e-3   # update_steady keeps the heat equation's factors below this change
+
+
+class ThermalCoupling(FlowStressFeedback):
+    """The temperature of a steady rolling strip, its heat sources and its flow-stress
+    feedback (module docstring)."""
+
+    def __init__(self, mesh, props: ThermalProperties, bc: ThermalBoundary, K_ref: float,
+                 m_ref: float, eps0: float, flow=None, strain=None, entry_strain: float = 0.0,
+                 refine: float = 1.0):
+        from ngsolve import H1, L2, GridFunction
+
+        super().__init__(mesh, props, bc, K_ref, m_ref, eps0, flow, strain, entry_strain)
+        self.refine = float(refine)
+        self.T = GridFunction(H1(mesh, order=1))   # the temperature at the mechanics' vertices
+        self.T.Set(bc.entry_temperature)
+        self.T_mean = GridFunction(L2(mesh, order=0))   # each element's mean temperature, K
+        self.T_mean.Set(bc.entry_temperature)
+        self._ratio = GridFunction(L2(mesh, order=0))   # K/K_ref per element (see consistency)
+        self._offset = GridFunction(L2(mesh, order=0))  # m(T) - m_ref per element
+        self.strip = self.field = None
+        self._change = math.inf      # the last update's change (update_steady)
+        # no strain field: the ratio is a number per element, kept in a P0 field (the form
+        # then reads values, not the law's formula: half the residual's cost)
+        self._per_element = flow is not None and strain is None
+        self._set_ratio()
+
+    def _set_ratio(self) -> None:
+        """The P0 fields of the elements' temperatures: K/K_ref (without a strain field) and
+        the rate-exponent offset."""
+        T = self.T_mean.vec.FV().NumPy()
+        if self._per_element:
+            self._ratio.vec.FV().NumPy()[:] = np.asarray(self._consistency_at(T), dtype=float)
+        if self.m_varies:
+            self._offset.vec.FV().NumPy()[:] = np.asarray(self._rate_offset_at(T), dtype=float)
+
+    def consistency(self):
+        """K(eps, T)/K_ref at the elements' mean temperature (``FlowStressFeedback``)."""
+        return self._ratio if self._per_element else self._consistency_at(self.T_mean)
+
+    def rate_offset(self):
+        """m(T) - m_ref at the elements' mean temperature, or None (``FlowStressFeedback``)."""
+        return self._offset if self.m_varies else None
+
+    def attach(self, form, disp, top) -> None:
+        """The form whose flow heats the strip (built with ``consistency()``), the mechanics'
+        displacement GridFunction and its ``TopBoundary``: builds the strip mesh."""
+        from ngsolve import CF, H1, GridFunction, IfPos, Parameter, x, y
+
+        self.form, self._disp, self._top = form, disp, top
+        T0 = self.bc.entry_temperature
+        alpha = float(self.props.k_values(T0) / self.props.rho_c_values(T0))
+        self.delta = layer_thickness(form.rp, alpha)
+        self.strip = ThermalStrip(form.rp, top.X0[top.verts], form.penalties.h, self.delta,
+                                  self.refine)
+        # P1 temperature, P1 sources and a velocity constant per triangle: with constant
+        # properties every volume term is a polynomial of degree <= 2 (no bonus order needed)
+        self.field = TemperatureField(self.strip.mesh, self.props, self.bc,
+                                      inlet="left", top="top", outlet="right",
+                                      volume_bonus=0 if self.props.is_constant() else 2)
+        self._qs = GridFunction(H1(self.strip.mesh, order=1))
+        self._qfs = GridFunction(H1(self.strip.mesh, order=1))
+        self._lo, self._hi = Parameter(0.0), Parameter(0.0)    # the contact's x-range
+        self._chi = IfPos(x - self._lo, IfPos(self._hi - x, 1.0, 0.0), 0.0)
+        self._mech_logical = self.strip.logical(top.X0)   # the mechanics' vertices
+        # the strip's vertices and its columns' flux points, found once in the mechanics'
+        # reference mesh; the top row's vertices
+        strip = self.strip
+        self._pts = self._find(strip.reference)
+        self._fine, col_ref = self._column_points()
+        self._col_pts = self._find(col_ref)
+        self._top_row = np.arange(strip.nv - strip.shape[1], strip.nv)
+        # the mechanics element of each strip vertex; the elements with none take the
+        # temperature at their centroid
+        self._owner = np.array(self._pts["nr"], dtype=int)
+        self._empty = np.setdiff1d(np.arange(self.mesh.ne), self._owner)
+        centroids = top.X0[mesh_triangles(self.mesh)[self._empty]].mean(axis=1)
+        self._empty_logical = self.strip.logical(centroids)
+        self._strip_tris = mesh_triangles(self.strip.mesh)
+        # the CFs evaluated at every update, built and compiled once (they read GridFunctions
+        # and Parameters): 2-3x faster to evaluate than the plain expression trees
+        u = form.problem.velocity
+        plastic, friction = self.sources()
+        self._position_cf = CF((x, y)).Compile()
+        self._column_cf = CF((x, y, u[0], u[1])).Compile()
+        self._plastic_cf, self._friction_cf = plastic.Compile(), friction.Compile()
+
+    def reset(self, T: float) -> None:
+        """A uniform temperature T (K) on both meshes."""
+        self.T.Set(float(T))
+        self.T_mean.Set(float(T))
+        self._set_ratio()
+        self._change = math.inf
+        if self.field is not None:
+            self.field.gf.Set(float(T))
+
+    # --- sources on the mechanics mesh -----------------------------------------------------
+    def sources(self):
+        """(plastic power density W/m^3, friction power per area W/m^2 where in contact) of the
+        mechanics' fields, as CFs to evaluate at volume points (k from the volume gradient)."""
+        return self._heat_sources()
+
+    # --- mechanics -> strip ----------------------------------------------------------------
+    def _find(self, ref: np.ndarray):
+        """Mesh points of the mechanics mesh at reference positions (N, 2): searched in the
+        undeformed mesh (NGSolve's point search ignores the deformation); a CF evaluated at
+        them later is evaluated on the deformed mesh, at their current positions."""
+        self.mesh.UnsetDeformation()
+        try:
+            pts = self.mesh(ref[:, 0], ref[:, 1])
+        finally:
+            self.mesh.SetDeformation(self._disp)
+        missing = int(np.sum(np.asarray(pts["nr"]) < 0))
+        if missing:
+            raise RuntimeError(f"{missing} strip points outside the mechanics mesh")
+        return pts
+
+    @staticmethod
+    def _at(cf, pts) -> np.ndarray:
+        """A CF (or GridFunction) at mesh points: (N, dim)."""
+        return np.asarray(cf(pts), dtype=float).reshape(len(pts), -1)
+
+    def _column_points(self):
+        """(fine eta, reference points): SUBSAMPLES points per row interval on every column."""
+        strip = self.strip
+        eta = strip.eta
+        fine = np.concatenate([np.linspace(a, b, SUBSAMPLES + 1)[:-1]
+                               for a, b in zip(eta[:-1], eta[1:])] + [eta[-1:]])
+        Xg, Eg = np.meshgrid(strip.X, fine)
+        return fine, np.stack([Xg.ravel(), Eg.ravel() * strip.top_height(Xg.ravel())], -1)
+
+    def _column_flux(self) -> np.ndarray:
+        """The flux below each strip vertex along its column (ny+1, nx+1), m^2/s: int v.n ds
+        over the column's current (deformed) line, SUBSAMPLES points per row interval."""
+        shape = (len(self._fine), len(self.strip.X), 4)
+        both = self._at(self._column_cf, self._col_pts).reshape(shape)
+        pos, vel = both[..., :2], both[..., 2:]
+        dx, dy = np.diff(pos[..., 0], axis=0), np.diff(pos[..., 1], axis=0)
+        vm = 0.5 * (vel[1:] + vel[:-1])
+        flux = np.concatenate([np.zeros((1, shape[1])),
+                               np.cumsum(vm[..., 0] * dy - vm[..., 1] * dx, axis=0)])
+        return flux[::SUBSAMPLES]
+
+    def _transfer(self) -> None:
+        """Place the strip, and carry the flow, the heat sources and the contact over."""
+        strip, top = self.strip, self._top
+        strip.place(self._at(self._position_cf, self._pts))
+        flux = self._column_flux()
+        strip.set_stream_function(flux, total=float(flux[-1, 0]))
+        self._qs.vec.FV().NumPy()[:] = self._at(self._plastic_cf, self._pts)[:, 0]
+        qf = np.zeros(strip.nv)
+        qf[self._top_row] = self._at(self._friction_cf, self._pts[self._top_row])[:, 0]
+        self._qfs.vec.FV().NumPy()[:] = qf
+        rows = np.nonzero(top.edge_contact)[0]
+        lo = hi = 0.0
+        if len(rows):
+            d = self._disp.vec.FV().NumPy()
+            xs = top.vertex_positions(d, np.concatenate([top.ea[rows], top.eb[rows]]))[:, 0]
+            tol = 1e-9 * max(1.0, float(np.max(np.abs(xs))))
+            lo, hi = float(xs.min()) - tol, float(xs.max()) + tol
+        self._lo.Set(lo)
+        self._hi.Set(hi)
+
+    def strip_sources(self):
+        """(velocity, plastic density, friction flux, contact) on the strip mesh (the same
+        objects every time: the field's forms are built once)."""
+        return self.strip.velocity(), self._qs, self._qfs, self._chi
+
+    # --- updates ---------------------------------------------------------------------------
+    def update_steady(self, tol: float = 1e-8, max_iter: int = 30) -> float:
+        """The steady temperature of the current flow on the strip mesh, sampled back at the
+        mechanics' vertices; returns the largest change of the elements'
+        temperatures over the largest. ``max_iter = 1`` inside a fixed point that repeats
+        until that change is small: one Newton step from the last temperature, whose error
+        is then of the order of the change squared."""
+        self._transfer()
+        # inside the fixed point, once the temperature moves by less than CHORD_BELOW of
+        # itself per update, the heat equation's factors are kept (Newton-chord): the flow,
+        # and with it the matrix, then changes little between updates
+        chord = max_iter == 1 and self._change < CHORD_BELOW
+        self.last = self.field.solve_steady(*self.strip_sources(), tol=tol, max_iter=max_iter,
+                                            chord=chord)
+        smesh, vals = self.strip.mesh, self.field.values
+
+        def at(logical):
+            return np.asarray(self.field.gf(smesh(*logical)), dtype=float).reshape(-1)
+
+        self.T.vec.FV().NumPy()[:] = at(self._mech_logical)
+        # element means: the strip vertices' lumped areas (current positions) as weights
+        p, t = self.strip.physical, self._strip_tris
+        e1, e2 = p[t[:, 1]] - p[t[:, 0]], p[t[:, 2]] - p[t[:, 0]]
+        area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+        w = np.bincount(t.ravel(), np.repeat(area / 3.0, 3), minlength=len(vals))
+        mean = self._element_means(vals, w)
+        if len(self._empty):
+            mean[self._empty] = at(self._empty_logical)
+        old = self.T_mean.vec.FV().NumPy().copy()
+        self.T_mean.vec.FV().NumPy()[:] = mean
+        self._set_ratio()
+        self._change = float(np.max(np.abs(mean - old))) / float(np.max(np.abs(old)))
+        return self._change
+
+    def _element_means(self, vals: np.ndarray, w: np.ndarray) -> np.ndarray:
+        """Each mechanics element's temperature from the strip vertices inside it (weights
+        ``w``): the one whose consistency K(eps_entry, T) is their weighted mean of K, so that
+        the element is as hard as the material in it on average (the plain mean of T would
+        make a chilled element softer: K is convex in T); bisection between the smallest and
+        the largest T inside. The plain mean for a law without T, or one not monotone there."""
+        ne, owner = self.mesh.ne, self._owner
+        wsum = np.maximum(np.bincount(owner, w, minlength=ne), 1e-300)
+        plain = np.bincount(owner, w * vals, minlength=ne) / wsum
+        if self.flow is None:
+            return plain
+
+        def K(T):
+            return np.asarray(self.flow.consistency(self.entry_strain, T), dtype=float)
+
+        target = np.bincount(owner, w * K(vals), minlength=ne) / wsum
+        lo = np.full(ne, np.inf)
+        hi = np.full(ne, -np.inf)
+        np.minimum.at(lo, owner, vals)
+        np.maximum.at(hi, owner, vals)
+        lo, hi = np.where(np.isfinite(lo), lo, plain), np.where(np.isfinite(hi), hi, plain)
+        k_lo, k_hi = K(lo), K(hi)
+        # K the same at both ends (a law without T, or one element's uniform temperature):
+        # any T between would do, and the bisection would follow the rounding: the plain mean
+        flat = np.abs(k_lo - k_hi) <= 1e-12 * np.abs(k_hi)
+        if np.all(flat):
+            return plain
+        falling = k_lo >= k_hi
+        if not np.all(falling | flat):
+            return plain
+        for _ in range(60):                   # to 1e-9 of the temperature (~30 halvings)
+            if np.max(hi - lo) <= 1e-9 * np.max(np.abs(hi)):
+                break
+            mid = 0.5 * (lo + hi)
+            above = K(mid) > target           # still too hard: go hotter
+            lo, hi = np.where(above, mid, lo), np.where(above, hi, mid)
+        return np.where(flat, plain, 0.5 * (lo + hi))
+
+    # --- figures ---------------------------------------------------------------------------
+    def vertex_temperature(self) -> np.ndarray:
+        """The temperature at the mechanics mesh's vertices (K), a copy."""
+        return self.T.vec.FV().NumPy().copy()
+
+    def flow_temperature(self) -> np.ndarray:
+        """The temperature the flow stress takes (the elements' means, ``_element_means``),
+        averaged at the mechanics' vertices (K)."""
+        from ngsolve import H1, GridFunction
+
+        g = GridFunction(H1(self.mesh, order=1))
+        g.Set(self.T_mean)
+        return g.vec.FV().NumPy()[:self.mesh.nv].copy()
+
+    def strip_fields(self) -> dict[str, np.ndarray]:
+        """The strip mesh as drawn: current vertex positions (m), triangles and T (K)."""
+        return {"points": self.strip.physical.copy(), "triangles": self._strip_tris.copy(),
+                "temperature": self.field.values.copy()}
+
+    def balance(self) -> dict:
+        """Heat flows (W/m) and the balance error of ``TemperatureField.balance``."""
+        return self.field.balance(*self.strip_sources())
+
+    def section_means(self, x0: float, band: float) -> tuple[float, float]:
+        """(mixing-cup mean int T v_x / int v_x over the strip between x0 and x0 + band, the
+        top's temperature at the roll gap column): the exit temperatures."""
+        from ngsolve import IfPos, Integrate, x
+
+        u, T, mesh = self.strip.velocity(), self.field.gf, self.strip.mesh
+        sel = IfPos(x - x0, IfPos(x0 + band - x, 1.0, 0.0), 0.0)
+        flux = float(Integrate(sel * u[0], mesh))
+        mean = float(Integrate(sel * u[0] * T, mesh)) / flux if flux else math.nan
+        ny, nx1 = self.strip.shape
+        surface = float(self.field.values[(ny - 1) * nx1 + self.strip.i_exit])
+        return mean, surface
+
+    def measure(self, x_exit: float, h: float, heat_flows: bool = True) -> dict:
+        """The thermal figures of one state (K, W/m): exit mean (mixing cup over 2 h after the
+        roll gap section ``x_exit``) and the surface temperature at the gap, the heat flows
+        and the balance error (NaN without ``heat_flows``: the fixed point's intermediate
+        rows), the extreme temperatures, the strip mesh's size."""
+        mean, surface = self.section_means(x_exit, 2.0 * h)
+        vals = self.field.values
+        out = {"exit_temperature_mean": mean, "exit_temperature_surface": surface,
+               "max_temperature": float(np.max(vals)), "min_temperature": float(np.min(vals)),
+               "thermal_iterations": self.last.iterations, "thermal_dofs": int(len(vals)),
+               "thermal_layer": self.delta}
+        flows = self.balance() if heat_flows else dict.fromkeys(HEAT_FLOWS, math.nan)
+        out.update(flows)
+        return out
+
+
+#: The heat flows and the balance error of ``TemperatureField.balance`` (W/m, -).
+HEAT_FLOWS = ("plastic_heat", "friction_heat_to_strip", "heat_to_roll", "heat_to_air",
+              "advected_in", "advected_out", "conducted_in", "heat_balance_error")
+
+#: Units of the thermal figures in summary.json and history.csv.
+THERMAL_UNITS = {
+    "exit_temperature_mean": "K", "exit_temperature_surface": "K", "max_temperature": "K",
+    "min_temperature": "K", "plastic_heat": "W/m", "friction_heat_to_strip": "W/m",
+    "heat_to_roll": "W/m", "heat_to_air": "W/m", "advected_in": "W/m", "advected_out": "W/m",
+    "conducted_in": "W/m", "heat_balance_error": "-", "thermal_iterations": "-",
+    "thermal_dofs": "-", "thermal_layer": "m",
+}

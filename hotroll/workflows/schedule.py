@@ -1,0 +1,260 @@
+"""Running a pass schedule (issue 17): pass after pass, each from the previous exit state.
+
+The state handed on is the strip's thickness (the pass's exit thickness: rigid rolls), its
+temperature and strain profiles through the half thickness (``results/profiles.py``, measured
+at the steady strip's outlet) and, in a tandem mill, its mass flux. Between two passes the
+temperature profile cools in air (``thermal/interpass.cool``: 1D conduction with convection
+and radiation) and the strain is kept (``strain_retained`` of it). With
+``mill.speeds = "mass_flow"`` each stand after the first gets the roll speed
+U_k = Q / ((h_k/2) (1 + f_k)) that passes the first stand's flux Q, with its own forward slip
+f_k (solved again, warm, until the fluxes agree to ``mass_flow_tolerance``).
+
+Each pass is a ``hotroll run`` into ``DIR/NN_name/`` (its own summary, profiles, figures); a
+finished pass whose case file is unchanged is not solved again (resume). Output:
+``schedule.csv`` (one row per pass with its transport), ``schedule.json`` (the same with
+units and the profiles handed on) and ``schedule.png``.
+"""
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from hotroll.config.schedule import Schedule
+from hotroll.model.profile import ThicknessProfile
+from hotroll.results.output import write_csv, write_json
+
+#: Units of the schedule table's columns.
+UNITS = {
+    "entry_thickness": "m", "exit_thickness": "m", "reduction": "-", "roll_radius": "m",
+    "roll_surface_speed": "m/s", "roll_angular_velocity": "rad/s", "roll_force": "N/m",
+    "roll_torque": "N m/m", "roll_power": "W/m", "roll_force_total": "N",
+    "roll_torque_total": "N m", "mill_power_total": "W", "forward_slip": "-",
+    "entry_velocity": "m/s", "exit_velocity": "m/s", "mass_flux": "m^2/s",
+    "entry_temperature_mean": "K", "exit_temperature_mean": "K", "outlet_temperature_mean": "K",
+    "exit_temperature_surface": "K", "entry_strain_mean": "-", "exit_strain_mean": "-",
+    "homogeneous_exit_strain": "-", "newton_iterations": "-", "fe_solves": "-",
+    "wall_time": "s", "transport_duration": "s", "transport_heat_lost": "J/m^2",
+    "next_entry_temperature_mean": "K", "next_entry_temperature_surface": "K",
+    "next_entry_strain_mean": "-",
+}
+
+
+class StripState:
+    """The strip between passes: full thickness (m), temperature and strain profiles."""
+
+    def __init__(self, thickness: float, temperature: ThicknessProfile,
+                 strain: ThicknessProfile):
+        self.thickness, self.temperature, self.strain = thickness, temperature, strain
+
+    def to_dict(self) -> dict:
+        return {"thickness": self.thickness, "temperature_profile": self.temperature.pairs(),
+                "strain_profile": self.strain.pairs()}
+
+
+def entry_state(sch: Schedule) -> StripState:
+    t_prof, e_prof = sch.entry_profiles()
+    return StripState(sch.strip.thickness,
+                      t_prof or ThicknessProfile.uniform(sch.strip.temperature),
+                      e_prof or ThicknessProfile.uniform(sch.strip.strain))
+
+
+def pass_case(sch: Schedule, k: int, state: StripState, omega: float | None = None):
+    """The k-th pass entering with ``state`` (uniform profiles are given as numbers)."""
+    T, e = state.temperature, state.strain
+    return sch.pass_case(k, state.thickness, _enthalpy_mean(sch, T),
+                         None if T.is_uniform else T, e.mean(),
+                         None if e.is_uniform else e, omega)
+
+
+def _enthalpy_mean(sch: Schedule, T: ThicknessProfile) -> float:
+    """The profile's mean temperature by its heat content (K)."""
+    from hotroll.model.interpass import enthalpy_mean
+
+    if T.is_uniform:
+        return T.values[0]
+    return enthalpy_mean(sch.material.thermal_properties(), np.asarray(T.values), T.weights())
+
+
+def exit_state(sch: Schedule, case, summary: dict) -> StripState:
+    """The state at the pass's outlet (``summary["exit_profile"]``); without a strain field
+    (a law independent of strain) the homogeneous exit strain, uniform."""
+    prof = summary["exit_profile"]
+    eta = np.asarray(prof["eta"], dtype=float)
+    T = ThicknessProfile(tuple(eta), tuple(prof["temperature"]))
+    if prof.get("strain") is not None:
+        e = ThicknessProfile(tuple(eta), tuple(np.maximum(prof["strain"], 0.0)))
+    else:
+        e = ThicknessProfile.uniform(summary["homogeneous_exit_strain"])
+    return StripState(case.pass_.exit_thickness, T, e)
+
+
+def transport(sch: Schedule, k: int, state: StripState, exit_velocity: float):
+    """The state after the k-th pass's transport, and its row (duration, heat lost)."""
+    from hotroll.model.interpass import cool
+
+    tr = sch.passes[k].transport
+    th = sch.thermal
+    duration = tr.duration if tr.duration is not None else tr.distance / exit_velocity
+    T = state.temperature
+    res = cool(np.asarray(T.eta), np.asarray(T.values), 0.5 * state.thickness, duration,
+               sch.material.thermal_properties(),
+               th.htc_air if tr.htc_air is None else tr.htc_air,
+               th.emissivity if tr.emissivity is None else tr.emissivity,
+               th.ambient_temperature)
+    eta = res.y / res.y[-1]
+    new = StripState(state.thickness, ThicknessProfile(tuple(eta), tuple(res.temperature)),
+                     state.strain.scaled(tr.strain_retained))
+    row = {"transport_duration": duration, "transport_heat_lost": res.heat_lost,
+           "transport_balance_error": res.balance_error,
+           "next_entry_temperature_mean": res.mean,
+           "next_entry_temperature_surface": res.surface,
+           "next_entry_strain_mean": new.strain.mean()}
+    return new, row
+
+
+def _reuse(case, out: Path) -> dict | None:
+    """A finished, converged pass's summary when its case file is the same (resume)."""
+    from hotroll.workflows.runner import finished_summary
+
+    summary = finished_summary(case, out)
+    if summary and summary.get("exit_code") == 0 and summary.get("exit_profile"):
+        return summary
+    return None
+
+
+def _last_speed(pdir: Path) -> float | None:
+    """The roll angular velocity of the pass last run in ``pdir`` (its case.toml), or None."""
+    import tomllib
+
+    try:
+        return float(tomllib.loads((pdir / "case.toml").read_text())["pass"]
+                     ["roll_angular_velocity"])
+    except (OSError, KeyError, ValueError, tomllib.TOMLDecodeError):
+        return None
+
+
+def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
+                 progress: Callable[[str], None] | None = None,
+                 figure: bool = True) -> list[dict]:
+    """Roll the schedule into ``out``; returns the table's rows (module docstring).
+    ``figure``: schedule.png (each pass's own figures follow its [output] figures)."""
+    from hotroll.workflows.runner import run_case
+    from hotroll.workflows.sweep import Sweep
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    say = progress or (lambda msg: None)
+    state, rows, profiles = entry_state(sch), [], []
+    flux = None                                    # the tandem's mass flux (half strip)
+    t_start = time.perf_counter()
+    # each pass starts from the last one solved; history.csv keeps the final state only
+    sweep = Sweep(similar=sch.mill.start_from_previous, history=False)
+    for k, p in enumerate(sch.passes):
+        t0 = time.perf_counter()
+        omega = None
+        if sch.mill.speeds == "mass_flow" and k > 0:
+            f_guess = rows[-1]["forward_slip"]
+            omega = flux / (0.5 * p.exit_thickness * (1.0 + f_guess)) / p.roll_radius
+            if resume:          # the speed a finished run of this pass settled on
+                omega = _last_speed(out / f"{k + 1:02d}_{sch.pass_name(k)}") or omega
+        solves, iterations = 0, 0
+        while True:
+            case = pass_case(sch, k, state, omega)
+            pdir = out / case.name
+            summary = _reuse(case, pdir) if resume else None
+            if summary is None:
+                summary = run_case(case, pdir, resume=False, sweep=sweep)
+                solves += 1
+                iterations += int(summary.get("nonlinear_iterations") or 0)
+            if summary.get("exit_code") != 0:
+                raise ScheduleError(k, case.name, summary, rows)
+            if flux is None or sch.mill.speeds != "mass_flow":
+                break
+            miss = summary["mass_flux_in"] / flux - 1.0
+            if abs(miss) <= sch.mill.mass_flow_tolerance or solves >= 6:
+                break
+            omega = case.pass_.roll_angular_velocity / (1.0 + miss)
+        if flux is None:
+            flux = summary["mass_flux_out"]
+        entry_T = _enthalpy_mean(sch, state.temperature)
+        entry_e = state.strain.mean()
+        state = exit_state(sch, case, summary)
+        row = _pass_row(sch, k, case, summary, entry_T, entry_e, solves, iterations,
+                        time.perf_counter() - t0)
+        row["outlet_temperature_mean"] = _enthalpy_mean(sch, state.temperature)
+        row["exit_strain_mean"] = state.strain.mean()
+        profiles.append({"pass": row["name"], "exit": state.to_dict()})
+        if p.transport is not None:
+            state, trow = transport(sch, k, state, summary["exit_velocity"])
+            row.update(trow)
+            profiles[-1]["after_transport"] = state.to_dict()
+        rows.append(row)
+        say(_line(row))
+        _write(sch, out, rows, profiles, time.perf_counter() - t_start)
+    if figure:
+        from hotroll.results.schedule_plot import plot_schedule
+
+        plot_schedule(rows, out / "schedule.png", width=sch.strip.width)
+    return rows
+
+
+class ScheduleError(RuntimeError):
+    """A pass that did not converge: the schedule stops there (the passes before are kept)."""
+
+    def __init__(self, k: int, name: str, summary: dict, rows: list[dict] | None = None):
+        from hotroll.results.outcome import EXIT_CODES
+
+        self.k, self.name, self.summary, self.rows = k, name, summary, rows or []
+        code = summary.get("exit_code")
+        super().__init__(f"pass {k + 1} ({name}) ended with exit code {code}: "
+                         f"{EXIT_CODES.get(code, '?')} (status {summary.get('status')}); the "
+                         f"schedule stops there, the passes before it are written")
+
+
+def _pass_row(sch, k, case, s, entry_T, entry_e, solves, iterations, wall) -> dict:
+    pa = case.pass_
+    row = {"pass": k + 1, "name": sch.pass_name(k), "case": case.name,
+           "entry_thickness": pa.entry_thickness, "exit_thickness": pa.exit_thickness,
+           "reduction": 1.0 - pa.exit_thickness / pa.entry_thickness,
+           "roll_radius": pa.roll_radius, "roll_surface_speed": pa.roll_surface_speed,
+           "roll_angular_velocity": pa.roll_angular_velocity,
+           "roll_force": s["roll_force"], "roll_torque": s["roll_torque"],
+           "roll_power": s["roll_power"], "forward_slip": s["forward_slip"],
+           "entry_velocity": s["entry_velocity"], "exit_velocity": s["exit_velocity"],
+           "mass_flux": s["mass_flux_in"],
+           "entry_temperature_mean": entry_T,
+           "exit_temperature_mean": s.get("exit_temperature_mean"),
+           "exit_temperature_surface": s.get("exit_temperature_surface"),
+           "entry_strain_mean": entry_e,
+           "exit_strain_mean": None,          # the profile handed on (run_schedule)
+           "homogeneous_exit_strain": s["homogeneous_exit_strain"],
+           "newton_iterations": iterations, "fe_solves": solves, "wall_time": wall}
+    if sch.strip.width is not None:
+        row.update({"roll_force_total": s.get("roll_force_total"),
+                    "roll_torque_total": s.get("roll_torque_total"),
+                    "mill_power_total": s.get("mill_power_total")})
+    return row
+
+
+def _line(r: dict) -> str:
+    text = (f"{r['name']}: {1e3 * r['entry_thickness']:.2f} -> {1e3 * r['exit_thickness']:.2f}"
+            f" mm, {r['roll_surface_speed']:.3g} m/s, force {1e-6 * r['roll_force']:.3f} MN/m,"
+            f" torque {1e-3 * r['roll_torque']:.2f} kN m/m, exit "
+            f"{r['exit_temperature_mean']:.1f} K, strain {r['exit_strain_mean']:.3f}, "
+            f"{r['fe_solves']} FE solve(s), {r['wall_time']:.1f} s")
+    if "transport_duration" in r:
+        text += (f"; transport {r['transport_duration']:.2f} s -> "
+                 f"{r['next_entry_temperature_mean']:.1f} K")
+    return text
+
+
+def _write(sch, out: Path, rows: list[dict], profiles: list[dict], wall: float) -> None:
+    keys = list(dict.fromkeys(k for r in rows for k in r))
+    write_csv(out / "schedule.csv", [{k: r.get(k) for k in keys} for r in rows])
+    write_json(out / "schedule.json", {
+        "name": sch.name, "passes": rows, "profiles": profiles, "wall_time": wall,
+        "fe_solves": sum(r["fe_solves"] for r in rows),
+        "units": {k: u for k, u in UNITS.items() if k in keys}})

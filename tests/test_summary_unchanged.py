@@ -1,0 +1,60 @@
+"""The re-cut into layers changes no result: two bundled examples against the summaries the
+code wrote before it (commit 88591b2, ``scripts/summary_diff.py run``). [snap] A snapshot: a
+guard against an unintended change, not an independent reference.
+
+The whole set (every bundled example, the schedule and a study) is compared by
+``python scripts/summary_diff.py run DIR`` on two commits and ``... compare BEFORE AFTER``
+(docs/architecture.md)."""
+from __future__ import annotations
+
+import importlib.util
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+HERE = Path(__file__).parent
+BEFORE = HERE / "data" / "before_recut"
+SCRIPT = HERE.parent / "scripts" / "summary_diff.py"
+
+
+def _script():
+    spec = importlib.util.spec_from_file_location("summary_diff", SCRIPT)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+@pytest.mark.parametrize("name", ["2", "hot_aluminium"])
+def test_bundled_example_summary_is_the_one_before_the_recut(name, tmp_path):
+    """Keys and units identical, every number to 1e-9 (relative, or of its unit's largest
+    figure for rounding-level ones such as the horizontal force)."""
+    out = tmp_path / name
+    proc = subprocess.run([sys.executable, "-m", "hotroll.cli", "example", name, "--out", str(out)],
+                          capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    problems = _script().compare(BEFORE / "example" / name, out, 1e-9)
+    assert not problems, "\n".join(problems)
+
+
+def test_the_comparison_sees_a_change(tmp_path):
+    """The comparison itself: a roll force x (1 + 1e-8), a renamed key and a changed unit are
+    each reported; a horizontal force moved by 1e-10 of the roll force is rounding."""
+    sd = _script()
+    s = json.loads((BEFORE / "example" / "2" / "summary.json").read_text())
+    for change, expect in ((lambda d: d.update(roll_force=d["roll_force"] * (1 + 1e-8)),
+                            "roll_force"),
+                           (lambda d: d.update(roll_forse=d.pop("roll_force")), "keys only"),
+                           (lambda d: d["units"].update(roll_force="kN/m"), "units.roll_force")):
+        d = json.loads(json.dumps(s))
+        change(d)
+        found: list[str] = []
+        sd.diff(s, d, 1e-9, "s", found)
+        assert any(expect in p for p in found), (expect, found)
+    d = json.loads(json.dumps(s))
+    d["horizontal_force"] += 1e-10 * s["roll_force"]
+    found = []
+    sd.diff(s, d, 1e-9, "s", found)
+    assert not found, found
