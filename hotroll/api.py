@@ -25,6 +25,13 @@ from typing import Any
 import numpy as np
 
 from hotroll.config.case import Case, CaseError, case_from_dict, load_case
+from hotroll.config.schedule import load_schedule
+from hotroll.config.study import load_study
+from hotroll.examples import EXAMPLES, example_path, find_study, schedule_path
+from hotroll.results.figures import plot_all
+from hotroll.workflows.runner import run_case
+from hotroll.workflows.schedule import run_schedule
+from hotroll.workflows.study import run_study
 
 __all__ = ["Case", "CaseError", "Result", "example_case", "load_case", "case_from_dict",
            "open_result", "roll_schedule", "solve", "study"]
@@ -34,8 +41,6 @@ def example_case(name: str, method: str = "steady") -> Case:
     """A bundled case by name: the report's "1", "2", or a realistic pass such as
     "hot_strip_finishing" (``hotroll example`` lists them), solved by ``method`` ("steady",
     the default as on the command line, or "transient": the report's time stepping)."""
-    from hotroll.examples import EXAMPLES, example_path
-
     files = EXAMPLES.get(name, [name])
     if len(files) != 1:
         raise CaseError(f"example {name!r} has several cases: {', '.join(files)}")
@@ -45,8 +50,6 @@ def example_case(name: str, method: str = "steady") -> Case:
 def solve(case: Case, out: str | Path | None = None, *, resume: bool = False) -> Result:
     """Run one case (the case's method: steady or transient) and return its result; ``out``:
     the output directory (default: a temporary one, kept as long as the result lives)."""
-    from hotroll.workflows.runner import run_case
-
     tmp = None
     if out is None:
         tmp = tempfile.TemporaryDirectory(prefix="hotroll-")
@@ -70,10 +73,6 @@ def study(study_file: str | Path, out: str | Path, *, workers: int | None = None
     """Run a study file or a bundled study's name (mesh_table, report_examples; ``hotroll
     study``), ``overrides`` (dotted keys) set on its base case; its table, one dict per
     combination (also ``out/study.csv``, ``study.parquet``, the figures of its [plot])."""
-    from hotroll.config.study import load_study
-    from hotroll.examples import find_study
-    from hotroll.workflows.study import run_study
-
     st, base = load_study(find_study(study_file), overrides=overrides)
     return run_study(st, base, Path(out), workers=workers, scheduler=scheduler, serial=serial)
 
@@ -81,10 +80,6 @@ def study(study_file: str | Path, out: str | Path, *, workers: int | None = None
 def roll_schedule(schedule_file: str | Path, out: str | Path, *,
                   figure: bool = True) -> list[dict]:
     """Roll a schedule file or a bundled schedule's name (``hotroll schedule``); its table."""
-    from hotroll.config.schedule import load_schedule
-    from hotroll.examples import schedule_path
-    from hotroll.workflows.schedule import run_schedule
-
     path = Path(schedule_file)
     sch = load_schedule(path if path.exists() else schedule_path(str(schedule_file)))
     return run_schedule(sch, Path(out), figure=figure)
@@ -182,6 +177,4 @@ class Result:
 
     def figures(self) -> list[Path]:
         """The run's standard figures written into its directory (``hotroll run``'s)."""
-        from hotroll.results.figures import plot_all
-
         return plot_all(self.out)

@@ -43,6 +43,13 @@ except ImportError as e:      # pragma: no cover - the extra is not installed
     raise ImportError("hotroll.pyroll needs pyroll-core: pip install 'hotroll[pyroll]'") from e
 
 from hotroll.config.case import Case, case_from_dict
+from hotroll.model.flow_stress_fit import fit_hensel_spittel
+from hotroll.model.grades import list_grades
+from hotroll.model.interpass import cool, enthalpy_mean
+from hotroll.model.profile import ThicknessProfile
+from hotroll.model.thermal_properties import ThermalProperties
+from hotroll.workflows.runner import run_case
+from hotroll.workflows.sweep import Sweep
 
 
 class Config:
@@ -110,8 +117,6 @@ def _material(rp, T0: float, e0: float, h0: float, h1: float, U: float, lc: floa
     ip = rp.in_profile
     func = _value(ip, "flow_stress_function", None)
     if func is not None:
-        from hotroll.model.flow_stress_fit import fit_hensel_spittel
-
         # PyRolL asks a pass for its hooks dozens of times: the fit (343 calls of the
         # function, ~4 ms) once per pass and box
         fits = rp.__dict__.setdefault("_hotroll_fits", {})
@@ -129,7 +134,6 @@ def _material(rp, T0: float, e0: float, h0: float, h1: float, U: float, lc: floa
                                  "temperature": fit.temperature})
         table, info = fits[box]
         return dict(table), dict(info)
-    from hotroll.model.grades import list_grades
 
     names = _value(ip, "material", None)
     names = [names] if isinstance(names, str) else list(names or [])
@@ -202,9 +206,6 @@ def pass_case(rp) -> tuple[Case, dict]:
 def solve(rp) -> dict:
     """hotroll's summary of a flat pass: cached on the pass, keyed on its case; a changed
     case starts from the previous solution where the mesh is the same."""
-    from hotroll.workflows.runner import run_case
-    from hotroll.workflows.sweep import Sweep
-
     case, fit = pass_case(rp)
     key = case.to_toml()
     cache = rp.__dict__.setdefault("_hotroll_cache", {})
@@ -238,9 +239,6 @@ def _outlet_means(case: Case, s: dict) -> tuple[float, float]:
     """(temperature K, strain) means of the profile at the FE strip's outlet (the temperature
     by its heat content)."""
     import numpy as np
-
-    from hotroll.model.interpass import enthalpy_mean
-    from hotroll.model.profile import ThicknessProfile
 
     prof = s["exit_profile"]
     T = ThicknessProfile(tuple(prof["eta"]), tuple(prof["temperature"]))
@@ -311,8 +309,6 @@ def transport_temperature(self: Transport.OutProfile):
     1D conduction, convection and radiation (``thermal/interpass.cool``)."""
     if not Config.TRANSPORT_COOLING:
         return None
-    from hotroll.model.interpass import cool
-    from hotroll.model.thermal_properties import ThermalProperties
 
     tr = self.transport
     ip = tr.in_profile

@@ -190,7 +190,7 @@ def test_slab_failure_is_recorded_not_raised(compared, tmp_path, monkeypatch):
     """A pass whose strip skids in slab theory (mu = 0.05 < ~alpha/2): the table records the
     reason and keeps the FE column. The FE run is replaced by the files of the fixture's run
     (its numbers belong to mu = 0.3; only the error path is under test here)."""
-    import hotroll.workflows.runner as runner
+    import hotroll.workflows.compare as compare
     from hotroll.workflows.compare import run_compare
 
     with pytest.raises(NoNeutralPointError):
@@ -201,7 +201,7 @@ def test_slab_failure_is_recorded_not_raised(compared, tmp_path, monkeypatch):
         shutil.copytree(src / "fe", out)
         return json.loads((out / "summary.json").read_text())
 
-    monkeypatch.setattr(runner, "run_case", fake_run_case)
+    monkeypatch.setattr(compare, "run_case", fake_run_case)   # where compare calls it
     result = run_compare(_case(law="coulomb", mu=0.05), tmp_path)
     assert result["slab_error"].startswith("NoNeutralPointError")
     force = _rows(result)["roll force per unit width [N/m]"]

@@ -1,13 +1,12 @@
 """Case description: loading, validation messages, round trips and the CLI front end."""
 
 import math
-import sys
 import types
 
 import pytest
 from typer.testing import CliRunner
 
-from hotroll.cli import app
+from hotroll.cli import app, passes
 from hotroll.config.case import (
     MESH_TABLE,
     Case,
@@ -185,7 +184,7 @@ def fake_runner(monkeypatch):
         progress and progress({"step": 1, "time": 0.1, "message": "started"})
         return {"roll_force": 1.25, "converged": True, "steps": 3}
 
-    monkeypatch.setitem(sys.modules, "hotroll.workflows.runner", types.SimpleNamespace(run_case=run_case))
+    monkeypatch.setattr(passes, "run_case", run_case)      # where the command line calls it
     return calls
 
 
@@ -209,7 +208,7 @@ def test_cli_bad_option_before_run(tmp_path, fake_runner):
 def test_cli_example3(tmp_path, fake_runner, monkeypatch):
     compared = {}
     fake_plots = types.SimpleNamespace(plot_compare=lambda runs, png: compared.update(runs=runs, png=png))
-    monkeypatch.setitem(sys.modules, "hotroll.results.figures", fake_plots)
+    monkeypatch.setattr(passes, "plot_compare", fake_plots.plot_compare)
     result = runner.invoke(app, ["example", "3", "--out", str(tmp_path), "--end-time", "0.1"])
     assert result.exit_code == 0, result.output
     assert [c.material.m for c, _, _ in fake_runner] == [0.15, 0.2, 0.25]

@@ -27,9 +27,9 @@ from hotroll.fem.quantities import (
 )
 from hotroll.model.friction import (
     CoulombFriction,
+    FrictionLaw,
     TrescaFriction,
     ViscoplasticFriction,
-    _Law,
     smooth_minimum,
     smooth_positive_part,
 )
@@ -152,7 +152,7 @@ def test_law_flags_names_and_defaults():
     # docstring defaults: K = 1 (reduced units), m = 0.2; mu = 0.3, rounding 1 %; factor 0.8
     assert (vp.K, vp.m, co.mu, co.rounding, tr.factor) == (1.0, 0.2, 0.3, 0.01, 0.8)
     with pytest.raises(NotImplementedError):
-        _Law(1e-3).limit(pressure=1.0, k=1.0)
+        FrictionLaw(1e-3).limit(pressure=1.0, k=1.0)
 
 
 def test_smooth_helpers_on_pythagorean_triples():

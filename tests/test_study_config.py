@@ -303,7 +303,7 @@ def test_a_figure_against_names_and_a_missing_column(tmp_path):
 
 def test_the_api_takes_a_bundled_study_and_overrides(tmp_path, monkeypatch):
     import hotroll
-    from hotroll.workflows import study as run_mod
+    from hotroll import api as run_mod  # where the API calls run_study
 
     seen = {}
     monkeypatch.setattr(run_mod, "run_study", lambda st, base, out, **k: seen.update(
@@ -316,7 +316,7 @@ def test_the_api_takes_a_bundled_study_and_overrides(tmp_path, monkeypatch):
 
 
 def test_a_schedule_whose_pass_fails_is_a_row_with_the_passes_before(tmp_path, monkeypatch):
-    from hotroll.workflows import runner
+    from hotroll.workflows import schedule as runner  # where a schedule calls run_case
     from hotroll.workflows.study import run_study
 
     real = runner.run_case

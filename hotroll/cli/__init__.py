@@ -7,6 +7,8 @@ from rich.text import Text
 
 from hotroll.cli import passes, report, runs
 from hotroll.cli.common import err_console
+from hotroll.files import DiskFullError
+from hotroll.workflows.estimate import ResourceError
 
 app = typer.Typer(help="Finite-element simulation of hot flat rolling.", no_args_is_help=True,
                   add_completion=False)
@@ -19,9 +21,6 @@ def main() -> None:
     """The ``hotroll`` command: the app, a full disk (exit code 9, ``files.DiskFullError``) or a
     mesh over the memory limit (exit code 8) ending it with its clear message instead of a
     traceback."""
-    from hotroll.files import DiskFullError
-    from hotroll.workflows.estimate import ResourceError
-
     try:
         app()
     except DiskFullError as e:

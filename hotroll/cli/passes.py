@@ -24,6 +24,14 @@ from hotroll.cli.common import (
 )
 from hotroll.config.case import MESH_TABLE, Case, CaseError, load_case
 from hotroll.examples import EXAMPLES, example_path
+from hotroll.results.engineering import display
+from hotroll.results.figures import plot_compare
+from hotroll.results.outcome import EXIT_CODES, exit_code
+from hotroll.results.output import write_csv
+from hotroll.workflows.compare import run_compare
+from hotroll.workflows.estimate import ResourceError, check
+from hotroll.workflows.runner import run_case
+from hotroll.workflows.sweep import Sweep
 
 SUMMARY_KEYS = ["status", "free_surface", "h_contact", "neutral_point", "neutral_angle",
                 "neutral_angle_reason", "sticking_zone",
@@ -98,12 +106,6 @@ def _fmt(v: Any) -> str:
 
 def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
     try:
-        from hotroll.workflows.runner import run_case
-    except ImportError as e:
-        raise fail(f"runner not available: {e}", code=1) from None
-    from hotroll.workflows.estimate import ResourceError, check
-
-    try:
         est = check(case)
     except ResourceError as e:
         raise fail(f"{case.name}: refused: {e}", code=8) from None
@@ -113,7 +115,6 @@ def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
     table.add_column("quantity")
     table.add_column("value", justify="right")
     table.add_column("unit")
-    from hotroll.results.engineering import display
 
     thermal = THERMAL_KEYS if summary.get("thermal") else []
     keys = SUMMARY_KEYS[:-4] + thermal + SUMMARY_KEYS[-4:]      # before the run's own figures
@@ -123,7 +124,6 @@ def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
             table.add_row(key, escape(text if text is not None else _fmt(summary[key])),
                           escape(unit or UNITS.get(key, "")))
     console.print(table)
-    from hotroll.results.outcome import EXIT_CODES, exit_code
 
     code = summary.setdefault("exit_code", exit_code(summary))   # the runner has written it
     if code:
@@ -171,8 +171,6 @@ def compare(
 ) -> None:
     """Run the FE model (steady unless --method) and slab theory (Orowan, Sims, Ford-Alexander)
     on one case; write OUT/compare.{md,csv,json,png} side by side (FE run in OUT/fe)."""
-    from hotroll.workflows.compare import run_compare
-
     if not case_file.exists():               # a bundled example by name (or file stem)
         name = str(case_file)
         files = EXAMPLES.get(name, [name])
@@ -226,13 +224,11 @@ def example(
     if len(cases) == 1:
         _exit([_run(cases[0], out, resume)])
         return
-    from hotroll.workflows.sweep import Sweep
 
     runs, sweep, summaries = {}, Sweep(), []
     for case in cases:
         summaries.append(_run(case, out / case.name, resume, sweep))
         runs[f"m = {case.material.rate_exponent(case.plate.temperature):g}"] = out / case.name
-    from hotroll.results.figures import plot_compare
 
     png = plot_compare(runs, out / "compare.png")
     console.print(Text(f"comparison plot: {png or out / 'compare.png'}"))
@@ -263,9 +259,6 @@ def sweep(
     """Run a case for several values of one parameter into OUT/<param>=<value>, each steady
     solve started from the nearest solved one on the same mesh (--warm, the default) or cold;
     table in OUT/sweep.csv."""
-    from hotroll.results.output import write_csv
-    from hotroll.workflows.sweep import Sweep
-
     vals = [_value(v) for v in values.split(",") if v.strip()]
     if not vals:
         raise fail("sweep: --values is empty (give comma-separated values)")

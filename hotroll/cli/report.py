@@ -8,6 +8,8 @@ import typer
 from rich.text import Text
 
 from hotroll.cli.common import console, fail
+from hotroll.files import DiskFullError
+from hotroll.results.report import ReportError, kind, write_report
 
 
 def report(
@@ -18,9 +20,6 @@ def report(
 ) -> None:
     """Write DIR/report.html: one self-contained page (inputs, results with units, figures,
     slab theory where compared, warnings); a study's or schedule's page links each run's own."""
-    from hotroll.files import DiskFullError
-    from hotroll.results.report import ReportError, kind, write_report
-
     try:
         kind(directory)                 # refused before anything is written
     except ReportError as e:
@@ -44,9 +43,6 @@ def report(
 def study_report(out: Path, title: str) -> None:
     """The study's page at the end of ``hotroll study`` (a failure to write it is reported,
     the study's exit code stays the study's)."""
-    from hotroll.files import DiskFullError
-    from hotroll.results.report import write_report
-
     try:
         console.print(Text(f"report: {write_report(out, title)}"))
     except DiskFullError:

@@ -9,8 +9,15 @@ from rich.markup import escape
 from rich.table import Table
 from rich.text import Text
 
+from hotroll import examples as sched_examples
 from hotroll.cli.common import OutOpt, ResumeOpt, console, err_console, fail
+from hotroll.cli.report import study_report
 from hotroll.config.case import CaseError
+from hotroll.config.schedule import load_schedule
+from hotroll.config.study import load_study, parse_value
+from hotroll.examples import find_study
+from hotroll.workflows.schedule import ScheduleError, run_schedule
+from hotroll.workflows.study import FAILED, run_study
 
 
 def schedule(
@@ -23,10 +30,6 @@ def schedule(
     """Roll a pass schedule: every pass from the previous exit state (thickness, temperature
     and strain through the thickness), interpass cooling; OUT/schedule.csv, schedule.json,
     schedule.png and one directory per pass."""
-    from hotroll import examples as sched_examples
-    from hotroll.config.schedule import load_schedule
-    from hotroll.workflows.schedule import ScheduleError, run_schedule
-
     if not schedule_file.exists():
         try:
             schedule_file = sched_examples.schedule_path(str(schedule_file))
@@ -89,10 +92,6 @@ def study(
     are read back when run again. Exit code: 0, or 64 + the number of failed cases (max 63)."""
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
-    from hotroll.config.study import load_study
-    from hotroll.examples import find_study
-    from hotroll.workflows.study import FAILED, run_study
-
     try:
         study_file = find_study(study_file)
     except FileNotFoundError as e:
@@ -125,7 +124,6 @@ def study(
     for name in ("study.png", "study_profiles.png"):
         if st.plot is not None and (out / name).is_file():
             console.print(f"figure {out / name}")
-    from hotroll.cli.report import study_report
     study_report(out, st.name)
     if failed:
         raise typer.Exit(64 + min(len(failed), 63))
@@ -133,8 +131,6 @@ def study(
 
 def _key_values(items: list[str]) -> dict:
     """``KEY=VALUE`` options as a dict (``studies.config.parse_value``)."""
-    from hotroll.config.study import parse_value
-
     out = {}
     for item in items:
         key, sep, text = item.partition("=")

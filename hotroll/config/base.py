@@ -30,7 +30,7 @@ class CaseError(ValueError):
         super().__init__("\n".join([head] + [f"  {p}" for p in self.problems]))
 
 
-class _Problems(ValueError):
+class Problems(ValueError):
     """Raised inside model validators; carries ready-made ``section.key: ...`` lines."""
 
     def __init__(self, problems: list[str]):
@@ -38,7 +38,7 @@ class _Problems(ValueError):
         super().__init__("; ".join(problems))
 
 
-def _field(default: Any, text: str, unit: str, allowed: str, **constraints: Any) -> Any:
+def field(default: Any, text: str, unit: str, allowed: str, **constraints: Any) -> Any:
     """Field whose description and error messages carry unit and allowed range."""
     allowed_u = f"{allowed} [{unit}]" if unit else allowed
     desc = f"{text} [{unit or '-'}]; allowed: {allowed}"
@@ -74,7 +74,7 @@ def has_text(value: Any, words=()) -> bool:
     return isinstance(value, (list, tuple)) and any(has_text(v) for v in value)
 
 
-class _Section(BaseModel):
+class Section(BaseModel):
     model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
 
     @field_validator("*", mode="before")
@@ -89,19 +89,19 @@ class _Section(BaseModel):
         return v
 
 
-def _fields(model: type[BaseModel]) -> dict[str, FieldInfo]:
+def fields_of(model: type[BaseModel]) -> dict[str, FieldInfo]:
     return {(f.alias or n): f for n, f in model.model_fields.items()}
 
 
 def problem_lines(err) -> list[str]:
     """pydantic's errors (a ``ValidationError``) as ``section.key: message`` lines, a model
-    validator's own lines (``_Problems``) as they are; an item k of a list of tables named
+    validator's own lines (``Problems``) as they are; an item k of a list of tables named
     ``pass`` (a schedule's passes) as ``pass[k+1]``. For the files besides the case
     (schedules, studies); the case has its own (``config._problems``)."""
     out = []
     for e in err.errors():
         exc = (e.get("ctx") or {}).get("error")
-        if isinstance(exc, _Problems):
+        if isinstance(exc, Problems):
             loc = e["loc"]
             if len(loc) >= 2 and loc[0] == "pass" and isinstance(loc[1], int):
                 out += [f"pass[{loc[1] + 1}].{q}" for q in exc.problems]

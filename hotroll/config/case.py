@@ -19,7 +19,7 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 from pydantic.fields import FieldInfo
 
-from hotroll.config.base import MESH_TABLE, CaseError, _fields, _Problems, _Section
+from hotroll.config.base import MESH_TABLE, CaseError, Problems, Section, fields_of
 from hotroll.config.laws import FrictionConfig, MaterialConfig
 from hotroll.config.sections import (  # noqa: F401 (re-exported)
     MAX_LENGTH,
@@ -32,12 +32,13 @@ from hotroll.config.sections import (  # noqa: F401 (re-exported)
     check_profile,
 )
 from hotroll.config.thermal import ThermalConfig
+from hotroll.model.geometry import auto_contact_size
 
 __all__ = ["MESH_TABLE", "Case", "CaseError", "FrictionConfig", "MaterialConfig", "case_from_dict",
            "case_from_toml", "load_case", "flat"]
 
 
-class Case(_Section):
+class Case(Section):
     """A complete rolling case."""
 
     model_config = ConfigDict(extra="forbid", allow_inf_nan=False, populate_by_name=True)
@@ -60,8 +61,6 @@ class Case(_Section):
     def _check_sizes(self) -> Case:
         lc, problems = self.pass_.contact_length, []
         if self.mesh.h_contact == "auto":
-            from hotroll.model.geometry import auto_contact_size
-
             self.mesh._auto_h = auto_contact_size(self.pass_.roll_pass())
         if self.plate.length < 3 * lc:
             problems.append(f"plate.length: must be >= 3 x projected contact length = "
@@ -83,7 +82,7 @@ class Case(_Section):
                                               self.plate.mean_entry_strain)
         if self.thermal is not None:
             problems += [f"material.{key}: missing, required with a [thermal] section "
-                         f"({_fields(MaterialConfig)[key].description})"
+                         f"({fields_of(MaterialConfig)[key].description})"
                          for key in ("density", "specific_heat", "conductivity")
                          if getattr(self.material, key) is None]
         for key in ("temperature_profile", "strain_profile"):
@@ -99,7 +98,7 @@ class Case(_Section):
             problems.append("plate.temperature_profile: needs a [thermal] section (an isothermal "
                             "run has one temperature, plate.temperature)")
         if problems:
-            raise _Problems(problems)
+            raise Problems(problems)
         return self
 
     @property
@@ -124,7 +123,7 @@ class Case(_Section):
             model = _model_of(Case, section)
             lines += ["", f"[{section}]"]
             for key, value in values.items():
-                info = _fields(model)[key]
+                info = fields_of(model)[key]
                 lines.append(f"{key} = {_toml_value(value)}".ljust(36) + f"  # {info.description}")
         return "\n".join(lines) + "\n"
 
@@ -185,7 +184,7 @@ def load_case(path: str | Path) -> Case:
 
 def _model_of(model: type[BaseModel], key: str) -> type[BaseModel] | None:
     """The section model of ``key`` (an optional section: the model inside ``X | None``)."""
-    ann = _fields(model)[key].annotation
+    ann = fields_of(model)[key].annotation
     for a in (ann, *typing.get_args(ann)):
         if isinstance(a, type) and issubclass(a, BaseModel):
             return a
@@ -197,12 +196,12 @@ def _problems(err: ValidationError) -> list[str]:
     out: dict[str, str] = {}
     for e in err.errors():
         exc = (e.get("ctx") or {}).get("error")
-        if isinstance(exc, _Problems):
+        if isinstance(exc, Problems):
             out.update({p: p for p in exc.problems})
             continue
         path, parent, info = [], Case, None
         for item in e["loc"]:
-            fields = _fields(parent) if parent else {}
+            fields = fields_of(parent) if parent else {}
             path.append(str(item))
             if item not in fields:
                 break
@@ -218,7 +217,7 @@ def _message(e: dict, path: list[str], parent: type[BaseModel] | None, info: Fie
     kind, got = e["type"], e.get("input")
     if kind == "extra_forbidden":
         what = "unknown section or key" if len(path) == 1 else "unknown key"
-        return f"{what} (allowed: {', '.join(_fields(parent))})"
+        return f"{what} (allowed: {', '.join(fields_of(parent))})"
     is_section = info is not None and parent is not None and len(path) == 1
     if kind == "missing":
         if is_section or info is None:

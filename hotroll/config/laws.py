@@ -11,35 +11,39 @@ from typing import Literal
 
 from pydantic import field_validator, model_validator
 
-from hotroll.config.base import PosFloat, _field, _fields, _Problems, _Section
+from hotroll.config.base import PosFloat, Problems, Section, field, fields_of
 from hotroll.config.thermal import Property, check_property
+from hotroll.model.flow_stress import HenselSpittel, NortonHoffStress
+from hotroll.model.friction import CoulombFriction, TrescaFriction, ViscoplasticFriction
+from hotroll.model.grades import get_grade, list_grades
+from hotroll.model.thermal_properties import ThermalProperties
 
 
-class MaterialConfig(_Section):
-    law: Literal["norton-hoff", "hensel-spittel"] = _field(
+class MaterialConfig(Section):
+    law: Literal["norton-hoff", "hensel-spittel"] = field(
         "norton-hoff", "flow-stress law: Norton-Hoff (K, m) or Hensel-Spittel (A, m1..m9, or a "
         "grade)", "", '"norton-hoff" or "hensel-spittel"')
-    grade: str | None = _field(None, "Hensel-Spittel parameter set by name (hotroll grades)",
+    grade: str | None = field(None, "Hensel-Spittel parameter set by name (hotroll grades)",
                                "", "a name from model/grades.py")
-    K: float | None = _field(None, "Norton-Hoff consistency K", "Pa s^m", "> 0", gt=0)
-    m: float | None = _field(None, "strain-rate sensitivity m", "", "in (0, 1]", gt=0, le=1)
-    A: float | None = _field(None, "Hensel-Spittel A", "Pa", "> 0", gt=0)
-    m1: float | None = _field(None, "Hensel-Spittel m1 (temperature, e^(m1 T))", "1/degC",
+    K: float | None = field(None, "Norton-Hoff consistency K", "Pa s^m", "> 0", gt=0)
+    m: float | None = field(None, "strain-rate sensitivity m", "", "in (0, 1]", gt=0, le=1)
+    A: float | None = field(None, "Hensel-Spittel A", "Pa", "> 0", gt=0)
+    m1: float | None = field(None, "Hensel-Spittel m1 (temperature, e^(m1 T))", "1/degC",
                        "a finite number (omit: 0)")
-    m2: float | None = _field(None, "Hensel-Spittel m2 (strain, eps^m2)", "", "a finite number (omit: 0)")
-    m3: float | None = _field(None, "Hensel-Spittel m3 (rate, edot^m3)", "", "a finite number (omit: 0)")
-    m4: float | None = _field(None, "Hensel-Spittel m4 (e^(m4/eps))", "", "a finite number (omit: 0)")
-    m5: float | None = _field(None, "Hensel-Spittel m5 ((1+eps)^(m5 T))", "1/degC", "a finite number (omit: 0)")
-    m7: float | None = _field(None, "Hensel-Spittel m7 (e^(m7 eps))", "", "a finite number (omit: 0)")
-    m8: float | None = _field(None, "Hensel-Spittel m8 (edot^(m8 T))", "1/degC", "a finite number (omit: 0)")
-    m9: float | None = _field(None, "Hensel-Spittel m9 (T^m9)", "", "a finite number (omit: 0)")
-    eps0: float = _field(1e-4, "strain-rate regularisation eps0", "1/s", "> 0", gt=0)
+    m2: float | None = field(None, "Hensel-Spittel m2 (strain, eps^m2)", "", "a finite number (omit: 0)")
+    m3: float | None = field(None, "Hensel-Spittel m3 (rate, edot^m3)", "", "a finite number (omit: 0)")
+    m4: float | None = field(None, "Hensel-Spittel m4 (e^(m4/eps))", "", "a finite number (omit: 0)")
+    m5: float | None = field(None, "Hensel-Spittel m5 ((1+eps)^(m5 T))", "1/degC", "a finite number (omit: 0)")
+    m7: float | None = field(None, "Hensel-Spittel m7 (e^(m7 eps))", "", "a finite number (omit: 0)")
+    m8: float | None = field(None, "Hensel-Spittel m8 (edot^(m8 T))", "1/degC", "a finite number (omit: 0)")
+    m9: float | None = field(None, "Hensel-Spittel m9 (T^m9)", "", "a finite number (omit: 0)")
+    eps0: float = field(1e-4, "strain-rate regularisation eps0", "1/s", "> 0", gt=0)
     # thermal properties: used only with a [thermal] section (config_thermal.py)
-    density: Property | None = _field(None, "density (with [thermal])", "kg/m^3",
+    density: Property | None = field(None, "density (with [thermal])", "kg/m^3",
                                       "> 0 or a table [[T (K), value], ...]")
-    specific_heat: Property | None = _field(None, "specific heat capacity (with [thermal])",
+    specific_heat: Property | None = field(None, "specific heat capacity (with [thermal])",
                                             "J/(kg K)", "> 0 or a table [[T (K), value], ...]")
-    conductivity: Property | None = _field(None, "thermal conductivity (with [thermal])",
+    conductivity: Property | None = field(None, "thermal conductivity (with [thermal])",
                                            "W/(m K)", "> 0 or a table [[T (K), value], ...]")
 
     @field_validator("density", "specific_heat", "conductivity", mode="before")
@@ -56,7 +60,7 @@ class MaterialConfig(_Section):
             for key in ("K", "m"):
                 if getattr(self, key) is None:
                     problems.append(f"material.{key}: missing required key for law = "
-                                    f"\"norton-hoff\" ({_fields(type(self))[key].description})")
+                                    f"\"norton-hoff\" ({fields_of(type(self))[key].description})")
             extra = [k for k in self._HS + ("grade",) if getattr(self, k) is not None]
             problems += [f"material.{k}: only for law = \"hensel-spittel\"" for k in extra]
         else:
@@ -65,8 +69,6 @@ class MaterialConfig(_Section):
                          f"m1..m9 or grade)" for k in extra]
             given = [k for k in self._HS if getattr(self, k) is not None]
             if self.grade is not None:
-                from hotroll.model.grades import list_grades
-
                 try:
                     self._grade()
                 except (KeyError, ValueError):
@@ -84,7 +86,7 @@ class MaterialConfig(_Section):
                     problems.append(f"material.m3: {e}; allowed: m3 + m8 T_C (T in degC) in "
                                     f"(0, 1] at some T > 0 K (m3 omitted: 0)")
         if problems:
-            raise _Problems(problems)
+            raise Problems(problems)
         return self
 
     def problems_at(self, temperature: float, strain: float) -> list[str]:
@@ -112,14 +114,10 @@ class MaterialConfig(_Section):
         return []
 
     def _grade(self):
-        from hotroll.model.grades import get_grade
-
         return get_grade(self.grade)
 
     def flow_stress(self):
         """The flow-stress law object (``model/flow_stress.py``), SI units, T in K."""
-        from hotroll.model.flow_stress import HenselSpittel, NortonHoffStress
-
         if self.law == "norton-hoff":
             return NortonHoffStress(self.K, self.m, self.eps0)
         if self.grade is not None:
@@ -128,8 +126,6 @@ class MaterialConfig(_Section):
 
     def thermal_properties(self):
         """The strip's ``ThermalProperties`` (``hotroll/thermal``); all three must be given."""
-        from hotroll.model.thermal_properties import ThermalProperties
-
         return ThermalProperties(density=self.density, specific_heat=self.specific_heat,
                                  conductivity=self.conductivity)
 
@@ -138,21 +134,21 @@ class MaterialConfig(_Section):
         return float(self.flow_stress().rate_exponent(temperature))
 
 
-class FrictionConfig(_Section):
-    law: Literal["viscoplastic", "coulomb", "tresca"] = _field(
+class FrictionConfig(Section):
+    law: Literal["viscoplastic", "coulomb", "tresca"] = field(
         "viscoplastic", "friction law: viscoplastic (2.29a), Coulomb (mu p, capped at k = "
         "sigma_ef/sqrt3) or Tresca (factor k)", "", '"viscoplastic", "coulomb" or "tresca"')
-    a_f: Literal["estimate"] | PosFloat | None = _field(
+    a_f: Literal["estimate"] | PosFloat | None = field(
         None, "(omit: estimate) viscoplastic friction coefficient (tau = a_f K |dv|^(m-1) dv); law = "
         '"viscoplastic" only', "m^-m", '"estimate" or a number > 0')
-    mu: float | None = _field(None, 'Coulomb friction coefficient; law = "coulomb" only', "",
+    mu: float | None = field(None, 'Coulomb friction coefficient; law = "coulomb" only', "",
                               "in (0, 2]", gt=0, le=2)
-    factor: float | None = _field(None, 'friction factor m_f (tau = m_f k); law = "tresca" '
+    factor: float | None = field(None, 'friction factor m_f (tau = m_f k); law = "tresca" '
                                   "only", "", "in (0, 1]", gt=0, le=1)
-    v_reg: PosFloat | None = _field(
+    v_reg: PosFloat | None = field(
         None, "friction regularisation velocity (omit: 1e-4 x roll surface speed for the "
         "viscoplastic law, 1e-3 x for Coulomb and Tresca)", "m/s", "> 0")
-    a_f_max: float = _field(1e6, "upper cap for the estimated a_f", "m^-m", "> 0", gt=0)
+    a_f_max: float = field(1e6, "upper cap for the estimated a_f", "m^-m", "> 0", gt=0)
 
     @model_validator(mode="after")
     def _check_law(self) -> FrictionConfig:
@@ -171,7 +167,7 @@ class FrictionConfig(_Section):
             problems.append(f"friction.a_f: only for law = \"viscoplastic\", the law is "
                             f"\"{self.law}\"")
         if problems:
-            raise _Problems(problems)
+            raise Problems(problems)
         return self
 
     def regularisation_velocity(self, u_roll: float) -> float:
@@ -182,8 +178,6 @@ class FrictionConfig(_Section):
 
     def law_object(self, u_roll: float, m: float):
         """The friction law in reduced units (stresses over K), ``model/friction.py``."""
-        from hotroll.model.friction import CoulombFriction, TrescaFriction, ViscoplasticFriction
-
         v = self.regularisation_velocity(u_roll)
         if self.law == "coulomb":
             return CoulombFriction(v, mu=self.mu)

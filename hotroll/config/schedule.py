@@ -26,7 +26,7 @@ from typing import Any, Literal
 
 from pydantic import Field, ValidationError, field_validator, model_validator
 
-from hotroll.config.base import PosFloat, _field, _Problems, _Section, problem_lines
+from hotroll.config.base import PosFloat, Problems, Section, field, problem_lines
 from hotroll.config.case import (
     Case,
     CaseError,
@@ -39,23 +39,24 @@ from hotroll.config.case import (
     check_profile,
 )
 from hotroll.config.thermal import ThermalConfig
+from hotroll.model.profile import ThicknessProfile
 
 #: The plate length of each pass's steady strip, in contact lengths.
 PLATE_CONTACT_LENGTHS = 5.0
 
 
-class StripConfig(_Section):
-    thickness: float = _field(..., "full strip thickness entering the first pass", "m", "> 0",
+class StripConfig(Section):
+    thickness: float = field(..., "full strip thickness entering the first pass", "m", "> 0",
                               gt=0)
-    width: PosFloat | None = _field(None, "strip width (omit: results per unit width only)",
+    width: PosFloat | None = field(None, "strip width (omit: results per unit width only)",
                                     "m", "> 0")
-    temperature: float = _field(..., "entry temperature (uniform, or the reference with a "
+    temperature: float = field(..., "entry temperature (uniform, or the reference with a "
                                 "profile)", "K", "> 0", gt=0)
-    temperature_profile: list[tuple[float, float]] | None = _field(
+    temperature_profile: list[tuple[float, float]] | None = field(
         None, "entry temperature through the half thickness [[eta, T], ...]", "K",
         "pairs with eta increasing strictly from 0 to 1 and T > 0")
-    strain: float = _field(0.0, "equivalent strain the strip enters with", "", ">= 0", ge=0)
-    strain_profile: list[tuple[float, float]] | None = _field(
+    strain: float = field(0.0, "equivalent strain the strip enters with", "", ">= 0", ge=0)
+    strain_profile: list[tuple[float, float]] | None = field(
         None, "entry strain through the half thickness [[eta, strain], ...]", "",
         "pairs with eta increasing strictly from 0 to 1 and strain >= 0")
 
@@ -66,49 +67,49 @@ class StripConfig(_Section):
         return check_profile(info.field_name, v)
 
 
-class MillConfig(_Section):
-    speeds: Literal["given", "mass_flow"] = _field(
+class MillConfig(Section):
+    speeds: Literal["given", "mass_flow"] = field(
         "given", "roll speeds: each pass's own (given), or the first pass's and the others "
         "from the constant mass flux of a tandem mill (mass_flow)", "",
         '"given" or "mass_flow"')
-    start_from_previous: bool = _field(
+    start_from_previous: bool = field(
         True, "start each pass's Newton from the previous pass mapped onto its mesh "
         "(solvers/transfer.py; false: from the slab guess, cold)", "", "true or false")
-    mass_flow_tolerance: float = _field(
+    mass_flow_tolerance: float = field(
         1e-3, "mass_flow: relative flux difference between stands at which a stand's speed "
         "is accepted", "", "in (0, 0.1]", gt=0, le=0.1)
 
 
-class TransportConfig(_Section):
-    duration: PosFloat | None = _field(None, "time between the two passes", "s", "> 0")
-    distance: PosFloat | None = _field(
+class TransportConfig(Section):
+    duration: PosFloat | None = field(None, "time between the two passes", "s", "> 0")
+    distance: PosFloat | None = field(
         None, "distance to the next pass (the duration is this over the strip's exit speed)",
         "m", "> 0")
-    htc_air: float | None = _field(None, "convection coefficient (omit: thermal.htc_air)",
+    htc_air: float | None = field(None, "convection coefficient (omit: thermal.htc_air)",
                                    "W/(m^2 K)", ">= 0", ge=0)
-    emissivity: float | None = _field(None, "emissivity (omit: thermal.emissivity)", "",
+    emissivity: float | None = field(None, "emissivity (omit: thermal.emissivity)", "",
                                       "in [0, 1]", ge=0, le=1)
-    strain_retained: float = _field(
+    strain_retained: float = field(
         1.0, "share of the strain the strip keeps (1: no softening; 0: fully recrystallised)",
         "", "in [0, 1]", ge=0, le=1)
 
     @model_validator(mode="after")
     def _one_time(self) -> TransportConfig:
         if (self.duration is None) == (self.distance is None):
-            raise _Problems(["transport: give exactly one of duration (s) and distance (m)"])
+            raise Problems(["transport: give exactly one of duration (s) and distance (m)"])
         return self
 
 
-class PassEntry(_Section):
+class PassEntry(Section):
     name: str | None = Field(None, description="pass name (default P1, P2, ...)")
-    roll_radius: float = _field(..., "roll radius", "m", "> 0", gt=0)
-    exit_thickness: float = _field(..., "full exit thickness (the roll gap: rigid rolls)", "m",
+    roll_radius: float = field(..., "roll radius", "m", "> 0", gt=0)
+    exit_thickness: float = field(..., "full exit thickness (the roll gap: rigid rolls)", "m",
                                    "> 0 and < the entry thickness", gt=0)
-    roll_surface_speed: PosFloat | None = _field(None, "roll surface speed", "m/s", "> 0")
-    roll_angular_velocity: PosFloat | None = _field(None, "roll angular velocity", "rad/s",
+    roll_surface_speed: PosFloat | None = field(None, "roll surface speed", "m/s", "> 0")
+    roll_angular_velocity: PosFloat | None = field(None, "roll angular velocity", "rad/s",
                                                     "> 0")
-    back_tension: float = _field(0.0, "back tension", "Pa", ">= 0", ge=0)
-    front_tension: float = _field(0.0, "front tension", "Pa", ">= 0", ge=0)
+    back_tension: float = field(0.0, "back tension", "Pa", ">= 0", ge=0)
+    front_tension: float = field(0.0, "front tension", "Pa", ">= 0", ge=0)
     friction: FrictionConfig | None = Field(None, description="this pass's friction (omit: "
                                             "the schedule's [friction])")
     transport: TransportConfig | None = Field(None, description="the transport after the pass")
@@ -121,7 +122,7 @@ class PassEntry(_Section):
         return None
 
 
-class Schedule(_Section):
+class Schedule(Section):
     name: str = Field("schedule", description="schedule name")
     strip: StripConfig
     mill: MillConfig = Field(default_factory=MillConfig)
@@ -157,7 +158,7 @@ class Schedule(_Section):
             problems.append("solver.method: a schedule runs the steady solver, got "
                             f"\"{self.solver.method}\"")
         if problems:
-            raise _Problems(problems)
+            raise Problems(problems)
         return self
 
     def pass_name(self, k: int) -> str:
@@ -199,8 +200,6 @@ class Schedule(_Section):
 
     def entry_profiles(self):
         """The entry strip's (temperature, strain) profiles or None each."""
-        from hotroll.model.profile import ThicknessProfile
-
         return tuple(None if p is None else ThicknessProfile.from_pairs(p)
                      for p in (self.strip.temperature_profile, self.strip.strain_profile))
 

@@ -8,8 +8,9 @@ from typing import Any, Literal
 
 from pydantic import PrivateAttr, field_validator, model_validator
 
-from hotroll.config.base import MESH_TABLE, MeshName, PosFloat, _field, _Problems, _Section
+from hotroll.config.base import MESH_TABLE, MeshName, PosFloat, Problems, Section, field
 from hotroll.model.geometry import RollPass
+from hotroll.model.profile import ProfileError, ThicknessProfile
 
 #: Largest length of a case (m): roll radius, thicknesses, plate length, |roll_axis_x|. Beyond
 #: it the geometry's squares overflow (R = 1e300 m) or the roll position swamps the contact
@@ -17,24 +18,24 @@ from hotroll.model.geometry import RollPass
 MAX_LENGTH = 1e3
 
 
-class PassConfig(_Section):
+class PassConfig(Section):
     """Roll and pass geometry (roll centre at x = roll_axis_x, y = exit/2 + R)."""
 
-    roll_radius: float = _field(..., "roll radius R", "m", f"> 0 and <= {MAX_LENGTH:g}", gt=0,
+    roll_radius: float = field(..., "roll radius R", "m", f"> 0 and <= {MAX_LENGTH:g}", gt=0,
                                 le=MAX_LENGTH)
-    entry_thickness: float = _field(..., "full plate thickness at entry", "m",
+    entry_thickness: float = field(..., "full plate thickness at entry", "m",
                                     f"> 0 and <= {MAX_LENGTH:g}", gt=0, le=MAX_LENGTH)
-    exit_thickness: float = _field(..., "full plate thickness at exit (roll gap)", "m",
+    exit_thickness: float = field(..., "full plate thickness at exit (roll gap)", "m",
                                    "> 0 and < entry_thickness", gt=0)
-    roll_angular_velocity: float = _field(..., "roll angular velocity omega", "rad/s", "> 0", gt=0)
-    roll_axis_x: float = _field(1.0, "x of the roll centre (initial plate head position)", "m",
+    roll_angular_velocity: float = field(..., "roll angular velocity omega", "rad/s", "> 0", gt=0)
+    roll_axis_x: float = field(1.0, "x of the roll centre (initial plate head position)", "m",
                                 f"in [-{MAX_LENGTH:g}, {MAX_LENGTH:g}]", ge=-MAX_LENGTH,
                                 le=MAX_LENGTH)
-    back_tension: float = _field(0.0, "back tension: mean tensile stress on the entry strip",
+    back_tension: float = field(0.0, "back tension: mean tensile stress on the entry strip",
                                  "Pa", ">= 0", ge=0)
-    front_tension: float = _field(0.0, "front tension: mean tensile stress on the exit strip",
+    front_tension: float = field(0.0, "front tension: mean tensile stress on the exit strip",
                                   "Pa", ">= 0", ge=0)
-    width: PosFloat | None = _field(None, "strip width (omit: results per unit width only)", "m",
+    width: PosFloat | None = field(None, "strip width (omit: results per unit width only)", "m",
                                     "> 0")
 
     @model_validator(mode="after")
@@ -50,7 +51,7 @@ class PassConfig(_Section):
                 f"{self.draft:g} m, otherwise the roll cannot bite the plate; allowed: "
                 f"roll_radius > {self.draft:g} m, got {self.roll_radius:g} m")
         if problems:
-            raise _Problems(problems)
+            raise Problems(problems)
         return self
 
     @property
@@ -93,8 +94,6 @@ class PassConfig(_Section):
 def check_profile(key: str, v: Any) -> Any:
     """A through-thickness profile [[eta, value], ...] (``process.profile``): eta from 0 to 1,
     temperatures > 0 K, strains >= 0; ValueError with what is wrong."""
-    from hotroll.model.profile import ProfileError, ThicknessProfile
-
     if v is None:
         return None
     try:
@@ -109,24 +108,24 @@ def check_profile(key: str, v: Any) -> Any:
     return [tuple(p) for p in prof.pairs()]
 
 
-class PlateConfig(_Section):
-    length: float = _field(
+class PlateConfig(Section):
+    length: float = field(
         ..., "initial plate length, at least 3 x the projected contact length", "m",
         f"> 0 and <= {MAX_LENGTH:g}", gt=0, le=MAX_LENGTH)
-    temperature: float = _field(
+    temperature: float = field(
         1373.15, "plate temperature: uniform (isothermal run) or at the entry (with [thermal])",
         "K", "> 0", gt=0)
-    entry_strain: float = _field(0.0, "equivalent plastic strain the plate enters with", "",
+    entry_strain: float = field(0.0, "equivalent plastic strain the plate enters with", "",
                                  ">= 0", ge=0)
-    free_surface: Literal["traced", "constrained"] = _field(
+    free_surface: Literal["traced", "constrained"] = field(
         "traced", "free tops before and after the bite: traction-free streamlines (traced) or "
         "held flat by the penalty (3.2d) (constrained)", "", '"traced" or "constrained"')
-    temperature_profile: list[tuple[float, float]] | None = _field(
+    temperature_profile: list[tuple[float, float]] | None = field(
         None, "entry temperature through the half thickness, [[eta, T], ...] with eta = "
         "y / half thickness from 0 (centre) to 1 (surface), linear between (omit: uniform "
         "plate.temperature; needs [thermal] and the steady method)", "K",
         "pairs with eta increasing strictly from 0 to 1 and T > 0")
-    strain_profile: list[tuple[float, float]] | None = _field(
+    strain_profile: list[tuple[float, float]] | None = field(
         None, "entry strain through the half thickness, [[eta, strain], ...] as "
         "temperature_profile (omit: uniform plate.entry_strain; steady method)", "",
         "pairs with eta increasing strictly from 0 to 1 and strain >= 0")
@@ -144,20 +143,18 @@ class PlateConfig(_Section):
 
     def entry_profiles(self):
         """(temperature, strain) ``ThicknessProfile`` or None each."""
-        from hotroll.model.profile import ThicknessProfile
-
         return tuple(None if p is None else ThicknessProfile.from_pairs(p)
                      for p in (self.temperature_profile, self.strain_profile))
 
 
-class MeshConfig(_Section):
-    h_contact: Literal["auto"] | MeshName | PosFloat = _field(
+class MeshConfig(Section):
+    h_contact: Literal["auto"] | MeshName | PosFloat = field(
         "auto", "mesh size along the contact (auto: the coarsest size whose roll force is within "
         "1 % of the mesh-converged one, docs/theory.md 4e)", "m",
         '"auto", one of C1, C2, M1, M2, F1, F2 or a number > 0')
-    h_far: PosFloat | None = _field(None, "coarse mesh size far from the roll (omit: automatic)",
+    h_far: PosFloat | None = field(None, "coarse mesh size far from the roll (omit: automatic)",
                                     "m", "> 0 and >= h_contact")
-    grading: float = _field(0.3, "mesh grading (size growth rate)", "", "in (0, 1]", gt=0, le=1)
+    grading: float = field(0.3, "mesh grading (size growth rate)", "", "in (0, 1]", gt=0, le=1)
 
     _auto_h: float = PrivateAttr(default=float("nan"))   # set by Case from the pass geometry
 
@@ -177,42 +174,42 @@ class MeshConfig(_Section):
         return MESH_TABLE[self.h_contact] if isinstance(self.h_contact, str) else self.h_contact
 
 
-class SolverConfig(_Section):
-    method: Literal["steady", "transient"] = _field(
+class SolverConfig(Section):
+    method: Literal["steady", "transient"] = field(
         "steady", "solution method: direct steady state or the report's time stepping", "",
         '"steady" or "transient"')
-    nonlinear: Literal["newton", "picard"] = _field("newton", "nonlinear solver", "",
+    nonlinear: Literal["newton", "picard"] = field("newton", "nonlinear solver", "",
                                                     '"newton" or "picard"')
-    tolerance: float = _field(1e-5, "nonlinear tolerance (Newton update / roll speed)", "",
+    tolerance: float = field(1e-5, "nonlinear tolerance (Newton update / roll speed)", "",
                               "in (0, 0.1]", gt=0, le=0.1)
-    max_iterations: int = _field(20, "nonlinear iterations per step", "", "an integer >= 1", ge=1)
-    end_time: PosFloat | None = _field(None, "simulated time (omit: automatic)", "s", "> 0")
-    time_step: Literal["h/6"] | PosFloat = _field(
+    max_iterations: int = field(20, "nonlinear iterations per step", "", "an integer >= 1", ge=1)
+    end_time: PosFloat | None = field(None, "simulated time (omit: automatic)", "s", "> 0")
+    time_step: Literal["h/6"] | PosFloat = field(
         "h/6", 'time step ("h/6": dt = h_contact/6)', "s", '"h/6" or a number > 0')
-    steady_tolerance: float = _field(2e-3, "steady-state detection tolerance (relative change)",
+    steady_tolerance: float = field(2e-3, "steady-state detection tolerance (relative change)",
                                      "", "in (0, 0.1]", gt=0, le=0.1)
-    max_steps: int = _field(100000, "maximum number of time steps", "", "an integer >= 1", ge=1)
-    wall_time_limit: PosFloat | None = _field(None, "wall-clock limit (omit: none)", "s", "> 0")
-    checkpoint_every: int = _field(25, "steps between checkpoints", "", "an integer >= 1", ge=1)
-    threads: int = _field(2, "worker threads", "", "an integer in [1, 1024]", ge=1, le=1024)
-    memory_limit: PosFloat | None = _field(
+    max_steps: int = field(100000, "maximum number of time steps", "", "an integer >= 1", ge=1)
+    wall_time_limit: PosFloat | None = field(None, "wall-clock limit (omit: none)", "s", "> 0")
+    checkpoint_every: int = field(25, "steps between checkpoints", "", "an integer >= 1", ge=1)
+    threads: int = field(2, "worker threads", "", "an integer in [1, 1024]", ge=1, le=1024)
+    memory_limit: PosFloat | None = field(
         None, "refuse a mesh whose estimated memory is above this (omit: the machine's free "
         "memory; workflows/estimate.py)", "B", "> 0")
-    force: bool = _field(False, "run even when the memory estimate is above the limit", "",
+    force: bool = field(False, "run even when the memory estimate is above the limit", "",
                          "true or false")
-    steady_entry_length: PosFloat | None = _field(
+    steady_entry_length: PosFloat | None = field(
         None, "steady strip: flat length before the touching point (omit: automatic)", "m", "> 0")
-    steady_exit_length: PosFloat | None = _field(
+    steady_exit_length: PosFloat | None = field(
         None, "steady strip: flat length after the roll gap (omit: automatic)", "m", "> 0")
-    exit_pressure_correction: bool = _field(True, "correct the exit pressure", "", "true or false")
+    exit_pressure_correction: bool = field(True, "correct the exit pressure", "", "true or false")
 
 
-class ContactConfig(_Section):
-    method: Literal["auto", "multiplier", "penalty"] = _field(
+class ContactConfig(Section):
+    method: Literal["auto", "multiplier", "penalty"] = field(
         "auto", "roll contact: exact (the pressure a Lagrange multiplier on the arc) or the "
         "report's penalty (Table 1); auto: multiplier for the steady solver, penalty for the "
         "report's scheme", "", '"auto", "multiplier" (steady only) or "penalty"')
-    unilateral: bool = _field(
+    unilateral: bool = field(
         False, "exact contact: the strip may leave the roll where the contact pressure would be "
         "tensile (active set); false: bilateral, the strip held to the whole arc", "",
         "true or false")
@@ -224,6 +221,6 @@ class ContactConfig(_Section):
         return "multiplier" if solver_method == "steady" else "penalty"
 
 
-class OutputConfig(_Section):
-    figures: bool = _field(True, "write figures", "", "true or false")
-    vtk: bool = _field(True, "write VTK files", "", "true or false")
+class OutputConfig(Section):
+    figures: bool = field(True, "write figures", "", "true or false")
+    vtk: bool = field(True, "write VTK files", "", "true or false")

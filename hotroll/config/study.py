@@ -37,46 +37,48 @@ from typing import Any, Literal
 
 from pydantic import Field, ValidationError, field_validator, model_validator
 
-from hotroll.config.base import _field, _Problems, _Section, problem_lines
+from hotroll.config.base import Problems, Section, field, fields_of, problem_lines
 from hotroll.config.case import Case, CaseError, case_from_dict, set_dotted
+from hotroll.config.schedule import PassEntry, Schedule, schedule_from_dict
+from hotroll.examples import example_path, schedule_path
 
 
-class BaseConfig(_Section):
-    file: str | None = _field(None, "the base case file, relative to the study file", "",
+class BaseConfig(Section):
+    file: str | None = field(None, "the base case file, relative to the study file", "",
                               "a path")
-    example: str | None = _field(None, "or a bundled example case by name", "",
+    example: str | None = field(None, "or a bundled example case by name", "",
                                  "a name of hotroll/examples/cases")
-    schedule: str | None = _field(None, "or a pass schedule: its file (relative to the study "
+    schedule: str | None = field(None, "or a pass schedule: its file (relative to the study "
                                   "file) or a bundled schedule's name", "",
                                   "a path or finishing_mill")
-    set: dict[str, Any] = _field({}, "dotted case keys set on the base case", "",
+    set: dict[str, Any] = field({}, "dotted case keys set on the base case", "",
                                  'e.g. { "solver.method" = "steady" }')
 
     @model_validator(mode="after")
     def _one(self) -> BaseConfig:
         if sum(x is not None for x in (self.file, self.example, self.schedule)) != 1:
-            raise _Problems(["base: give exactly one of file, example and schedule"])
+            raise Problems(["base: give exactly one of file, example and schedule"])
         return self
 
 
-class Range(_Section):
+class Range(Section):
     """Evenly spaced values from start to stop, both included: ``num`` of them, or every
     ``step``; ``scale = "log"``: evenly spaced logarithms (``num`` only)."""
 
-    start: float = _field(..., "first value", "", "a number")
-    stop: float = _field(..., "last value (included)", "", "a number")
-    num: int | None = _field(None, "how many values", "", "2..100000", ge=2, le=100_000)
-    step: float | None = _field(None, "or the spacing", "", "> 0", gt=0)
-    scale: Literal["linear", "log"] = _field("linear", "spacing", "", '"linear" or "log"')
+    start: float = field(..., "first value", "", "a number")
+    stop: float = field(..., "last value (included)", "", "a number")
+    num: int | None = field(None, "how many values", "", "2..100000", ge=2, le=100_000)
+    step: float | None = field(None, "or the spacing", "", "> 0", gt=0)
+    scale: Literal["linear", "log"] = field("linear", "spacing", "", '"linear" or "log"')
 
     @model_validator(mode="after")
     def _one(self) -> Range:
         if (self.num is None) == (self.step is None):
-            raise _Problems(["give exactly one of num and step"])
+            raise Problems(["give exactly one of num and step"])
         if self.scale == "log" and (self.step is not None or self.start <= 0 or self.stop <= 0):
-            raise _Problems(['scale = "log" needs num and start, stop > 0'])
+            raise Problems(['scale = "log" needs num and start, stop > 0'])
         if self.step is not None and not 1 <= (self.stop - self.start) / self.step + 1 <= 100_000:
-            raise _Problems([f"step: from {self.start:g} to {self.stop:g} by {self.step:g} is "
+            raise Problems([f"step: from {self.start:g} to {self.stop:g} by {self.step:g} is "
                              "not 1..100000 values (stop must not be below start)"])
         return self
 
@@ -93,27 +95,27 @@ class Range(_Section):
         return [float(f"{x:.12g}") for x in v]
 
 
-class PlotConfig(_Section):
-    x: str = _field(..., "the table's column on the x axis (a varied key or a summary field)",
+class PlotConfig(Section):
+    x: str = field(..., "the table's column on the x axis (a varied key or a summary field)",
                     "", "a column of study.csv")
-    y: list[str] = _field(["roll_force"], "summary fields, one panel each", "",
+    y: list[str] = field(["roll_force"], "summary fields, one panel each", "",
                           "columns of study.csv")
-    lines: str | None = _field(None, "a varied key: one line per value", "",
+    lines: str | None = field(None, "a varied key: one line per value", "",
                                "a column of study.csv")
-    xscale: Literal["linear", "log"] = _field("linear", "x axis", "", '"linear" or "log"')
-    profiles: bool = _field(False, "also the contact profiles of the finished cases overlaid "
+    xscale: Literal["linear", "log"] = field("linear", "x axis", "", '"linear" or "log"')
+    profiles: bool = field(False, "also the contact profiles of the finished cases overlaid "
                             "(study_profiles.png)", "", "true or false")
 
 
-class RunConfig(_Section):
-    combine: Literal["product", "zip"] = _field(
+class RunConfig(Section):
+    combine: Literal["product", "zip"] = field(
         "product", "how the [vary] lists combine: every combination, or side by side", "",
         '"product" or "zip"')
-    warm_start: bool = _field(True, "start each case from the nearest case its worker solved",
+    warm_start: bool = field(True, "start each case from the nearest case its worker solved",
                               "", "true or false")
 
 
-class Study(_Section):
+class Study(Section):
     name: str = Field("study", description="study name")
     base: BaseConfig
     vary: dict[str, list[Any] | Range] = Field({}, description="dotted case keys -> values")
@@ -144,10 +146,10 @@ class Study(_Section):
     @model_validator(mode="after")
     def _lengths(self) -> Study:
         if not self.vary and not self.cases and self.cases_file is None:
-            raise _Problems(["vary: give [vary] (dotted case keys with lists or ranges of "
+            raise Problems(["vary: give [vary] (dotted case keys with lists or ranges of "
                              "values), [[cases]] or cases_file"])
         if self.run.combine == "zip" and len({len(x) for x in self.vary.values()}) > 1:
-            raise _Problems(["vary: with run.combine = \"zip\" every list needs the same length, "
+            raise Problems(["vary: with run.combine = \"zip\" every list needs the same length, "
                              f"got {[len(x) for x in self.vary.values()]}"])
         self.check_keys()
         return self
@@ -157,12 +159,12 @@ class Study(_Section):
         ``cases_file`` is read: ``load_study`` calls this again)."""
         both = sorted({k for r in self.cases for k in r} & set(self.vary))
         if both:
-            raise _Problems([f"vary: {', '.join(both)} also in [[cases]]/cases_file: give each "
+            raise Problems([f"vary: {', '.join(both)} also in [[cases]]/cases_file: give each "
                              "key in one of them"])
         varied = set(self.vary) | {k for r in self.cases for k in r}
         if self.plot is not None and self.plot.lines is not None and \
                 self.plot.lines not in varied and (self.cases_file is None or self.cases):
-            raise _Problems([f"plot.lines: {self.plot.lines!r} is not a varied key "
+            raise Problems([f"plot.lines: {self.plot.lines!r} is not a varied key "
                              f"({', '.join(sorted(varied)) or 'none'})"])
 
     def combinations(self) -> list[dict[str, Any]]:
@@ -178,19 +180,16 @@ class Study(_Section):
 def key_unit(dotted: str) -> str:
     """The unit of a dotted case key from the case schema (``[m]`` of its description), or of
     a schedule's (``strip.temperature``, ``pass[2].exit_thickness``), else "-"."""
-    from hotroll.config.base import _fields
-    from hotroll.config.schedule import PassEntry, Schedule
-
     section, _, key = dotted.partition(".")
     text = ""
     for schema in (Case, Schedule):
         try:
-            model = PassEntry if section.startswith("pass[") else _fields(schema)[section].annotation
-            text = _fields(model)[key].description or ""
+            model = PassEntry if section.startswith("pass[") else fields_of(schema)[section].annotation
+            text = fields_of(model)[key].description or ""
             break
         except (KeyError, AttributeError, TypeError):
             continue
-    found = re.search(r"\[([^\]]*)\]; allowed", text)      # _field's "text [unit]; allowed"
+    found = re.search(r"\[([^\]]*)\]; allowed", text)      # field's "text [unit]; allowed"
     return found.group(1) if found else "-"
 
 
@@ -244,7 +243,7 @@ def load_study(path: str | Path, overrides: dict[str, Any] | None = None) -> tup
         study.cases = study.cases + _read_cases(path.parent / study.cases_file, str(path))
         try:
             study.check_keys()
-        except _Problems as e:
+        except Problems as e:
             raise CaseError(e.problems, str(path), "study") from None
     if overrides:
         study.base.set = {**study.base.set, **overrides}
@@ -297,11 +296,7 @@ def _base_dict(study: Study, root: Path) -> dict:
 
 
 def _read_base(study: Study, root: Path) -> dict:
-    from hotroll.examples import example_path
-
     if study.base.schedule is not None:
-        from hotroll.examples import schedule_path
-
         src = root / study.base.schedule
         if not src.is_file():
             try:
@@ -346,7 +341,6 @@ def expand(study: Study, base: dict) -> list[StudyCase]:
 def _validate(study: Study, data: dict):
     if study.base.schedule is None:
         return case_from_dict(data)
-    from hotroll.config.schedule import schedule_from_dict
 
     return schedule_from_dict(data)
 

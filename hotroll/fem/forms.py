@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Callable
 
+from hotroll.fem.spaces import P2Nodes
 from hotroll.model.material import NortonHoff, edot_squared
 
 
@@ -191,8 +192,6 @@ class NonlinearProblem:
 
     @cached_property
     def _velocity_nodes(self):
-        from hotroll.fem.spaces import P2Nodes
-
         try:
             return P2Nodes(self.fes.mesh, self.n_velocity_dofs() // 2)
         except ValueError:     # not P2: the coefficients are the nodal values (P1)

@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 
+from hotroll.fem.forms import strain_rate
 from hotroll.fem.profile_figures import (  # noqa: F401 (re-exported)
     STICKING_FLOOR,
     contact_loss,
@@ -23,6 +24,7 @@ from hotroll.fem.profile_figures import (  # noqa: F401 (re-exported)
 )
 from hotroll.fem.rolling_form import TOP, RollingForm
 from hotroll.fem.top_boundary import TopBoundary
+from hotroll.model.material import edot_squared
 
 
 # --- nodal values on the top boundary ------------------------------------------------------
@@ -130,9 +132,6 @@ def measure(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: float, h: 
 def integrals(form: RollingForm, K: float) -> dict:
     """Forces, torque and the power balance of (3.6) tested with v itself (all per unit width)."""
     from ngsolve import BND, CF, VOL, IfPos, InnerProduct, Integrate, specialcf, sqrt, x, y
-
-    from hotroll.fem.forms import strain_rate
-    from hotroll.model.material import edot_squared
 
     mesh, rp, pen, m = form.mesh, form.rp, form.penalties, form.m
     u = form.problem.velocity

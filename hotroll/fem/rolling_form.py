@@ -35,11 +35,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from hotroll.fem.forms import NonlinearProblem, norton_hoff_tangent, norton_hoff_volume, one_sided
+from hotroll.fem.forms import NonlinearProblem, norton_hoff_tangent, norton_hoff_volume, one_sided, strain_rate
 from hotroll.fem.spaces import taylor_hood
-from hotroll.model.friction import _Law as FrictionLaw
+from hotroll.model.friction import FrictionLaw
 from hotroll.model.geometry import RollPass
-from hotroll.model.material import NortonHoff
+from hotroll.model.material import NortonHoff, edot_squared
 
 TOP = "top|arc|exit"   # the whole top boundary (the steady strip adds "exit")
 
@@ -241,9 +241,6 @@ class RollingForm:
     def shear_flow_stress(self, w):
         """k = sigma_ef / sqrt3 of the strain rate of w (reduced; regularised (2.21)). Needs
         the volume gradient: valid in volume and element-boundary integrals only."""
-        from hotroll.fem.forms import strain_rate
-        from hotroll.model.material import edot_squared
-
         e2 = edot_squared(strain_rate(w))
         return self.material.sigma_ef_reg(e2, m=self.m_material, K=self.consistency) / 3.0**0.5
 
@@ -331,9 +328,6 @@ class RollingForm:
         direction ``lam``; ``lam_w`` the multiplier at the iterate), by the chain rule through
         the law's ``coefficient_partials`` (slip^2, pressure, k of the strain rate)."""
         from ngsolve import InnerProduct
-
-        from hotroll.fem.forms import strain_rate
-        from hotroll.model.material import edot_squared
 
         n, t = self.roll_frame()
         law, s, s_u = self.friction, self.slip(w), u * t

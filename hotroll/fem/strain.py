@@ -17,6 +17,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from hotroll.fem.forms import strain_rate
+from hotroll.model.material import edot_squared
+
 
 class StrainField:
     """P1 strain on a (moving) mesh, with its steady transport and transient update."""
@@ -45,9 +48,6 @@ class StrainField:
 
     def _rate(self, velocity):
         from ngsolve import sqrt
-
-        from hotroll.fem.forms import strain_rate
-        from hotroll.model.material import edot_squared
 
         return sqrt(edot_squared(strain_rate(velocity)) + 1e-300)
 

@@ -68,6 +68,8 @@ from typing import Any, Optional, Tuple
 
 import numpy as np
 
+from hotroll.model.material import NortonHoff
+
 SQRT3 = 3.0**0.5
 LN3 = math.log(3.0)
 CELSIUS_OFFSET = 273.15  # T_C = T_K - CELSIUS_OFFSET
@@ -140,7 +142,7 @@ def _is_numeric(x) -> bool:
     return not _is_cf(x)
 
 
-def _finite(name: str, value) -> float:
+def finite(name: str, value) -> float:
     try:
         v = float(value)
     except (TypeError, ValueError):
@@ -169,7 +171,7 @@ class ValidityRange:
                 continue
             if len(r) != 2:
                 raise ValueError(f"validity range {name} must be a pair (low, high), got {r!r}")
-            lo, hi = _finite(f"{name} range low", r[0]), _finite(f"{name} range high", r[1])
+            lo, hi = finite(f"{name} range low", r[0]), finite(f"{name} range high", r[1])
             if not lower <= lo < hi:
                 raise ValueError(
                     f"validity range {name} must satisfy {lower} <= low < high, got ({lo}, {hi})")
@@ -250,8 +252,6 @@ class FlowStressLaw:
 
     def norton_hoff_at(self, strain: float, temperature: float):
         """The :class:`hotroll.model.material.NortonHoff` law frozen at a numeric (strain, T)."""
-        from hotroll.model.material import NortonHoff
-
         K = float(self.consistency(float(strain), float(temperature)))
         m = float(self.rate_exponent(float(temperature)))
         return NortonHoff(K=K, m=m, eps0=self.eps0)
@@ -321,13 +321,13 @@ class NortonHoffStress(FlowStressLaw):
 
     def __init__(self, K: float, m: float, eps0: float = DEFAULT_EPS0, *,
                  validity: Optional[ValidityRange] = None, name: str = "Norton-Hoff"):
-        self.K = _finite("K", K)
+        self.K = finite("K", K)
         if not self.K > 0.0:
             raise ValueError(f"K must be > 0 (Pa s^m), got {K!r}")
-        self.m = _finite("m", m)
+        self.m = finite("m", m)
         if not 0.0 < self.m <= 1.0:
             raise ValueError(f"m (rate exponent) must lie in (0, 1], got {m!r}")
-        self.eps0 = _finite("eps0", eps0)
+        self.eps0 = finite("eps0", eps0)
         if not self.eps0 > 0.0:
             raise ValueError(f"eps0 must be > 0 (1/s), got {eps0!r}")
         self.validity = validity if validity is not None else ValidityRange()
@@ -380,20 +380,20 @@ class HenselSpittel(FlowStressLaw):
                  m4: float = 0.0, m5: float = 0.0, m7: float = 0.0, m8: float = 0.0,
                  m9: float = 0.0, *, m6: float = 0.0, validity: Optional[ValidityRange] = None,
                  strain_min: Optional[float] = None, eps0: float = DEFAULT_EPS0, name: str = ""):
-        self.A = _finite("A", A)
+        self.A = finite("A", A)
         if not self.A > 0.0:
             raise ValueError(f"A must be > 0 (Pa), got {A!r}")
         for key, val in (("m1", m1), ("m2", m2), ("m3", m3), ("m4", m4), ("m5", m5), ("m6", m6),
                          ("m7", m7), ("m8", m8), ("m9", m9)):
-            setattr(self, key, _finite(key, val))
-        self.eps0 = _finite("eps0", eps0)
+            setattr(self, key, finite(key, val))
+        self.eps0 = finite("eps0", eps0)
         if not self.eps0 > 0.0:
             raise ValueError(f"eps0 must be > 0 (1/s), got {eps0!r}")
         self.validity = validity if validity is not None else ValidityRange()
         if strain_min is None:
             s = self.validity.strain
             strain_min = s[0] if s is not None and s[0] > 0 else DEFAULT_STRAIN_MIN
-        self.strain_min = _finite("strain_min", strain_min)
+        self.strain_min = finite("strain_min", strain_min)
         if not self.strain_min > 0.0:
             raise ValueError(f"strain_min must be > 0, got {strain_min!r}")
         self.name = name

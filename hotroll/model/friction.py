@@ -60,7 +60,7 @@ def smooth_minimum_partials(a, b, delta):
 
 
 @dataclass(frozen=True)
-class _Law:
+class FrictionLaw:
     v_reg: float  # regularisation velocity, m/s
 
     name = "law"
@@ -99,7 +99,7 @@ class _Law:
 
 
 @dataclass(frozen=True)
-class ViscoplasticFriction(_Law):
+class ViscoplasticFriction(FrictionLaw):
     """Viscoplastic friction (2.29a): T_tau = -a_f K |v_s|^(m-1) v_s (regularised)."""
 
     K: float = 1.0   # consistency the law scales with (1 in reduced units)
@@ -122,7 +122,7 @@ class ViscoplasticFriction(_Law):
 
 
 @dataclass(frozen=True)
-class CoulombFriction(_Law):
+class CoulombFriction(FrictionLaw):
     """Coulomb friction capped by sticking: |T_tau| = min(mu p, k), p = max(pressure, 0).
 
     The two kinks (p = 0, mu p = k) are rounded over ``rounding`` x k (error <= 0.5 % of k at
@@ -150,7 +150,7 @@ class CoulombFriction(_Law):
 
 
 @dataclass(frozen=True)
-class TrescaFriction(_Law):
+class TrescaFriction(FrictionLaw):
     """Friction factor (Tresca, constant shear): |T_tau| = factor k."""
 
     factor: float = 0.8

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import solve_banded
 
-from hotroll.model.thermal_properties import SIGMA_SB, ThermalInputError, ThermalProperties, _number
+from hotroll.model.thermal_properties import SIGMA_SB, ThermalInputError, ThermalProperties, finite_number
 
 
 @dataclass(frozen=True)
@@ -75,11 +75,11 @@ def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
     last value; rescaled onto ``half_thickness``, so a logical coordinate in [0, 1] serves too)
     after ``duration`` seconds in air (module docstring); one value is a uniform profile.
     ``steps`` implicit steps (default: at least 100, and dt at most a tenth of H^2 / alpha)."""
-    H = _number("half_thickness", half_thickness, 0.0, True, None, "m")
-    t_end = _number("duration", duration, 0.0, False, None, "s")
-    h = _number("htc_air", htc, 0.0, False, None, "W/(m^2 K)")
-    eps = _number("emissivity", emissivity, 0.0, False, 1.0, "")
-    T_amb = _number("ambient_temperature", ambient, 0.0, True, None, "K")
+    H = finite_number("half_thickness", half_thickness, 0.0, True, None, "m")
+    t_end = finite_number("duration", duration, 0.0, False, None, "s")
+    h = finite_number("htc_air", htc, 0.0, False, None, "W/(m^2 K)")
+    eps = finite_number("emissivity", emissivity, 0.0, False, 1.0, "")
+    T_amb = finite_number("ambient_temperature", ambient, 0.0, True, None, "K")
     y, T = np.asarray(y, dtype=float), np.asarray(T, dtype=float)
     if y.ndim != 1 or y.shape != T.shape or y.size < 1 or not np.all(np.isfinite(T)) \
             or np.any(T <= 0.0) or (y.size > 1 and np.any(np.diff(y) <= 0.0)):

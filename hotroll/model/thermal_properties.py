@@ -30,7 +30,7 @@ class ThermalInputError(ValueError):
     """Bad thermal input: the message names the field and the allowed range."""
 
 
-def _number(name: str, value, low: float, low_open: bool, high: float | None, unit: str) -> float:
+def finite_number(name: str, value, low: float, low_open: bool, high: float | None, unit: str) -> float:
     """``value`` as a finite float in the range, or ThermalInputError naming ``name``."""
     if high is not None:
         rule = f"must be in [{low:g}, {high:g}]"
@@ -57,7 +57,7 @@ def check_property(name: str, value, unit: str) -> float | Table:
             f"value) pairs with 0 < T strictly increasing and positive finite values")
     if not isinstance(value, (list, tuple, np.ndarray)):
         try:
-            return _number(name, value, 0.0, True, None, unit)
+            return finite_number(name, value, 0.0, True, None, unit)
         except ThermalInputError:
             raise ThermalInputError(f"thermal.{name} = {value!r}: {rule}") from None
     try:
@@ -206,4 +206,4 @@ class ThermalBoundary:
                  "taylor_quinney": (0.0, False, 1.0, "")}
         for name, (low, low_open, high, unit) in rules.items():
             object.__setattr__(self, name,
-                               _number(name, getattr(self, name), low, low_open, high, unit))
+                               finite_number(name, getattr(self, name), low, low_open, high, unit))

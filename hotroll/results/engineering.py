@@ -10,6 +10,9 @@ from __future__ import annotations
 
 import math
 
+from hotroll.fem.forms import strain_rate
+from hotroll.model.material import edot_squared
+
 #: Unit of each summary key (SI; per unit width where the key is per unit width).
 UNITS: dict[str, str] = {
     "roll_force": "N/m", "roll_torque": "N m/m", "roll_power": "W/m", "horizontal_force": "N/m",
@@ -37,9 +40,6 @@ def gap_means(form, rp, x_start: float, K: float) -> dict:
     """Volume means over the deformation zone (the strip between the contact start x_start and
     the roll gap X_roll): the flow stress sigma_ef (Pa) and the equivalent strain rate (1/s)."""
     from ngsolve import IfPos, Integrate, sqrt, x
-
-    from hotroll.fem.forms import strain_rate
-    from hotroll.model.material import edot_squared
 
     band = IfPos(x - x_start, IfPos(rp.axis_x - x, 1.0, 0.0), 0.0)
     area = float(Integrate(band, form.mesh))

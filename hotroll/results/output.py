@@ -9,7 +9,10 @@ from pathlib import Path
 
 import numpy as np
 
+from hotroll.fem.forms import strain_rate
+from hotroll.fem.mesh import mesh_triangles
 from hotroll.files import DiskFullError, atomic, disk_full  # noqa: F401  (the app's writers use them)
+from hotroll.model.material import edot_squared
 
 
 def _atomic_write_text(path: Path, text: str) -> None:
@@ -71,10 +74,6 @@ def vertex_fields(run) -> dict:
     flow stress at that strain, rate and flow temperature); SI units."""
     import ngsolve
 
-    from hotroll.fem.forms import strain_rate
-    from hotroll.fem.mesh import mesh_triangles
-    from hotroll.model.material import edot_squared
-
     mesh, form, K = run.mesh, run.form, run.model.material.K
     nv = mesh.nv
     ns = form.fes.components[0].ndof // 2
@@ -127,9 +126,6 @@ def write_vtk(run, path: Path, shift: float = 0.0) -> Path:
                 strip.disp.vec.FV().NumPy()[: strip.nv] -= shift
                 strip.mesh.SetDeformation(strip.disp)
     import ngsolve
-
-    from hotroll.fem.forms import strain_rate
-    from hotroll.model.material import edot_squared
 
     form, K = run.form, run.model.material.K
     edot = ngsolve.sqrt(edot_squared(strain_rate(form.problem.velocity)) + 1e-300)

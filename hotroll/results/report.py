@@ -13,8 +13,10 @@ import datetime
 import tempfile
 from pathlib import Path
 
+from hotroll import __version__
 from hotroll.files import DiskFullError, atomic
-from hotroll.results.report_run import run_context
+from hotroll.results.figures import FIGURES, RunFiles
+from hotroll.results.report_run import FIGURE_CAPTIONS, run_context
 from hotroll.results.report_table import schedule_context, study_context
 
 EXPECTED = ("summary.json (hotroll run, hotroll example), compare.json with fe/ (hotroll compare), "
@@ -68,7 +70,6 @@ def context(d: Path, title: str | None = None, draw: bool = True) -> dict:
             names = ("fig_sigma_ef.png",) if ctx["compare"] else (
                 "fig_contact_angle.png", "fig_sigma_ef.png")   # compare.png has the contact
             ctx["figures"] = _drawn(ctx["run_dir"], names) + ctx["figures"]
-    from hotroll import __version__
 
     ctx.update(directory=str(d.resolve()), version=__version__,
                made=datetime.datetime.now().strftime("%Y-%m-%d %H:%M"),
@@ -78,9 +79,6 @@ def context(d: Path, title: str | None = None, draw: bool = True) -> dict:
 
 def _drawn(run_dir: Path, names: tuple[str, ...]) -> list[tuple[str, bytes]]:
     """The figures ``names`` of ``results/figures/`` drawn from the run's files."""
-    from hotroll.results.figures import FIGURES, RunFiles
-    from hotroll.results.report_run import FIGURE_CAPTIONS
-
     draw = dict(FIGURES)
     run, out = RunFiles(run_dir), []
     with tempfile.TemporaryDirectory(prefix="hotroll-report-") as tmp:

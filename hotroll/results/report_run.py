@@ -82,7 +82,7 @@ def number(v: float) -> str:
     return f"{v:.4g}" if 1e-3 <= abs(v) < 1e6 else f"{v:.3e}"
 
 
-def _finite(v) -> bool:
+def finite(v) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
 
 
@@ -105,7 +105,7 @@ def scale(key: str, unit: str, magnitude: float) -> tuple[float, float, str]:
 def show(key: str, value, unit: str) -> dict | None:
     """A figure as a row: shown text and unit, SI text and unit; None if not a number."""
     vals = value if isinstance(value, list) else [value]
-    if not vals or len(vals) > 3 or not all(_finite(v) for v in vals):
+    if not vals or len(vals) > 3 or not all(finite(v) for v in vals):
         return None
     f, off, shown = scale(key, unit, max(abs(v) for v in vals))
     return {"key": key, "label": LABELS.get(key, key.replace("_", " ")),
@@ -156,7 +156,7 @@ def run_warnings(s: dict) -> list[dict]:
         add("error", s["failure"] if s.get("not_conserved") else f"the run failed: {s['failure']}")
     if s.get("outlet_driven"):
         add("error", "skids: the outlet penalty drives the strip, no neutral point")
-    if not _finite(s.get("roll_force")):
+    if not finite(s.get("roll_force")):
         add("error", "the roll force is not a finite number")
     if s.get("steady_state") is False:
         add("error", f"not steady: the run ended with status '{s.get('status')}' before the "
@@ -164,7 +164,7 @@ def run_warnings(s: dict) -> list[dict]:
     if s.get("fixed_point_settled") is False:
         res = s.get("surface_residual_h")
         add("error", "free surface not settled: the steady solver's free-surface/a_f fixed "
-                     "point did not settle" + (f" (last move {res:.3g} h)" if _finite(res) else ""))
+                     "point did not settle" + (f" (last move {res:.3g} h)" if finite(res) else ""))
     if s.get("converged") is False and not w:
         add("error", f"not converged (status '{s.get('status')}', exit code {s.get('exit_code')})")
     for a, b in s.get("contact_loss") or []:
@@ -177,7 +177,7 @@ def run_warnings(s: dict) -> list[dict]:
                     f"not converge (left out of the means)")
     for key, limit in LIMITS.items():
         v = s.get(key)
-        if _finite(v) and v > limit:
+        if finite(v) and v > limit:
             add("warn", f"{LABELS.get(key, key)} {100 * v:.3g} % is above {100 * limit:g} %")
     if s.get("warm_start_failed"):
         add("info", "the warm start failed; the case was solved from scratch")
@@ -261,7 +261,7 @@ def compare_context(d: Path) -> dict | None:
     c = read_json(path)
     cols = [k for k in c.get("columns", []) if k not in ("quantity", "unit", "note")]
     rows = [{"quantity": str(r.get("quantity", "")).rsplit(" [", 1)[0], "unit": r.get("unit", ""),
-             "cells": [("-" if not _finite(r.get(k)) else
+             "cells": [("-" if not finite(r.get(k)) else
                         (f"{r[k]:.3f}" if k == "FE/slab" else number(r[k]))) for k in cols],
              "note": r.get("note") or ""} for r in c.get("rows", [])]
     errors = [f"{k.replace('_error', '').replace('_', '-')}: {c[k]}"
@@ -269,7 +269,7 @@ def compare_context(d: Path) -> dict | None:
     ratio = next((r.get("FE/slab") for r in c.get("rows", []) if r.get("unit") == "N/m"
                   and str(r.get("quantity", "")).startswith("roll force")), None)
     return {"columns": cols, "rows": rows, "errors": errors,
-            "force_ratio": f"{ratio:.3f}" if _finite(ratio) else None, "regimes": c.get("regimes"),
+            "force_ratio": f"{ratio:.3f}" if finite(ratio) else None, "regimes": c.get("regimes"),
             "friction": c.get("slab_friction"), "figure": d / "compare.png"}
 
 

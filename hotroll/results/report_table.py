@@ -11,8 +11,8 @@ from urllib.parse import quote
 from hotroll.results.engineering import UNITS
 from hotroll.results.report_run import (
     LABELS,
-    _finite,
     case_inputs,
+    finite,
     number,
     read_json,
     run_warnings,
@@ -66,13 +66,13 @@ def read_table(path: Path) -> tuple[list[str], list[dict]]:
 
 def column(key: str, values: list, unit: str, label: str | None = None) -> dict:
     """A table column in one unit for all its rows (the largest magnitude chooses it)."""
-    nums = [v for v in values if _finite(v)]
+    nums = [v for v in values if finite(v)]
     f, off, shown = scale(key, unit, max((abs(v) for v in nums), default=0.0))
     return {"key": key, "label": label or SHORT.get(key) or LABELS.get(key, key.replace("_", " ")),
             "unit": shown if nums else "", "scale": (f, off), "si_unit": unit,
-            "cells": [number(v / f - off) if _finite(v) else (v if isinstance(v, str) and v
+            "cells": [number(v / f - off) if finite(v) else (v if isinstance(v, str) and v
                                                               else "-") for v in values],
-            "values": [repr(float(v)) if _finite(v) else "" for v in values]}
+            "values": [repr(float(v)) if finite(v) else "" for v in values]}
 
 
 def _link(root: Path, sub: str) -> str | None:
@@ -90,18 +90,18 @@ def study_context(d: Path, title: str | None = None) -> dict:
     varied = [k for k in meta.get("varied") or varied if k in heads]   # hotroll study's list
     units.update(meta.get("units") or {})          # written by hotroll study (all its keys)
     title = title or meta.get("name")
-    keys = [k for k in STUDY_KEYS if any(_finite(r.get(k)) for r in rows)]
+    keys = [k for k in STUDY_KEYS if any(finite(r.get(k)) for r in rows)]
     cols = ([column(k, [r.get(k) for r in rows], units.get(k, ""), label=k) for k in varied]
             + [column(k, [r.get(k) for r in rows],
                       units.get(k) or UNITS.get(k) or _MORE_UNITS.get(k, "-")) for k in keys])
     table = [{"case": str(r.get("case")), "status": str(r.get("status")),
-              "index": int(r["index"]) if _finite(r.get("index")) else i,
+              "index": int(r["index"]) if finite(r.get("index")) else i,
               "failed": r.get("status") != DONE, "reason": r.get("reason") or "",
               "link": _link(d, f"cases/{r.get('case')}"),
               "cells": [c["cells"][i] for c in cols],
               "values": [c["values"][i] for c in cols]} for i, r in enumerate(rows)]
     n_failed = sum(t["failed"] for t in table)
-    wall = sum(r["wall_time_s"] for r in rows if _finite(r.get("wall_time_s")))
+    wall = sum(r["wall_time_s"] for r in rows if finite(r.get("wall_time_s")))
     figure = study_figure(rows, varied, cols[:len(varied)])
     return {"kind": "study", "title": title or d.name, "ok": n_failed == 0,
             "status": f"{len(rows) - n_failed} of {len(rows)} cases done",
@@ -155,19 +155,19 @@ def study_figure(rows: list[dict], varied: list[str], vcols: list[dict]) -> byte
     numeric = all(isinstance(x, float) for x in xs)
     xf, xoff = vcols[0]["scale"] if numeric else (1.0, 0.0)
     panels = [k for k in ("roll_force", "roll_torque", "forward_slip")
-              if any(_finite(r.get(k)) for r in done)]
+              if any(finite(r.get(k)) for r in done)]
     if not panels:
         return None
     fig, axes = plt.subplots(1, len(panels), figsize=(4.2 * len(panels), 3.6), squeeze=False)
     lines = list(dict.fromkeys(tuple(r[k] for k in others) for r in rows))
     for ax, key in zip(axes[0], panels):
         unit = UNITS.get(key, "-")
-        f, off, shown = scale(key, unit, max(abs(r[key]) for r in done if _finite(r.get(key))))
+        f, off, shown = scale(key, unit, max(abs(r[key]) for r in done if finite(r.get(key))))
         for line in lines:
             pts = sorted((xs.index(r[x_key]) if not numeric else r[x_key] / xf - xoff,
                           r[key] / f - off)
                          for r in done if tuple(r[k] for k in others) == line
-                         and _finite(r.get(key)))
+                         and finite(r.get(key)))
             if pts:
                 label = ", ".join(_value(c, v) for c, v in zip(vcols[1:], line)) or None
                 ax.plot(*zip(*pts), "o-", label=label)
@@ -190,7 +190,7 @@ def study_figure(rows: list[dict], varied: list[str], vcols: list[dict]) -> byte
 
 def _value(col: dict, v) -> str:
     """A varied key's value in its column's unit, for a legend."""
-    if not _finite(v):
+    if not finite(v):
         return f"{col['key']} = {v}"
     f, off = col["scale"]
     unit = col["unit"].replace("^", "") if col["unit"] not in ("-", "") else ""
@@ -220,7 +220,7 @@ def schedule_context(d: Path, title: str | None = None) -> dict:
     """Everything the schedule page shows (kind "schedule")."""
     data = read_json(d / "schedule.json")
     passes, units = data.get("passes") or [], data.get("units") or {}
-    keys = [k for k in SCHEDULE_KEYS if any(_finite(p.get(k)) for p in passes)]
+    keys = [k for k in SCHEDULE_KEYS if any(finite(p.get(k)) for p in passes)]
     if "roll_force_total" in keys:                     # a width: the whole strip's figures
         keys = [k for k in keys if k not in ("roll_force", "roll_torque")]
     cols = [column(k, [p.get(k) for p in passes], units.get(k) or UNITS.get(k, "-"),
@@ -242,5 +242,5 @@ def schedule_context(d: Path, title: str | None = None) -> dict:
             "status": f"{len(passes)} passes" + (f", {data.get('fe_solves')} FE solves"
                                                   if data.get("fe_solves") else ""),
             "columns": cols, "lead": len(cols), "table": table, "warnings": warns,
-            "wall_time": wall if _finite(wall) else math.nan,
+            "wall_time": wall if finite(wall) else math.nan,
             "figures": [("The schedule pass by pass", png)] if png.is_file() else []}

@@ -7,6 +7,7 @@ from pathlib import Path
 
 from hotroll.config.study import PlotConfig, key_unit
 from hotroll.files import atomic
+from hotroll.results.figures import plot_compare
 
 
 def _num(v) -> float:
@@ -82,8 +83,6 @@ def plot_table(rows: list[dict], plot: PlotConfig, out_png: Path, *, units: dict
 
 def plot_profiles(rows: list[dict], out: Path, out_png: Path, *, title: str = "") -> Path | None:
     """The contact profiles of the done cases overlaid (``post.plots.plot_compare``)."""
-    from hotroll.results.figures import plot_compare
-
     runs = {str(r["case"]): Path(out) / "cases" / str(r["case"]) for r in rows
             if r.get("status") == "done"}
     return plot_compare(runs, out_png, title=title) if runs else None

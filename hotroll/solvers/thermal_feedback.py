@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from hotroll.fem.forms import strain_rate
 from hotroll.fem.thermal_field import SolveInfo
+from hotroll.model.material import edot_squared
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 
 
@@ -53,8 +55,6 @@ class FlowStressFeedback:
         form's fields; ``k``: RollingForm.friction_coefficient's."""
         from ngsolve import InnerProduct
 
-        from hotroll.fem.forms import strain_rate
-
         f = self.form
         u = f.problem.velocity
         eps = strain_rate(u)
@@ -64,9 +64,6 @@ class FlowStressFeedback:
                 self.K_ref * f.friction_coefficient(u, k) * s * s)
 
     def _e2(self):
-        from hotroll.fem.forms import strain_rate
-        from hotroll.model.material import edot_squared
-
         return edot_squared(strain_rate(self.form.problem.velocity))
 
     def vertex_temperature(self) -> np.ndarray:  # pragma: no cover - each coupling has one

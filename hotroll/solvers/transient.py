@@ -22,13 +22,17 @@ import numpy as np
 from hotroll.fem import quantities as Q
 from hotroll.fem.mesh import MeshSpec, build_plate_mesh
 from hotroll.fem.rolling_form import PenaltyTable, RollingForm
+from hotroll.fem.strain import StrainField
 from hotroll.fem.top_boundary import TopBoundary
-from hotroll.model.friction import _Law as FrictionLaw
+from hotroll.files import atomic
+from hotroll.model.friction import FrictionLaw
 from hotroll.model.friction_estimate import estimate_a_f
 from hotroll.model.geometry import RollPass
 from hotroll.model.material import NortonHoff
 from hotroll.solvers.nonlinear import LinearSolveError, SolveStats, picard, solve
 from hotroll.solvers.settling import steady_reached, summary_windows, transit_time
+from hotroll.solvers.thermal_coupling import ThermalCoupling
+from hotroll.solvers.thermal_lagrangian import LagrangianThermal
 from hotroll.solvers.threads import solver_threads
 
 
@@ -86,11 +90,8 @@ class RollingModel:
         (``fem/strain.py``, ``solvers/thermal_coupling.py``)."""
         strain = None
         if self.flow_stress is not None and self.carries_strain:
-            from hotroll.fem.strain import StrainField
-
             strain = StrainField(mesh, self.entry_strain, profile=self.strain_profile)
         if self.thermal is not None and lagrangian:     # carried with the moving mesh
-            from hotroll.solvers.thermal_lagrangian import LagrangianThermal
 
             props, bc, _ = self.thermal
             coupling = LagrangianThermal(mesh, props, bc, K_ref=self.material.K,
@@ -99,8 +100,6 @@ class RollingModel:
                                          entry_strain=self.entry_strain)
             return strain, coupling, coupling.consistency()
         if self.thermal is not None:
-            from hotroll.solvers.thermal_coupling import ThermalCoupling
-
             props, bc, refine = self.thermal
             coupling = ThermalCoupling(mesh, props, bc, refine=refine, K_ref=self.material.K,
                                        m_ref=self.material.m, eps0=self.material.eps0,
@@ -340,8 +339,6 @@ class TransientRun:
     # --- checkpoints -----------------------------------------------------------------------------
     def save_checkpoint(self) -> None:
         """Atomic write of everything needed to resume (mesh saved once at start)."""
-        from hotroll.files import atomic
-
         st = self.state
         with atomic(self.ckpt / "state.npz") as tmp:
             self._write_state(tmp, st)

@@ -21,9 +21,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from hotroll.fem.forms import NonlinearProblem, norton_hoff_volume
+from hotroll.fem.forms import NonlinearProblem, norton_hoff_volume, strain_rate
 from hotroll.fem.spaces import taylor_hood
-from hotroll.model.material import NortonHoff
+from hotroll.model.material import NortonHoff, edot_squared
 from hotroll.solvers.nonlinear import SolveStats, newton, picard
 
 
@@ -115,9 +115,6 @@ def compression(h: float, m: float, K: float = 1.0, r: float = 1.0, a: float = 1
                 tol: float = 1e-10, max_it: int = 30) -> dict:
     """Frictionless plane-strain compression; the exact solution is in the discrete space."""
     from ngsolve import BND, BoundaryFromVolumeCF, Integrate, Parameter, dx
-
-    from hotroll.fem.forms import strain_rate
-    from hotroll.model.material import edot_squared
 
     mesh = rectangle(a, b, max(1, round(a / h)), max(1, round(b / h)),
                      ("bottom", "right", "top", "left"))

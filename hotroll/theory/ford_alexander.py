@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from hotroll.theory.slab import SQRT3, _check_number, _check_pass
+from hotroll.theory.slab import SQRT3, check_number, check_pass
 
 
 @dataclass(frozen=True)
@@ -35,15 +35,15 @@ class FordAlexanderResult:
 
 def ford_alexander_factor(roll_radius: float, h0: float, h1: float) -> float:
     """p_mean / 2k = pi/4 + L / (4 h_mean)."""
-    R, h0, h1 = _check_pass(roll_radius, h0, h1)
+    R, h0, h1 = check_pass(roll_radius, h0, h1)
     return math.pi / 4.0 + math.sqrt(R * (h0 - h1)) / (2.0 * (h0 + h1))
 
 
 def ford_alexander(roll_radius: float, h0: float, h1: float,
                    mean_flow_stress: float) -> FordAlexanderResult:
     """Roll force per unit width after Ford & Alexander; mean_flow_stress is uniaxial (Pa)."""
-    R, h0, h1 = _check_pass(roll_radius, h0, h1)
-    sf = _check_number("mean_flow_stress", mean_flow_stress, low=0.0, low_open=True)
+    R, h0, h1 = check_pass(roll_radius, h0, h1)
+    sf = check_number("mean_flow_stress", mean_flow_stress, low=0.0, low_open=True)
     L = math.sqrt(R * (h0 - h1))
     q = ford_alexander_factor(R, h0, h1)
     p = q * 2.0 * sf / SQRT3

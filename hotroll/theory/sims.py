@@ -33,7 +33,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from hotroll.theory.slab import SQRT3, _check_number, _check_pass
+from hotroll.theory.slab import SQRT3, check_number, check_pass
 
 
 @dataclass(frozen=True)
@@ -53,7 +53,7 @@ class SimsResult:
 
 def sims_neutral_angle(roll_radius: float, h0: float, h1: float) -> float:
     """Sims' neutral angle phi_n (rad) for sticking friction, no tensions."""
-    R, h0, h1 = _check_pass(roll_radius, h0, h1)
+    R, h0, h1 = check_pass(roll_radius, h0, h1)
     r = (h0 - h1) / h0
     s = math.sqrt(h1 / R)
     phin = s * math.tan(0.5 * math.atan(math.sqrt(r / (1.0 - r))) + math.pi / 8.0 * s * math.log1p(-r))
@@ -65,7 +65,7 @@ def sims_neutral_angle(roll_radius: float, h0: float, h1: float) -> float:
 
 def sims_force_factor(roll_radius: float, h0: float, h1: float) -> float:
     """Sims' Q_p = F / (2k sqrt(R dh))."""
-    R, h0, h1 = _check_pass(roll_radius, h0, h1)
+    R, h0, h1 = check_pass(roll_radius, h0, h1)
     r = (h0 - h1) / h0
     c = math.sqrt((1.0 - r) / r)
     a = math.sqrt(R / h1)
@@ -80,8 +80,8 @@ def sims(roll_radius: float, h0: float, h1: float, mean_flow_stress: float) -> S
     mean_flow_stress is the uniaxial flow stress sigma_f averaged over the pass (Pa);
     2k = 2 sigma_f / sqrt(3) multiplies Q_p.
     """
-    R, h0, h1 = _check_pass(roll_radius, h0, h1)
-    sf = _check_number("mean_flow_stress", mean_flow_stress, low=0.0, low_open=True)
+    R, h0, h1 = check_pass(roll_radius, h0, h1)
+    sf = check_number("mean_flow_stress", mean_flow_stress, low=0.0, low_open=True)
     two_k = 2.0 * sf / SQRT3
     dh = h0 - h1
     L, alpha = math.sqrt(R * dh), math.sqrt(dh / R)

@@ -70,7 +70,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from hotroll.model.flow_stress import _finite
+from hotroll.model.flow_stress import finite
 
 SQRT3 = math.sqrt(3.0)
 
@@ -91,10 +91,10 @@ class NoNeutralPointError(RuntimeError):
 
 
 # ----------------------------------------------------------------------------- friction laws
-def _check_pass(roll_radius, h0, h1):
-    R = _check_number("roll_radius", roll_radius, low=0.0, low_open=True)
-    h0 = _check_number("h0", h0, low=0.0, low_open=True)
-    h1 = _check_number("h1", h1, low=0.0, low_open=True)
+def check_pass(roll_radius, h0, h1):
+    R = check_number("roll_radius", roll_radius, low=0.0, low_open=True)
+    h0 = check_number("h0", h0, low=0.0, low_open=True)
+    h1 = check_number("h1", h1, low=0.0, low_open=True)
     if h1 >= h0:
         raise ValueError(f"h1 must be in (0, h0) = (0, {h0:g}), got {h1:g}")
     if R <= h0 - h1:
@@ -102,8 +102,8 @@ def _check_pass(roll_radius, h0, h1):
     return R, h0, h1
 
 
-def _check_number(name: str, value, low=None, high=None, low_open=False, high_open=False):
-    v = _finite(name, value)
+def check_number(name: str, value, low=None, high=None, low_open=False, high_open=False):
+    v = finite(name, value)
     lo_ok = low is None or (v > low if low_open else v >= low)
     hi_ok = high is None or (v < high if high_open else v <= high)
     if not (lo_ok and hi_ok):
@@ -122,7 +122,7 @@ class Coulomb:
     mu: float
 
     def __post_init__(self):
-        object.__setattr__(self, "mu", _check_number("mu", self.mu, low=0.0))
+        object.__setattr__(self, "mu", check_number("mu", self.mu, low=0.0))
 
     def shear(self, p: float, k: float) -> float:
         return min(self.mu * max(p, 0.0), k)
@@ -136,7 +136,7 @@ class Tresca:
 
     def __post_init__(self):
         object.__setattr__(self, "factor",
-                           _check_number("factor", self.factor, 0.0, 1.0, low_open=True))
+                           check_number("factor", self.factor, 0.0, 1.0, low_open=True))
 
     def shear(self, p: float, k: float) -> float:
         return self.factor * k
@@ -152,7 +152,7 @@ class Sticking:
 
 def constant_flow_stress(sigma: float) -> FlowStress:
     """Rate- and strain-independent flow stress sigma (Pa)."""
-    s = _check_number("sigma", sigma, low=0.0, low_open=True)
+    s = check_number("sigma", sigma, low=0.0, low_open=True)
     return lambda strain, strain_rate, temperature: s
 
 
@@ -294,21 +294,21 @@ def solve_pass(roll_radius: float, h0: float, h1: float, roll_speed: float, fric
     (uniaxial), temperature in K (uniform), tensions in Pa (tensile positive).
     Raises ValueError for invalid input, NoNeutralPointError when no steady state exists.
     """
-    R, h0, h1 = _check_pass(roll_radius, h0, h1)
-    U = _check_number("roll_speed", roll_speed, low=0.0, low_open=True)
+    R, h0, h1 = check_pass(roll_radius, h0, h1)
+    U = check_number("roll_speed", roll_speed, low=0.0, low_open=True)
     if not isinstance(friction, (Coulomb, Tresca, Sticking)):
         raise ValueError(f"friction must be Coulomb(mu), Tresca(factor) or Sticking(), "
                          f"got {friction!r}")
     if not callable(flow_stress):
         raise ValueError("flow_stress must be callable (strain, strain_rate, temperature) -> Pa")
-    T = _check_number("temperature", temperature, low=0.0, low_open=True)
-    e0 = _check_number("entry_strain", entry_strain, low=0.0)
-    sb = _check_number("back_tension", back_tension)
-    sf = _check_number("front_tension", front_tension)
+    T = check_number("temperature", temperature, low=0.0, low_open=True)
+    e0 = check_number("entry_strain", entry_strain, low=0.0)
+    sb = check_number("back_tension", back_tension)
+    sf = check_number("front_tension", front_tension)
     if geometry not in ("arc", "small_angle"):
         raise ValueError(f"geometry must be 'arc' or 'small_angle', got {geometry!r}")
-    w = _check_number("yield_offset", yield_offset, 0.0, 1.0, low_open=True)
-    n_profile = int(_check_number("n_profile", n_profile, low=3))
+    w = check_number("yield_offset", yield_offset, 0.0, 1.0, low_open=True)
+    n_profile = int(check_number("n_profile", n_profile, low=3))
     small = geometry == "small_angle"
 
     slip, iterations = 0.0, 0

@@ -35,7 +35,11 @@ from typing import Callable
 import numpy as np
 
 from hotroll.config.case import Case
-from hotroll.results.output import write_text
+from hotroll.model.flow_stress import NortonHoffStress
+from hotroll.results.compare_plot import plot_compare_profiles
+from hotroll.results.output import write_json, write_text
+from hotroll.theory import Coulomb, Sticking, Tresca, ford_alexander, sims, solve_pass
+from hotroll.workflows.runner import run_case
 
 SQRT3 = math.sqrt(3.0)
 
@@ -88,15 +92,12 @@ class SlabInputs:
 def _flow_law(case: Case):
     if hasattr(case.material, "flow_stress"):
         return case.material.flow_stress()
-    from hotroll.model.flow_stress import NortonHoffStress  # config without flow_stress()
 
     return NortonHoffStress(case.material.K, case.material.m, case.material.eps0)
 
 
 def slab_friction(case: Case):
     """(theory friction object, note) for the case's friction law."""
-    from hotroll.theory import Coulomb, Sticking, Tresca
-
     fr = case.friction
     if fr.law == "coulomb":
         return Coulomb(fr.mu), f"coulomb mu = {fr.mu:g} (tau = min(mu p, k), as the FE)"
@@ -140,8 +141,6 @@ def arc_mean_flow_stress(s: SlabInputs, exit_speed: float | None = None, n: int 
 
 def run_theory(case: Case) -> dict:
     """Slab (Orowan), Sims and Ford-Alexander for the case; a slab failure is recorded."""
-    from hotroll.theory import ford_alexander, sims, solve_pass
-
     s = map_case(case)
     out: dict = {"inputs": s, "slab": None, "slab_error": None, "sims": None,
                  "sims_error": None, "ford_alexander": None, "ford_alexander_error": None}
@@ -364,8 +363,6 @@ DEFINITIONS = [
 def run_compare(case: Case, out: Path, progress=None) -> dict:
     """Run the FE model and the slab theory on ``case``; write compare.csv/.md/.json/.png
     into ``out`` (the FE run in ``out/fe``). Returns the table and its context as a dict."""
-    from hotroll.workflows.runner import run_case
-
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     summary = run_case(case, out / "fe", progress=progress)
@@ -394,7 +391,6 @@ def run_compare(case: Case, out: Path, progress=None) -> dict:
         "files": {"fe": "fe/", "csv": "compare.csv", "md": "compare.md", "json": "compare.json",
                   "figure": "compare.png"},
     }
-    from hotroll.results.compare_plot import plot_compare_profiles
 
     try:
         plot_compare_profiles(contact, th["slab"], summary, out / "compare.png",
@@ -404,7 +400,6 @@ def run_compare(case: Case, out: Path, progress=None) -> dict:
         result["figure_error"] = f"{type(e).__name__}: {e}"
     _atomic(out / "compare.csv", _csv_text(rows))
     _atomic(out / "compare.md", _md_text(case, result))
-    from hotroll.results.output import write_json
 
     write_json(out / "compare.json", result)
     return result

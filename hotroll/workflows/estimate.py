@@ -19,6 +19,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hotroll.fem.mesh import MeshSpec, plate_fine_length, plate_zone, steady_zone, top_height
+from hotroll.solvers.settling import default_end_time
+from hotroll.solvers.steady import SteadySettings
+
 #: unknowns per triangle of Taylor-Hood P2/P1 (2 x (vertices + edges) + vertices)
 DOFS_PER_TRIANGLE = 4.5
 #: measured: the meshes hold this many times the integral's triangles (0.82-0.91 on 9 cases)
@@ -84,8 +88,6 @@ def available_bytes() -> float:
 def triangles(rp, h: float, h_far: float, x0: float, x1: float, fine_lo: float, fine_hi: float,
               core: float, grading: float) -> float:
     """The integral of the triangle density over the strip x in [x0, x1] (module docstring)."""
-    from hotroll.fem.mesh import top_height
-
     n = 400
     xs = np.linspace(x0, x1, 4 * n + 1)
     yt = top_height(rp, xs)
@@ -101,10 +103,6 @@ def triangles(rp, h: float, h_far: float, x0: float, x1: float, fine_lo: float, 
 def estimate(case) -> Estimate:
     """The estimate for a validated case (its method's mesh; the temperature's own mesh of a
     [thermal] case is small beside it and not counted)."""
-    from hotroll.fem.mesh import MeshSpec, plate_fine_length, plate_zone, steady_zone
-    from hotroll.solvers.settling import default_end_time
-    from hotroll.solvers.steady import SteadySettings
-
     rp, h = case.pass_.roll_pass(), case.mesh.h
     spec = MeshSpec(h=h, fine_length=0.0, h_far=case.mesh.h_far, grading=case.mesh.grading)
     far = max(spec.far(rp), h)

@@ -14,8 +14,13 @@ from typing import Callable
 
 import numpy as np
 
-from hotroll.config.case import Case, flat
-from hotroll.results.outcome import CONSERVATION_TOL, conservation_problem, leak_to_slip  # noqa: F401 (API)
+from hotroll.config.case import Case, CaseError, flat
+from hotroll.fem import quantities as Q
+from hotroll.fem.mesh import MeshSpec, plate_fine_length
+from hotroll.model.material import NortonHoff
+from hotroll.results.engineering import UNITS, gap_means, width_totals
+from hotroll.results.figures import plot_all
+from hotroll.results.outcome import CONSERVATION_TOL, conservation_problem, exit_code, leak_to_slip  # noqa: F401 (API)
 from hotroll.results.output import (
     vertex_fields,
     write_csv,
@@ -24,7 +29,12 @@ from hotroll.results.output import (
     write_text,
     write_vtk,
 )
+from hotroll.results.profiles import exit_profiles
 from hotroll.solvers.settling import default_end_time  # noqa: F401  (runner's API)
+from hotroll.solvers.steady import SteadyRun, SteadySettings
+from hotroll.solvers.thermal_coupling import THERMAL_UNITS
+from hotroll.solvers.transient import RollingModel, TransientRun, TransientSettings
+from hotroll.workflows.estimate import check
 
 AVERAGED = ("roll_force", "roll_torque", "roll_power", "forward_slip", "entry_velocity",
             "exit_velocity", "mass_flux_in", "mass_flux_out", "plastic_power", "friction_power",
@@ -42,13 +52,9 @@ def reference_material(case: Case):
     the case's flow-stress law at the plate temperature and entry strain (exactly the law for
     Norton-Hoff; for Hensel-Spittel m = m3 + m8 T and K_ref = K(entry strain, T), the strain
     dependence carried by the field K(strain)/K_ref, ``fem/rolling_form.py``)."""
-    from hotroll.model.material import NortonHoff
-
     flow, T = case.material.flow_stress(), case.plate.temperature
     m = float(flow.rate_exponent(T))
     if not 0.0 < m <= 1.0:
-        from hotroll.config.case import CaseError
-
         raise CaseError(f"plate.temperature: the flow-stress law's rate exponent is {m:.4g} at "
                         f"{T:g} K; it must be in (0, 1] (allowed temperatures for this law: "
                         f"{getattr(flow, 'admissible_temperature_range', lambda: '?')()} K)")
@@ -87,8 +93,6 @@ def exit_strain(case: Case, run) -> dict:
 
 def build_model(case: Case):
     """Translate the case description into the solver's model and settings."""
-    from hotroll.fem.mesh import MeshSpec, plate_fine_length
-    from hotroll.solvers.transient import RollingModel, TransientSettings
     sv = case.solver
     rp = case.pass_.roll_pass()
     h = case.mesh.h
@@ -122,8 +126,6 @@ def build_model(case: Case):
 
 def steady_settings(case: Case):
     """Settings of the direct steady solver (same a_f rule, tolerance and free-surface model)."""
-    from hotroll.solvers.steady import SteadySettings
-
     sv = case.solver
     return SteadySettings(
         tol=sv.tolerance, max_it=max(sv.max_iterations, 30),
@@ -175,9 +177,6 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
     has solved on the same mesh (``warm_start_from`` in the summary)."""
     import ngsolve
 
-    from hotroll.solvers.transient import TransientRun
-    from hotroll.workflows.estimate import check
-
     est = check(case)                     # ResourceError before anything is written or meshed
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -193,8 +192,6 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
     shift = 0.0
     if case.solver.method == "steady":
         from dataclasses import replace
-
-        from hotroll.solvers.steady import SteadyRun
 
         # solved in the roll's frame (axis at x = 0), written where the case puts the axis:
         # the numbers do not depend on roll_axis_x (issue 30)
@@ -218,15 +215,11 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
     wall = time.perf_counter() - t0
     summary = write_results(case, run, out, wall, extra)
     if case.output.figures:
-        from hotroll.results.figures import plot_all
-
         plot_all(out)
     return summary
 
 
 def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = None) -> dict:
-    from hotroll.fem import quantities as Q
-
     K, hist = run.model.material.K, run.state.history
     thermal = getattr(run, "thermal", None)
     columns = thermal.contact_columns() if thermal is not None else None
@@ -264,7 +257,6 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
         summary["converged"], summary["failure"] = False, problem
     if case.friction.law != "viscoplastic":
         summary["a_f"] = None            # the law has no a_f
-    from hotroll.results.engineering import UNITS, gap_means, width_totals
 
     x_start = float(prof["x"][0]) if len(prof["x"]) else run.model.rp.x_touch
     summary.update(gap_means(run.form, run.model.rp, x_start, K))
@@ -272,7 +264,6 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
                                 if summary.get("contact_length") else None)
     summary.update(width_totals(summary, case.pass_.width))
     summary["temperature"] = case.plate.temperature
-    from hotroll.results.profiles import exit_profiles
 
     profile = exit_profiles(run)
     summary["exit_profile"] = profile      # eta, temperature (K), strain (-) at the outlet
@@ -280,10 +271,8 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
         write_csv(out / "exit_profile.csv",
                   {k: np.asarray(v if v is not None else [math.nan] * len(profile["eta"]))
                    for k, v in profile.items()})
-    from hotroll.solvers.thermal_coupling import THERMAL_UNITS
 
     summary["units"] = {k: u for k, u in (UNITS | THERMAL_UNITS).items() if k in summary}
-    from hotroll.results.outcome import exit_code
 
     summary["exit_code"] = exit_code(summary)
     write_json(out / "summary.json", summary)
@@ -310,8 +299,6 @@ def _nanmean(values) -> float:
 
 def summarise(case: Case, run, prof: dict, wall: float) -> dict:
     """The summary.json dictionary: last-window means and run figures."""
-    from hotroll.fem import quantities as Q
-
     rp, state, last = run.model.rp, run.state, run.state.history[-1]
     # a step whose nonlinear solve did not converge (max_iterations reached) is not a solution:
     # its figures stay in history.csv but not in the means

@@ -23,8 +23,13 @@ from typing import Callable
 import numpy as np
 
 from hotroll.config.schedule import Schedule
+from hotroll.model.interpass import cool, enthalpy_mean
 from hotroll.model.profile import ThicknessProfile
+from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv, write_json
+from hotroll.results.schedule_plot import plot_schedule
+from hotroll.workflows.runner import finished_summary, run_case
+from hotroll.workflows.sweep import Sweep
 
 #: Units of the schedule table's columns.
 UNITS = {
@@ -71,8 +76,6 @@ def pass_case(sch: Schedule, k: int, state: StripState, omega: float | None = No
 
 def _enthalpy_mean(sch: Schedule, T: ThicknessProfile) -> float:
     """The profile's mean temperature by its heat content (K)."""
-    from hotroll.model.interpass import enthalpy_mean
-
     if T.is_uniform:
         return T.values[0]
     return enthalpy_mean(sch.material.thermal_properties(), np.asarray(T.values), T.weights())
@@ -93,8 +96,6 @@ def exit_state(sch: Schedule, case, summary: dict) -> StripState:
 
 def transport(sch: Schedule, k: int, state: StripState, exit_velocity: float):
     """The state after the k-th pass's transport, and its row (duration, heat lost)."""
-    from hotroll.model.interpass import cool
-
     tr = sch.passes[k].transport
     th = sch.thermal
     duration = tr.duration if tr.duration is not None else tr.distance / exit_velocity
@@ -117,8 +118,6 @@ def transport(sch: Schedule, k: int, state: StripState, exit_velocity: float):
 
 def _reuse(case, out: Path) -> dict | None:
     """A finished, converged pass's summary when its case file is the same (resume)."""
-    from hotroll.workflows.runner import finished_summary
-
     summary = finished_summary(case, out)
     if summary and summary.get("exit_code") == 0 and summary.get("exit_profile"):
         return summary
@@ -141,9 +140,6 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
                  figure: bool = True) -> list[dict]:
     """Roll the schedule into ``out``; returns the table's rows (module docstring).
     ``figure``: schedule.png (each pass's own figures follow its [output] figures)."""
-    from hotroll.workflows.runner import run_case
-    from hotroll.workflows.sweep import Sweep
-
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     say = progress or (lambda msg: None)
@@ -195,8 +191,6 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
         say(_line(row))
         _write(sch, out, rows, profiles, time.perf_counter() - t_start)
     if figure:
-        from hotroll.results.schedule_plot import plot_schedule
-
         plot_schedule(rows, out / "schedule.png", width=sch.strip.width)
     return rows
 
@@ -205,8 +199,6 @@ class ScheduleError(RuntimeError):
     """A pass that did not converge: the schedule stops there (the passes before are kept)."""
 
     def __init__(self, k: int, name: str, summary: dict, rows: list[dict] | None = None):
-        from hotroll.results.outcome import EXIT_CODES
-
         self.k, self.name, self.summary, self.rows = k, name, summary, rows or []
         code = summary.get("exit_code")
         super().__init__(f"pass {k + 1} ({name}) ended with exit code {code}: "

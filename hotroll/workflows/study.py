@@ -27,11 +27,19 @@ import traceback
 from pathlib import Path
 from typing import Callable
 
-from hotroll.config.case import CaseError
+from hotroll.config.case import CaseError, case_from_dict
+from hotroll.config.schedule import schedule_from_dict
 from hotroll.config.study import Study, StudyCase, expand, key_unit
+from hotroll.fem.free_surface import StripShape
 from hotroll.files import DiskFullError, atomic
+from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv, write_json, write_text
+from hotroll.results.study_plot import plot_profiles, plot_table
+from hotroll.solvers.steady import SteadyRun, WarmStart
 from hotroll.workflows.estimate import ResourceError
+from hotroll.workflows.runner import build_model, finished_summary, run_case, steady_settings
+from hotroll.workflows.schedule import ScheduleError, run_schedule
+from hotroll.workflows.sweep import Sweep, form_key, parameters
 
 #: status of a row: "done", "not_converged" (the run ended with a non-zero exit code),
 #: "bad_input" (the case schema refused the combination), "too_large" (the memory estimate is
@@ -43,8 +51,6 @@ def groups(cases: list[StudyCase], workers: int) -> list[list[StudyCase]]:
     """Groups of the valid cases, about two per worker; the cases on one mesh next to each
     other (ordered by ``sweep.form_key``, then by their combination), so that a group's case
     starts from its neighbour on the same mesh where it can."""
-    from hotroll.workflows.sweep import form_key
-
     def key(c: StudyCase):
         return (form_key(c.case) if hasattr(c.case, "pass_") else "", c.index)
 
@@ -58,10 +64,6 @@ def groups(cases: list[StudyCase], workers: int) -> list[list[StudyCase]]:
 
 def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
     """Solve a group's cases in this process (a dask task); one row per case."""
-    from hotroll.config.case import case_from_dict
-    from hotroll.workflows.runner import finished_summary, run_case
-    from hotroll.workflows.sweep import Sweep
-
     sweep = Sweep(similar=True, history=False) if warm else None
     rows, pending = [], None
     for item in items:
@@ -100,7 +102,6 @@ def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
                     save_warm(cdir / WARM_FILE, sweep.solved[-1][2])
             elif sweep is not None and (cdir / WARM_FILE).exists():
                 # the state it ended in, for the group's next case (as if solved just now)
-                from hotroll.workflows.sweep import parameters
 
                 warm_state = load_warm(cdir / WARM_FILE)
                 sweep.solved.append((case.name, parameters(case), warm_state))
@@ -140,9 +141,6 @@ def save_warm(path: Path, warm) -> None:
 def load_warm(path: Path):
     import numpy as np
 
-    from hotroll.fem.free_surface import StripShape
-    from hotroll.solvers.steady import WarmStart
-
     z = np.load(path)
     shape = StripShape(float(z["x_c"]), z["entry_x"], z["entry_y"], z["exit_x"], z["exit_y"])
     return WarmStart(z["solution"], shape, float(z["a_f"]), float(z["m"]), float(z["u_roll"]),
@@ -152,9 +150,6 @@ def load_warm(path: Path):
 def restore_run(case, warm):
     """A solved case's ``SteadyRun`` rebuilt from its case and final state (mesh, solution,
     strip shape): the start of a next case on another mesh (``transfer.SimilarPass``)."""
-    from hotroll.solvers.steady import SteadyRun
-    from hotroll.workflows.runner import build_model, steady_settings
-
     model, _ = build_model(case)
     run = SteadyRun(model, steady_settings(case), case.plate.length)
     run.form.problem.gf.vec.FV().NumPy()[:] = warm.solution
@@ -164,8 +159,6 @@ def restore_run(case, warm):
 
 
 def _reason(summary: dict) -> str:
-    from hotroll.results.outcome import EXIT_CODES
-
     code = summary.get("exit_code")
     text = f"{EXIT_CODES.get(code, '?')} (status {summary.get('status')})"
     return text + (f": {summary['failure']}" if summary.get("failure") else "")
@@ -198,9 +191,6 @@ PASS_KEYS = ("roll_force", "roll_torque", "roll_power", "forward_slip", "roll_su
 def run_schedule_item(item: dict, cdir: Path) -> dict:
     """A schedule study's case: the schedule rolled into ``cdir`` (finished passes read back);
     its row: per-pass columns and the schedule's totals."""
-    from hotroll.config.schedule import schedule_from_dict
-    from hotroll.workflows.schedule import ScheduleError, run_schedule
-
     sch = schedule_from_dict(item["schedule"])
     try:
         rows = run_schedule(sch, cdir, resume=True, figure=False)
@@ -332,7 +322,6 @@ def figures(study: Study, out: Path, rows: list[dict], units: dict[str, str]) ->
     """The study's figures drawn from its table (``[plot]``): study.png, study_profiles.png."""
     if study.plot is None:
         return []
-    from hotroll.results.study_plot import plot_profiles, plot_table
 
     made = []
     try:

@@ -15,6 +15,9 @@ import hashlib
 from dataclasses import dataclass, field
 
 from hotroll.config.case import Case, flat
+from hotroll.solvers.steady import SteadyRun
+from hotroll.solvers.transfer import SimilarPass
+from hotroll.workflows.runner import steady_settings
 
 #: Keys a kept SteadyRun may differ in: they enter as parameters or settings, not in the form.
 _RUN_FREE = ("name", "material.m", "material.K", "friction.a_f", "friction.a_f_max",
@@ -60,9 +63,6 @@ class Sweep:
 
     def steady_run(self, case: Case, model):
         """The previous run when only parameters differ, else a new SteadyRun."""
-        from hotroll.solvers.steady import SteadyRun
-        from hotroll.workflows.runner import steady_settings
-
         key, settings = form_key(case), steady_settings(case)
         if self._kept is not None and self._kept[0] == key:
             run = self._kept[1]
@@ -84,8 +84,6 @@ class Sweep:
         if not same:
             last = self._last
             if self.similar and last is not None and last[1].s.free_surface == run.s.free_surface:
-                from hotroll.solvers.transfer import SimilarPass
-
                 return last[0], SimilarPass(last[1], last[0])
             return None, None
         _, name, warm = min(same, key=lambda t: t[0])

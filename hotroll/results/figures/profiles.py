@@ -9,6 +9,7 @@ from typing import Sequence
 import matplotlib.pyplot as plt
 import numpy as np
 
+from hotroll.results.compare_plot import plot_compare_profiles
 from hotroll.results.figures.draw import draw_vline, not_available, run_title, save_figure
 from hotroll.results.figures.run_files import RunFiles, column
 
@@ -130,8 +131,6 @@ def fig_top(run: RunFiles, path: Path) -> Path | None:
 def fig_contact_angle(run: RunFiles, path: Path) -> Path | None:
     """Pressure and shear (MPa) over the roll angle: P1 projection, raw nodal values as dots,
     the axes fitted to the projection (off-scale raw values marked at the edge)."""
-    from hotroll.results.compare_plot import plot_compare_profiles
-
     if run.contact is None or column(run.contact, "angle") is None:
         return None
     return plot_compare_profiles(run.contact, None, run.summary, path, fe_only=True,
