@@ -99,12 +99,12 @@ def base_for(section: str, key: str) -> dict:
 
 def test_the_bases_are_valid():
     for section, model in SECTIONS.items():
-        for key in C._fields(model):
+        for key in C.fields_of(model):
             C.case_from_dict(base_for(section, key))
 
 
 # --- the schema, read back ----------------------------------------------------------------------
-SECTIONS = {name: C._model_of(C.Case, name) for name in C._fields(C.Case)
+SECTIONS = {name: C._model_of(C.Case, name) for name in C.fields_of(C.Case)
             if C._model_of(C.Case, name) is not None}
 
 
@@ -144,7 +144,7 @@ def kind(info) -> dict:
 
 
 FIELDS = [(section, key, info) for section, model in SECTIONS.items()
-          for key, info in C._fields(model).items()]
+          for key, info in C.fields_of(model).items()]
 _NUM = r"-?\d+(?:\.\d+)?(?:e[+-]?\d+)?"
 _OPS = {">": "gt", ">=": "ge", "<": "lt", "<=": "le"}
 
@@ -290,11 +290,11 @@ def test_a_bad_value_is_refused_naming_its_field(field, data):
        key=st.from_regex(r"[a-z][a-z0-9_]{0,14}", fullmatch=True), value=st.integers())
 def test_an_unknown_key_is_refused_naming_it(section, key, value):
     d = copy.deepcopy(BASE)
-    if key in C._fields(SECTIONS[section]):
+    if key in C.fields_of(SECTIONS[section]):
         return
     d[section][key] = value
     assert refused(d) == [f"{section}.{key}: unknown key (allowed: "
-                          f"{', '.join(C._fields(SECTIONS[section]))})"]
+                          f"{', '.join(C.fields_of(SECTIONS[section]))})"]
 
 
 @FAST
@@ -302,7 +302,7 @@ def test_an_unknown_key_is_refused_naming_it(section, key, value):
        section=st.sampled_from(sorted(SECTIONS)),
        table=st.one_of(st.integers(), st.text(max_size=5), st.lists(st.integers(), max_size=2)))
 def test_an_unknown_section_or_a_section_that_is_no_table_is_refused(key, section, table):
-    if key not in C._fields(C.Case):
+    if key not in C.fields_of(C.Case):
         d = copy.deepcopy(BASE)
         d[key] = {"x": 1}
         assert [p.split(" (")[0] for p in refused(d)] == [f"{key}: unknown section or key"]

@@ -28,6 +28,7 @@ from hotroll.results.engineering import display
 from hotroll.results.figures import plot_compare
 from hotroll.results.outcome import EXIT_CODES, exit_code
 from hotroll.results.output import write_csv
+from hotroll.results.units import UNITS
 from hotroll.workflows.compare import run_compare
 from hotroll.workflows.estimate import ResourceError, check
 from hotroll.workflows.runner import run_case
@@ -42,11 +43,6 @@ SUMMARY_KEYS = ["status", "free_surface", "h_contact", "neutral_point", "neutral
 #: With [thermal]: shown after the mechanics' figures (units from summary.json's ``units``).
 THERMAL_KEYS = ["exit_temperature_mean", "exit_temperature_surface", "plastic_heat",
                 "friction_heat_to_strip", "heat_to_roll", "heat_to_air", "heat_balance_error"]
-#: Units of what the command line prints (per unit width of the upper roll).
-UNITS = {"h_contact": "m", "neutral_point": "m", "neutral_angle": "rad", "sticking_zone": "rad",
-         "roll_force": "N/m",
-         "roll_torque": "N m/m", "roll_power": "W/m", "forward_slip": "-", "a_f": "m^-m",
-         "balance_error": "-", "wall_time_s": "s", "time": "s", "m": "-"}
 
 PROGRESS_KEYS = ["step", "time", "m", "a_f", "iterations", "roll_force", "neutral_angle",
                  "forward_slip", "message"]

@@ -20,7 +20,8 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 from pydantic.fields import FieldInfo
 
 from hotroll.config.base import MESH_TABLE, CaseError, Problems, Section, fields_of
-from hotroll.config.laws import FrictionConfig, MaterialConfig
+from hotroll.config.friction import FrictionConfig
+from hotroll.config.material import MaterialConfig
 from hotroll.config.sections import (  # noqa: F401 (re-exported)
     MAX_LENGTH,
     ContactConfig,

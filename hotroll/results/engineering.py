@@ -12,28 +12,7 @@ import math
 
 from hotroll.fem.forms import strain_rate
 from hotroll.model.material import edot_squared
-
-#: Unit of each summary key (SI; per unit width where the key is per unit width).
-UNITS: dict[str, str] = {
-    "roll_force": "N/m", "roll_torque": "N m/m", "roll_power": "W/m", "horizontal_force": "N/m",
-    "forward_slip": "-", "neutral_angle": "rad", "neutral_point": "m", "contact_length": "m",
-    "entry_velocity": "m/s", "exit_velocity": "m/s", "mass_flux_in": "m^2/s",
-    "mass_flux_out": "m^2/s", "plastic_power": "W/m", "friction_power": "W/m",
-    "penalty_power": "W/m", "outlet_penalty_power": "W/m", "tension_power": "W/m",
-    "a_f": "m^-m", "balance_error": "-", "power_balance_error": "-", "penalty_share": "-",
-    "mass_flux_error": "-", "symmetry_stress_force_y": "N/m", "free_top_force_share": "-",
-    "h_contact": "m", "wall_time_s": "s", "estimated_memory": "B", "estimated_seconds": "s",
-    "time": "s", "dt": "s", "K": "Pa s^m", "m": "-",
-    "roll_centre": "m", "roll_radius": "m", "roll_surface_speed": "m/s",
-    "contact_start": "m", "contact_end": "m", "back_tension": "Pa", "front_tension": "Pa",
-    "exit_strain": "-", "homogeneous_exit_strain": "-", "mean_flow_stress": "Pa",
-    "mean_strain_rate": "1/s", "mean_pressure": "Pa", "width": "m", "roll_force_total": "N",
-    "roll_torque_total": "N m", "roll_power_total": "W", "mill_power": "W",
-    "temperature": "K", "surface_residual_h": "h", "force_balance": "N/m",
-    "neutral_angle_flux": "rad", "sticking_zone": "rad",
-    "contact_start_angle": "rad", "contact_end_angle": "rad", "min_contact_pressure": "Pa",
-    "leak_to_slip": "-", "exit_thickness": "m", "pressure_last_update": "Pa",
-}
+from hotroll.results.units import UNITS  # noqa: F401 (the table lives there)
 
 
 def gap_means(form, rp, x_start: float, K: float) -> dict:

@@ -14,7 +14,7 @@ import re
 import tomllib
 from pathlib import Path
 
-from hotroll.results.engineering import UNITS
+from hotroll.results.units import UNITS
 
 #: Summary keys of the table, by group (the remaining numbers follow under "other").
 GROUPS = {
@@ -115,7 +115,7 @@ def show(key: str, value, unit: str) -> dict | None:
 
 
 def unit_of(key: str, units: dict) -> str:
-    """A summary key's SI unit: summary.json's ``units``, else engineering.UNITS, else "-"."""
+    """A summary key's SI unit: summary.json's ``units``, else results/units.py, else "-"."""
     return units.get(key) or UNITS.get(key) or "-"
 
 

@@ -8,7 +8,6 @@ import math
 from pathlib import Path
 from urllib.parse import quote
 
-from hotroll.results.engineering import UNITS
 from hotroll.results.report_run import (
     LABELS,
     case_inputs,
@@ -18,6 +17,7 @@ from hotroll.results.report_run import (
     run_warnings,
     scale,
 )
+from hotroll.results.units import UNITS
 
 #: A study's result columns shown (when the table has them), after the varied keys.
 STUDY_KEYS = ("roll_force", "roll_force_total", "roll_torque", "forward_slip", "neutral_angle",
@@ -37,10 +37,6 @@ SHORT = {"roll_force": "roll force", "roll_force_total": "roll force, whole widt
          "next_entry_temperature_mean": "next entry T", "fe_solves": "FE solves",
          "wall_time": "wall time", "max_roll_force": "largest roll force",
          "total_roll_power": "roll power, all passes"}
-#: Units of STUDY_KEYS that neither study.json (written by hotroll study: every column's) nor
-#: engineering.UNITS holds (a study directory without study.json; solvers/thermal_coupling.py has
-#: the first).
-_MORE_UNITS = {"exit_temperature_mean": "K", "nonlinear_iterations": "-"}
 #: Columns of study.csv that are not a varied key (a row's bookkeeping).
 _BOOK = ("worker", "status", "exit_code", "reason", "resumed")
 #: every status but "done" is a failure (not_converged, bad_input, too_large, error, ...)
@@ -93,7 +89,7 @@ def study_context(d: Path, title: str | None = None) -> dict:
     keys = [k for k in STUDY_KEYS if any(finite(r.get(k)) for r in rows)]
     cols = ([column(k, [r.get(k) for r in rows], units.get(k, ""), label=k) for k in varied]
             + [column(k, [r.get(k) for r in rows],
-                      units.get(k) or UNITS.get(k) or _MORE_UNITS.get(k, "-")) for k in keys])
+                      units.get(k) or UNITS.get(k, "-")) for k in keys])
     table = [{"case": str(r.get("case")), "status": str(r.get("status")),
               "index": int(r["index"]) if finite(r.get("index")) else i,
               "failed": r.get("status") != DONE, "reason": r.get("reason") or "",

@@ -337,11 +337,3 @@ class ThermalCoupling(FlowStressFeedback):
 HEAT_FLOWS = ("plastic_heat", "friction_heat_to_strip", "heat_to_roll", "heat_to_air",
               "advected_in", "advected_out", "conducted_in", "heat_balance_error")
 
-#: Units of the thermal figures in summary.json and history.csv.
-THERMAL_UNITS = {
-    "exit_temperature_mean": "K", "exit_temperature_surface": "K", "max_temperature": "K",
-    "min_temperature": "K", "plastic_heat": "W/m", "friction_heat_to_strip": "W/m",
-    "heat_to_roll": "W/m", "heat_to_air": "W/m", "advected_in": "W/m", "advected_out": "W/m",
-    "conducted_in": "W/m", "heat_balance_error": "-", "thermal_iterations": "-",
-    "thermal_dofs": "-", "thermal_layer": "m",
-}

@@ -18,7 +18,7 @@ from hotroll.config.case import Case, CaseError, flat
 from hotroll.fem import quantities as Q
 from hotroll.fem.mesh import MeshSpec, plate_fine_length
 from hotroll.model.material import NortonHoff
-from hotroll.results.engineering import UNITS, gap_means, width_totals
+from hotroll.results.engineering import gap_means, width_totals
 from hotroll.results.figures import plot_all
 from hotroll.results.outcome import CONSERVATION_TOL, conservation_problem, exit_code, leak_to_slip  # noqa: F401 (API)
 from hotroll.results.output import (
@@ -30,9 +30,9 @@ from hotroll.results.output import (
     write_vtk,
 )
 from hotroll.results.profiles import exit_profiles
+from hotroll.results.units import UNITS
 from hotroll.solvers.settling import default_end_time  # noqa: F401  (runner's API)
 from hotroll.solvers.steady import SteadyRun, SteadySettings
-from hotroll.solvers.thermal_coupling import THERMAL_UNITS
 from hotroll.solvers.transient import RollingModel, TransientRun, TransientSettings
 from hotroll.workflows.estimate import check
 
@@ -64,7 +64,7 @@ def reference_material(case: Case):
 
 def strain_dependent(flow) -> bool:
     """Whether the flow stress depends on the strain (a strain field is then carried)."""
-    return any(getattr(flow, k, 0.0) != 0.0 for k in ("m2", "m4", "m5", "m6", "m7"))
+    return bool(flow.depends_on_strain)
 
 
 def exit_strain(case: Case, run) -> dict:
@@ -272,7 +272,7 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
                   {k: np.asarray(v if v is not None else [math.nan] * len(profile["eta"]))
                    for k, v in profile.items()})
 
-    summary["units"] = {k: u for k, u in (UNITS | THERMAL_UNITS).items() if k in summary}
+    summary["units"] = {k: u for k, u in UNITS.items() if k in summary}
 
     summary["exit_code"] = exit_code(summary)
     write_json(out / "summary.json", summary)

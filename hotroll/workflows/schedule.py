@@ -28,23 +28,9 @@ from hotroll.model.profile import ThicknessProfile
 from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv, write_json
 from hotroll.results.schedule_plot import plot_schedule
+from hotroll.results.units import UNITS
 from hotroll.workflows.runner import finished_summary, run_case
 from hotroll.workflows.sweep import Sweep
-
-#: Units of the schedule table's columns.
-UNITS = {
-    "entry_thickness": "m", "exit_thickness": "m", "reduction": "-", "roll_radius": "m",
-    "roll_surface_speed": "m/s", "roll_angular_velocity": "rad/s", "roll_force": "N/m",
-    "roll_torque": "N m/m", "roll_power": "W/m", "roll_force_total": "N",
-    "roll_torque_total": "N m", "mill_power_total": "W", "forward_slip": "-",
-    "entry_velocity": "m/s", "exit_velocity": "m/s", "mass_flux": "m^2/s",
-    "entry_temperature_mean": "K", "exit_temperature_mean": "K", "outlet_temperature_mean": "K",
-    "exit_temperature_surface": "K", "entry_strain_mean": "-", "exit_strain_mean": "-",
-    "homogeneous_exit_strain": "-", "newton_iterations": "-", "fe_solves": "-",
-    "wall_time": "s", "transport_duration": "s", "transport_heat_lost": "J/m^2",
-    "next_entry_temperature_mean": "K", "next_entry_temperature_surface": "K",
-    "next_entry_strain_mean": "-",
-}
 
 
 class StripState:

@@ -35,6 +35,7 @@ from hotroll.files import DiskFullError, atomic
 from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv, write_json, write_text
 from hotroll.results.study_plot import plot_profiles, plot_table
+from hotroll.results.units import UNITS
 from hotroll.solvers.steady import SteadyRun, WarmStart
 from hotroll.workflows.estimate import ResourceError
 from hotroll.workflows.runner import build_model, finished_summary, run_case, steady_settings
@@ -178,10 +179,6 @@ def _payload(group: list[StudyCase]) -> list[dict]:
             for c in group]
 
 
-#: units of a schedule study's own columns (its totals; per pass, those it has no unit for)
-ROW_UNITS = {"passes": "-", "exit_thickness": "m", "outlet_temperature_mean": "K",
-             "exit_temperature_mean": "K", "exit_strain_mean": "-", "max_roll_force": "N/m",
-             "total_roll_power": "W/m", "fe_solves": "-", "wall_time_s": "s"}
 
 #: a schedule study's columns per pass (``<pass name>.<key>``)
 PASS_KEYS = ("roll_force", "roll_torque", "roll_power", "forward_slip", "roll_surface_speed",
@@ -293,7 +290,7 @@ def run_study(study: Study, base: dict, out: Path, *, scheduler: str | None = No
 def column_units(out: Path, rows: list[dict], varied: dict[str, str]) -> dict[str, str]:
     """The unit of every column of the table: the varied keys' (``varied``), the summary's
     from the first finished case (a schedule's ``schedule.json``, a pass's column
-    ``F1.roll_force`` with the unit of ``roll_force``), a schedule row's own (``ROW_UNITS``)."""
+    ``F1.roll_force`` with the unit of ``roll_force``), a schedule row's own (``results/units.py``)."""
     units = {}
     for r in rows:
         cdir = Path(out) / "cases" / str(r.get("case"))
@@ -301,7 +298,7 @@ def column_units(out: Path, rows: list[dict], varied: dict[str, str]) -> dict[st
         if r.get("status") == "done" and found:
             units = dict(json.loads(found[0].read_text()).get("units", {}))
             if found[0].name == "schedule.json":
-                units = {**ROW_UNITS, **units}
+                units = {**UNITS, **units}
             break
     cols = {k for r in rows for k in r}
     units.update({c: units[c.split(".")[-1]] for c in cols

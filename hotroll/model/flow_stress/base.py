@@ -1,4 +1,6 @@
-"""Flow-stress laws sigma_f(strain, strain rate, temperature) and their secant viscosity.
+"""The interface of the flow-stress laws sigma_f(strain, strain rate, temperature) and their
+secant viscosity; the laws themselves are one module each (``norton_hoff.py``,
+``hensel_spittel.py``, ``misaka.py``), registered by name in ``registry.py``.
 
 Every law here has one interface, and every method works on Python floats, numpy arrays and
 NGSolve CoefficientFunctions alike (any argument may be a CoefficientFunction; the result is then
@@ -27,19 +29,12 @@ sqrt(3/2 s:s) = mu sqrt(3/2 eps_dot:eps_dot) = mu (3/2) edot; asking it to equal
 gives mu.  At edot -> 0, edot is replaced by sqrt(edot^2 + eps0^2) as in (2.21), so that for the
 Norton-Hoff law ``viscosity`` is exactly :meth:`hotroll.model.material.NortonHoff.viscosity`.
 
-Hensel-Spittel, Spittel's form (Spittel & Spittel, Landolt-Boernstein VIII/2C, 2009):
-
-    sigma = A e^(m1 T) T^m9 eps^m2 e^(m4/eps) (1+eps)^(m5 T + m6) e^(m7 eps) edot^(m3 + m8 T)
-
-with T in deg C *inside the formula* (as the fits are published; ``temperature`` is converted,
-T_C = T_K - 273.15) and A in Pa (published tables give MPa: multiply by 1e6).  m6 is not in
-Spittel's form; it is kept (default 0) because the Freiberg/pyroll variant has it.
-
 Evaluation outside the fit (policy, stated once here):
 
-* strain below ``strain_min`` is raised to ``strain_min`` (> 0).  The law has eps^m2 (-> 0) and
-  e^(m4/eps) (-> 0 or inf) at eps = 0, but the entry of the roll gap has zero strain and the
-  material there has a finite, non-zero yield stress.  Default ``strain_min`` = the lower strain
+* strain below ``strain_min`` is raised to ``strain_min`` (> 0) in the laws with a power of the
+  strain (Hensel-Spittel's eps^m2 and e^(m4/eps), Misaka's eps^0.21 go to 0 or inf at eps = 0):
+  the entry of the roll gap has zero strain and the material there has a finite, non-zero yield
+  stress.  Default ``strain_min`` = the lower strain
   bound of the fit's validity range when it is known, else :data:`DEFAULT_STRAIN_MIN` = 0.03 (the
   lower strain bound of the Landolt-Boernstein Al99.5 fit in :mod:`hotroll.model.grades`, the
   only LB range we could read).  Below the floor the law is therefore strain independent: the
@@ -50,14 +45,8 @@ Evaluation outside the fit (policy, stated once here):
   viscosity cannot represent.  This extrapolation is *not* silent: :meth:`range_report` and
   :meth:`in_range` tell, point by point, whether a state lies inside the published ranges, and
   :meth:`in_range` refuses (ValueError) to answer for a law whose ranges are unknown.
-* the rate exponent must lie in (0, 1] (Norton-Hoff requirement: monotone, at most linear).  For
-  HS it is m3 + m8 T_C, so it is checked at construction over the validity temperature range
-  when known, and at every numeric call of :meth:`viscosity`; for CoefficientFunctions it cannot
-  be checked pointwise, use :meth:`HenselSpittel.admissible_temperature_range`.
-
-The pyroll-freiberg-flow-stress package evaluates the same formula at (eps + 0.1, edot + 0.1)
-("baseStrain/baseStrainRate").  We keep Spittel's original form; pyroll's value at (eps, edot, T)
-equals ``HenselSpittel.sigma(eps + 0.1, edot + 0.1, T)`` here (tested).
+* the rate exponent must lie in (0, 1] (Norton-Hoff requirement: monotone, at most linear).  It
+  is checked at every numeric call of :meth:`viscosity`, and by each law where it depends on T.
 """
 from __future__ import annotations
 
@@ -80,13 +69,13 @@ Range = Tuple[float, float]
 
 
 # --- backends: numpy or NGSolve ------------------------------------------------------------------
-def _is_cf(x) -> bool:
+def is_cf(x) -> bool:
     """True if ``x`` is an NGSolve CoefficientFunction (GridFunction, Parameter, ... included)."""
     ng = sys.modules.get("ngsolve")  # nothing can be a CF if ngsolve was never imported
     return ng is not None and isinstance(x, ng.CoefficientFunction)
 
 
-class _NumpyOps:
+class NumpyOps:
     exp = staticmethod(np.exp)
     log = staticmethod(np.log)
 
@@ -105,7 +94,7 @@ class _NumpyOps:
         return np.asarray(x, float)
 
 
-class _NgOps:
+class NgOps:
     @staticmethod
     def exp(x):
         import ngsolve
@@ -129,17 +118,17 @@ class _NgOps:
         return x
 
 
-def _ops(*xs):
-    return _NgOps if any(_is_cf(x) for x in xs) else _NumpyOps
+def backend(*xs):
+    return NgOps if any(is_cf(x) for x in xs) else NumpyOps
 
 
-def _op_for(x):
+def backend_of(x):
     """Backend for one argument (so that a float strain is floored with numpy even if T is a CF)."""
-    return _NgOps if _is_cf(x) else _NumpyOps
+    return NgOps if is_cf(x) else NumpyOps
 
 
-def _is_numeric(x) -> bool:
-    return not _is_cf(x)
+def is_numeric(x) -> bool:
+    return not is_cf(x)
 
 
 def finite(name: str, value) -> float:
@@ -207,6 +196,8 @@ class FlowStressLaw:
     eps0: float = DEFAULT_EPS0
     validity: ValidityRange = ValidityRange()
     name: str = ""
+    #: the law depends on the strain: the solvers then carry the strain with the material
+    depends_on_strain: bool = False
 
     # -- to implement
     def sigma(self, strain, strain_rate, temperature):  # pragma: no cover - abstract
@@ -217,6 +208,11 @@ class FlowStressLaw:
         """Local strain-rate sensitivity m = d ln sigma / d ln edot (may depend on T only)."""
         raise NotImplementedError
 
+    def admissible_temperature_range(self) -> Range:
+        """Temperatures (K) where the rate exponent lies in (0, 1]: all of them for a constant
+        exponent (the laws whose exponent depends on T override it)."""
+        return (0.0, math.inf)
+
     # -- derived, common to all laws
     def consistency(self, strain, temperature):
         """K (Pa s^m) of the Norton-Hoff law equal to this one at (strain, T) for every edot.
@@ -225,7 +221,7 @@ class FlowStressLaw:
         all laws here are pure power laws in edot at fixed (strain, T).
         """
         m = self.rate_exponent(temperature)
-        ops = _ops(m, strain, temperature)
+        ops = backend(m, strain, temperature)
         return self.sigma(strain, 1.0, temperature) / ops.exp(0.5 * LN3 * (m + 1.0))
 
     def viscosity(self, edot2, strain=None, temperature=None, m=None):
@@ -239,11 +235,11 @@ class FlowStressLaw:
         law's rate exponent leaves (0, 1].
         """
         m_law = self.rate_exponent(temperature)
-        if _is_numeric(m_law):
-            _check_exponent(m_law, temperature)
+        if is_numeric(m_law):
+            check_exponent(m_law, temperature)
         K = self.consistency(strain, temperature)
         mm = m_law if m is None else m
-        ops = _ops(edot2, mm, K)
+        ops = backend(edot2, mm, K)
         return 2.0 * K * ops.exp(0.5 * (mm - 1.0) * (LN3 + ops.log(edot2 + self.eps0**2)))
 
     def power_density(self, edot, strain=None, temperature=None):
@@ -264,15 +260,15 @@ class FlowStressLaw:
         any of the three ranges is unknown.
         """
         vals = {"strain": strain, "strain_rate": strain_rate, "temperature": temperature}
-        if any(_is_cf(v) for v in vals.values()):
+        if any(is_cf(v) for v in vals.values()):
             raise TypeError("range_report needs numeric values, not CoefficientFunctions")
         out: dict[str, Any] = {}
         for key, v in vals.items():
             r = getattr(self.validity, key)
             a = np.asarray(v, float)
-            out[key] = None if r is None else _scalar_or_array((a >= r[0]) & (a <= r[1]))
+            out[key] = None if r is None else scalar_or_array((a >= r[0]) & (a <= r[1]))
         known = [out[k] for k in vals]
-        out["inside"] = None if any(k is None for k in known) else _scalar_or_array(
+        out["inside"] = None if any(k is None for k in known) else scalar_or_array(
             np.logical_and.reduce(np.broadcast_arrays(*[np.asarray(k) for k in known])))
         return out
 
@@ -295,12 +291,12 @@ class FlowStressLaw:
         return {"law": type(self).__name__}
 
 
-def _scalar_or_array(a):
+def scalar_or_array(a):
     a = np.asarray(a)
     return bool(a) if a.ndim == 0 else a
 
 
-def _check_exponent(m, temperature):
+def check_exponent(m, temperature):
     a = np.asarray(m, float)
     bad = ~((a > 0.0) & (a <= 1.0))
     if np.any(bad):
@@ -311,175 +307,3 @@ def _check_exponent(m, temperature):
             f"{t[bad].ravel()[:3]} K")
 
 
-# --- Norton-Hoff ---------------------------------------------------------------------------------
-class NortonHoffStress(FlowStressLaw):
-    """sigma_f = K 3^((m+1)/2) edot^m (2.17), independent of strain and temperature.
-
-    K in Pa s^m, 0 < m <= 1, eps0 > 0 (1/s).  ``viscosity`` equals
-    :meth:`hotroll.model.material.NortonHoff.viscosity` for the same (K, m, eps0).
-    """
-
-    def __init__(self, K: float, m: float, eps0: float = DEFAULT_EPS0, *,
-                 validity: Optional[ValidityRange] = None, name: str = "Norton-Hoff"):
-        self.K = finite("K", K)
-        if not self.K > 0.0:
-            raise ValueError(f"K must be > 0 (Pa s^m), got {K!r}")
-        self.m = finite("m", m)
-        if not 0.0 < self.m <= 1.0:
-            raise ValueError(f"m (rate exponent) must lie in (0, 1], got {m!r}")
-        self.eps0 = finite("eps0", eps0)
-        if not self.eps0 > 0.0:
-            raise ValueError(f"eps0 must be > 0 (1/s), got {eps0!r}")
-        self.validity = validity if validity is not None else ValidityRange()
-        self.name = name
-
-    def sigma(self, strain, strain_rate, temperature=None):
-        r = _op_for(strain_rate).prep(strain_rate)
-        return self.K * 3.0 ** ((self.m + 1.0) / 2.0) * r**self.m  # CF ** float works in NGSolve
-
-    def rate_exponent(self, temperature=None):
-        return self.m
-
-    def consistency(self, strain=None, temperature=None):
-        return self.K
-
-    def describe(self) -> dict:
-        return {
-            "law": "NortonHoff",
-            "formula": "sigma = K 3^((m+1)/2) edot^m",
-            "K_Pa_s^m": self.K,
-            "m": self.m,
-            "eps0_1_per_s": self.eps0,
-            "validity": self.validity.as_dict(),
-            "units": {"sigma": "Pa", "strain_rate": "1/s", "temperature": "K"},
-        }
-
-
-# --- Hensel-Spittel ------------------------------------------------------------------------------
-class HenselSpittel(FlowStressLaw):
-    """Hensel-Spittel law in Spittel's form (see the module docstring for formula and policy).
-
-    Parameters
-    ----------
-    A : float
-        Pa (> 0).  Published tables give MPa: pass ``A_MPa * 1e6``.
-    m1, m2, m3, m4, m5, m7, m8, m9 : float
-        As published, for T in deg C inside the formula.  m6 (keyword only, default 0) is the
-        Freiberg/pyroll extra exponent of (1 + eps).
-    validity : ValidityRange, optional
-        The fit's published ranges (temperature in K).
-    strain_min : float, optional
-        Strain floor (> 0); default: lower strain bound of ``validity``, else 0.03.
-    eps0 : float
-        Regularisation strain rate of :meth:`viscosity` (1/s).
-    """
-
-    PARAMS = ("A", "m1", "m2", "m3", "m4", "m5", "m6", "m7", "m8", "m9")
-
-    def __init__(self, A: float, m1: float = 0.0, m2: float = 0.0, m3: float = 0.0,
-                 m4: float = 0.0, m5: float = 0.0, m7: float = 0.0, m8: float = 0.0,
-                 m9: float = 0.0, *, m6: float = 0.0, validity: Optional[ValidityRange] = None,
-                 strain_min: Optional[float] = None, eps0: float = DEFAULT_EPS0, name: str = ""):
-        self.A = finite("A", A)
-        if not self.A > 0.0:
-            raise ValueError(f"A must be > 0 (Pa), got {A!r}")
-        for key, val in (("m1", m1), ("m2", m2), ("m3", m3), ("m4", m4), ("m5", m5), ("m6", m6),
-                         ("m7", m7), ("m8", m8), ("m9", m9)):
-            setattr(self, key, finite(key, val))
-        self.eps0 = finite("eps0", eps0)
-        if not self.eps0 > 0.0:
-            raise ValueError(f"eps0 must be > 0 (1/s), got {eps0!r}")
-        self.validity = validity if validity is not None else ValidityRange()
-        if strain_min is None:
-            s = self.validity.strain
-            strain_min = s[0] if s is not None and s[0] > 0 else DEFAULT_STRAIN_MIN
-        self.strain_min = finite("strain_min", strain_min)
-        if not self.strain_min > 0.0:
-            raise ValueError(f"strain_min must be > 0, got {strain_min!r}")
-        self.name = name
-        # rate exponent m3 + m8 T_C in (0, 1]: over the validity temperatures when known
-        lo, hi = self.admissible_temperature_range()  # raises if empty
-        t = self.validity.temperature
-        if t is not None and not (lo <= t[0] and t[1] <= hi
-                                  and self._m_ok(t[0]) and self._m_ok(t[1])):
-            raise ValueError(
-                f"rate exponent m3 + m8*T_C must lie in (0, 1] over the validity temperature range "
-                f"{t} K; it is {self.rate_exponent(t[0]):.4g} .. {self.rate_exponent(t[1]):.4g}"
-                f" (admissible T: {lo:.6g} .. {hi:.6g} K)")
-        if self.m9 != 0.0 and t is not None and t[0] <= CELSIUS_OFFSET:
-            raise ValueError(f"m9 != 0 needs T_C > 0 (T > {CELSIUS_OFFSET} K) over the validity "
-                             f"temperature range, got {t} K")
-
-    # -- helpers
-    def _m_ok(self, T_K: float) -> bool:
-        m = self.rate_exponent(T_K)
-        return 0.0 < m <= 1.0
-
-    def admissible_temperature_range(self) -> Range:
-        """Open/closed interval of T (K) where the rate exponent m3 + m8 T_C lies in (0, 1].
-
-        Raises ValueError (naming m3/m8) if there is none with T > 0 K.
-        """
-        m3, m8 = self.m3, self.m8
-        if m8 == 0.0:
-            if not 0.0 < m3 <= 1.0:
-                raise ValueError(f"rate exponent m3 (with m8 = 0) must lie in (0, 1], got {m3!r}")
-            return (0.0, math.inf)
-        t0 = -m3 / m8 + CELSIUS_OFFSET          # m = 0
-        t1 = (1.0 - m3) / m8 + CELSIUS_OFFSET   # m = 1
-        lo, hi = (t0, t1) if m8 > 0 else (t1, t0)
-        lo = max(lo, 0.0)
-        if not lo < hi:
-            raise ValueError(f"rate exponent m3 + m8*T_C (m3={m3}, m8={m8}) is nowhere in (0, 1] "
-                             f"for T > 0 K")
-        return (lo, hi)
-
-    # -- the law
-    def rate_exponent(self, temperature):
-        ops = _op_for(temperature)
-        T_C = ops.prep(temperature) - CELSIUS_OFFSET
-        return self.m3 + self.m8 * T_C
-
-    def sigma(self, strain, strain_rate, temperature):
-        ops = _ops(strain, strain_rate, temperature)
-        T_C = _op_for(temperature).prep(temperature) - CELSIUS_OFFSET
-        eps = _op_for(strain).floor(_op_for(strain).prep(strain), self.strain_min)
-        rate = _op_for(strain_rate).prep(strain_rate)
-        ln_eps = _op_for(strain).log(eps)
-        ln_1eps = _op_for(strain).log(1.0 + eps)
-        with np.errstate(divide="ignore"):  # edot = 0 gives sigma = 0 (log -> -inf, exp -> 0)
-            ln_rate = _op_for(strain_rate).log(rate)
-        expo = (self.m1 * T_C                                # e^(m1 T)
-                + self.m2 * ln_eps                           # eps^m2
-                + self.m4 / eps                              # e^(m4/eps)
-                + (self.m5 * T_C + self.m6) * ln_1eps        # (1+eps)^(m5 T + m6)
-                + self.m7 * eps                              # e^(m7 eps)
-                + (self.m3 + self.m8 * T_C) * ln_rate)       # edot^(m3 + m8 T)
-        if self.m9 != 0.0:
-            expo = expo + self.m9 * _op_for(temperature).log(T_C)  # T^m9
-        return self.A * ops.exp(expo)
-
-    def params(self) -> dict:
-        return {k: getattr(self, k) for k in self.PARAMS}
-
-    def describe(self) -> dict:
-        return {
-            "law": "HenselSpittel",
-            "name": self.name,
-            "formula": ("sigma = A e^(m1 T) T^m9 eps^m2 e^(m4/eps) (1+eps)^(m5 T + m6) e^(m7 eps) "
-                        "edot^(m3 + m8 T), T in degC"),
-            "parameters": self.params(),
-            "parameter_units": {"A": "Pa", "m1": "1/degC", "m5": "1/degC", "m8": "1/degC",
-                                "others": "1"},
-            "validity": self.validity.as_dict(),
-            "strain_min": self.strain_min,
-            "eps0_1_per_s": self.eps0,
-            "admissible_temperature_K": self.admissible_temperature_range(),
-            "out_of_range_policy": ("strain floored at strain_min; strain, rate and temperature "
-                                    "otherwise extrapolated by the formula; see in_range()"),
-            "units": {"sigma": "Pa", "strain_rate": "1/s", "temperature": "K"},
-        }
-
-    def __repr__(self) -> str:
-        p = ", ".join(f"{k}={v!r}" for k, v in self.params().items() if v != 0.0 or k == "A")
-        return f"HenselSpittel({p}, strain_min={self.strain_min!r}, name={self.name!r})"

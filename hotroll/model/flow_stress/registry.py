@@ -1,0 +1,64 @@
+"""The flow-stress laws by name: what a case file's ``[material] law = "..."`` selects.
+
+A law module declares its parameters (name, text, unit, allowed range) and how to build the law
+from them, and registers itself here; the case schema (``config/friction.py``), the documentation
+and the command line read the registry, so adding a law is its own module, its test and a line
+in docs/theory.md.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+from hotroll.model.flow_stress.base import FlowStressLaw
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One parameter of a law as the case file gives it (SI units; ``unit`` as printed)."""
+
+    name: str
+    text: str
+    unit: str
+    allowed: str
+    required: bool = True
+    gt: float | None = None
+    ge: float | None = None
+    lt: float | None = None
+    le: float | None = None
+
+
+@dataclass(frozen=True)
+class LawSpec:
+    """A flow-stress law for the case file.
+
+    ``build(values, eps0)``: the law from the given parameters (a dict of those given, SI) and
+    the regularisation strain rate eps0 (1/s). ``check(values)``: cross-parameter problems as
+    (parameter, message) pairs, before anything is solved. ``source``: the published source.
+    """
+
+    name: str
+    summary: str
+    source: str
+    parameters: tuple[Parameter, ...]
+    build: Callable[[dict, float], FlowStressLaw]
+    check: Callable[[dict], list[tuple[str, str]]] | None = None
+
+
+#: Registered laws by the name a case file uses.
+LAWS: dict[str, LawSpec] = {}
+
+
+def register(spec: LawSpec) -> LawSpec:
+    """Add ``spec`` to :data:`LAWS` (a name once; a parameter name means one thing in all laws)."""
+    if spec.name in LAWS:
+        raise ValueError(f"flow-stress law {spec.name!r} registered twice")
+    for other in LAWS.values():
+        for p in spec.parameters:
+            for q in other.parameters:
+                if p.name == q.name and (p.unit, p.gt, p.ge, p.lt, p.le) != (q.unit, q.gt, q.ge,
+                                                                              q.lt, q.le):
+                    raise ValueError(f"parameter {p.name!r} of {spec.name!r} differs from "
+                                     f"{other.name!r}'s")
+    LAWS[spec.name] = spec
+    return spec
