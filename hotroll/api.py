@@ -15,8 +15,6 @@ back what the run wrote to its directory (``summary.json``, ``contact.csv``, ``t
 """
 from __future__ import annotations
 
-import csv
-import json
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -29,6 +27,7 @@ from hotroll.config.schedule import load_schedule
 from hotroll.config.study import load_study
 from hotroll.examples import EXAMPLES, example_path, find_study, schedule_path
 from hotroll.results.figures import plot_all
+from hotroll.results.run_dir import RunDir
 from hotroll.workflows.runner import run_case
 from hotroll.workflows.schedule import run_schedule
 from hotroll.workflows.study import run_study
@@ -63,8 +62,9 @@ def solve(case: Case, out: str | Path | None = None, *, resume: bool = False) ->
 def open_result(out: str | Path) -> Result:
     """The result a run wrote to ``out``."""
     out = Path(out)
-    summary = json.loads((out / "summary.json").read_text())
-    return Result(out, summary, _csv(out / "contact.csv"), _csv(out / "top.csv"))
+    files = RunDir(out)
+    return Result(out, files.summary(), files.table("contact.csv") or {},
+                  files.table("top.csv") or {})
 
 
 def study(study_file: str | Path, out: str | Path, *, workers: int | None = None,
@@ -83,25 +83,6 @@ def roll_schedule(schedule_file: str | Path, out: str | Path, *,
     path = Path(schedule_file)
     sch = load_schedule(path if path.exists() else schedule_path(str(schedule_file)))
     return run_schedule(sch, Path(out), figure=figure)
-
-
-def _csv(path: Path) -> dict[str, np.ndarray]:
-    """A written CSV as numpy columns (numbers as float, empty cells NaN)."""
-    if not path.exists():
-        return {}
-    with open(path, newline="") as fh:
-        rows = list(csv.reader(fh))
-    if not rows:
-        return {}
-    head, body = rows[0], rows[1:]
-    cols = {}
-    for j, name in enumerate(head):
-        vals = [r[j] if j < len(r) else "" for r in body]
-        try:
-            cols[name] = np.array([float(v) if v != "" else np.nan for v in vals])
-        except ValueError:
-            cols[name] = np.array(vals, dtype=object)
-    return cols
 
 
 @dataclass

@@ -41,7 +41,7 @@ from _common import list_arg, print_table
 
 from hotroll.config.case import Case, CaseError, case_from_dict, load_case
 from hotroll.results.output import write_csv
-from hotroll.workflows.compare import _read_contact
+from hotroll.results.run_dir import RunDir
 
 SQRT3 = math.sqrt(3.0)
 LH = [2.0, 4.0, 6.0]
@@ -234,7 +234,7 @@ def fe_diagnostics(case: Case, fe_dir: Path, summary: dict, slab) -> dict:
     out: dict[str, Any] = {}
     try:
         f = np.load(fe_dir / "fields.npz")
-        c = _read_contact(fe_dir / "contact.csv")
+        c = RunDir(fe_dir).table("contact.csv")
     except OSError:
         return out
     if c is None:
@@ -417,7 +417,7 @@ def case_row(lh: float, r: float, mu: float, case: Case, res: dict, out: Path) -
     variants = slab_variants(case, slab_v1)
     slab_obj = variants.pop("slab")
     row.update(variants)
-    row["fe_stick_share"] = fe_stick_share(_read_contact(out / "fe" / "contact.csv"), mu)
+    row["fe_stick_share"] = fe_stick_share(RunDir(out / "fe").table("contact.csv"), mu)
     if fe == "ok":
         row.update(fe_diagnostics(case, out / "fe", summ, slab_obj))
     w = row.get("pq_over_2k")

@@ -590,7 +590,7 @@ class _Pass:
 
 
 def test_continuation_path_by_hand():
-    from hotroll.solvers.steady import continuation_path
+    from hotroll.solvers.steady_settings import continuation_path
 
     # n = ceil(log2(1/m)) geometric steps 1 -> m (each at most a factor 2)
     assert continuation_path(0.5) == pytest.approx([0.5], rel=1e-14)              # n = 1
@@ -608,7 +608,7 @@ def test_continuation_path_by_hand():
 
 
 def test_default_lengths_by_hand():
-    from hotroll.solvers.steady import default_lengths
+    from hotroll.solvers.steady_settings import default_lengths
 
     # max(l_c, 4 h0/2), max(l_c, 4 h1/2): a long contact wins both
     assert default_lengths(_Pass(0.2, 0.01, 0.008)) == pytest.approx((0.2, 0.2))

@@ -25,8 +25,6 @@ Same quantities, checked definitions (per unit width, SI):
 """
 from __future__ import annotations
 
-import csv
-import io
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -36,8 +34,17 @@ import numpy as np
 
 from hotroll.config.case import Case
 from hotroll.model.flow_stress import NortonHoffStress
-from hotroll.results.compare_plot import plot_compare_profiles
+from hotroll.results.compare_table import (
+    COLUMNS,
+    DEFINITIONS,
+    REGIME_NOTE,
+    SIMS_MEAN_NOTE,
+    csv_text,
+    md_text,
+)
+from hotroll.results.figures.slab import plot_compare_profiles
 from hotroll.results.output import write_json, write_text
+from hotroll.results.run_dir import RunDir
 from hotroll.theory import Coulomb, Sticking, Tresca, ford_alexander, sims, solve_pass
 from hotroll.workflows.runner import run_case
 
@@ -45,23 +52,6 @@ SQRT3 = math.sqrt(3.0)
 
 #: Ford & Alexander's simplified formula in ``theory/ford_alexander.py`` and Sims' closed form
 #: keep Sims' assumptions (sticking, small angles, a constant mean 2k, homogeneous slabs).
-REGIME_NOTE = ("Regimes: Sims (1954) is the thin-strip closed form (sticking friction, small "
-               "angles, constant mean flow stress, homogeneous slabs), meant for L/h_mean > ~1. "
-               "Ford-Alexander is shown for the thicker passes, L/h_mean < ~1; caveat "
-               "(theory/ford_alexander.py): the simplified form used, p_mean/2k = pi/4 + "
-               "L/(4 h_mean), is a linearisation of Sims and does not reproduce the load rise "
-               "of thick plates (L/h_mean below ~0.5-1, indentation-like deformation). Both "
-               "are for sticking friction and are shown whatever the case's friction law.")
-
-SIMS_MEAN_NOTE = ("Sims and Ford-Alexander take the mean uniaxial flow stress along the arc: "
-                  "sigma_mean = (1/alpha) int_0^alpha sigma_f(strain(phi), strain_rate(phi), T) "
-                  "dphi (mean over the roll angle) along the slab's homogeneous-compression path "
-                  "(strain = entry_strain + 2/sqrt3 ln(h0/h), strain rate = 2/sqrt3 v |dh/dx| / h "
-                  "with v = v1 h1/h, v1 the slab's exit speed, or omega R if the slab solve "
-                  "failed); 2k = 2 sigma_mean/sqrt3.")
-
-
-# ----------------------------------------------------------------------------- mapping
 @dataclass(frozen=True)
 class SlabInputs:
     """The case mapped onto :func:`hotroll.theory.solve_pass` (SI, full thicknesses)."""
@@ -162,17 +152,6 @@ def run_theory(case: Case) -> dict:
 
 
 # ----------------------------------------------------------------------------- FE side
-def _read_contact(path: Path) -> dict[str, np.ndarray] | None:
-    if not path.is_file():
-        return None
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    if not rows:
-        return None
-    return {k: np.array([float(r[k]) if r[k] not in ("", None) else math.nan for r in rows])
-            for k in rows[0]}
-
-
 def fe_quantities(summary: dict, contact: dict | None, h_contact: float) -> dict:
     """Scalar FE figures for the table (SI), from summary.json and contact.csv."""
     q = {"roll_force": summary.get("roll_force"), "roll_torque": summary.get("roll_torque"),
@@ -199,9 +178,6 @@ def fe_quantities(summary: dict, contact: dict | None, h_contact: float) -> dict
 
 
 # ----------------------------------------------------------------------------- table
-COLUMNS = ["quantity", "unit", "FE", "slab (Orowan)", "Sims", "Ford-Alexander", "FE/slab", "note"]
-
-
 def _f(v):
     if v is None:
         return None
@@ -276,97 +252,13 @@ def _slab_mean_flow_stress(slab) -> float:
     return float(np.trapezoid(sig, slab.angle) / slab.contact_angle)
 
 
-# ----------------------------------------------------------------------------- writing
-def _atomic(path: Path, text: str) -> None:
-    write_text(path, text)
-
-
-def _fmt(v) -> str:
-    if v is None:
-        return "-"
-    if v == 0.0:
-        return "0"
-    a = abs(v)
-    return f"{v:.4g}" if 1e-3 <= a < 1e5 else f"{v:.4e}"
-
-
-def _csv_text(rows: list[dict]) -> str:
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(COLUMNS)
-    for r in rows:
-        w.writerow(["" if r[c] is None else (repr(r[c]) if isinstance(r[c], float) else r[c])
-                    for c in COLUMNS])
-    return buf.getvalue()
-
-
-def _md_text(case: Case, result: dict) -> str:
-    rows, s = result["rows"], result["inputs"]
-    head = "| " + " | ".join(COLUMNS) + " |"
-    lines = [f"# FE versus slab theory: {case.name}", "",
-             "Per unit width, SI units (unit of each row in its label). FE: hotroll "
-             f"({result['fe']['method']} solver, status {result['fe']['status']}, converged "
-             f"{result['fe']['converged']}, h_contact = {result['fe']['h_contact']:.4g} m), "
-             f"files in `fe/`.", "",
-             head, "|" + "---|" * len(COLUMNS)]
-    for r in rows:
-        lines.append("| " + " | ".join(
-            [r["quantity"], r["unit"]] + [_fmt(r[c]) for c in COLUMNS[2:7]] + [r["note"]]) + " |")
-    lines += ["", "## Inputs of the theory (mapped from the case)", ""]
-    lines += [f"- roll radius R = {s['roll_radius_m']:g} m; thicknesses (full) h0 = "
-              f"{s['h0_m (full)']:g} m, h1 = {s['h1_m (full)']:g} m; roll surface speed "
-              f"omega R = {s['roll_speed_m_per_s (omega R)']:g} m/s",
-              f"- tensions: back {s['back_tension_Pa']:g} Pa, front {s['front_tension_Pa']:g} Pa "
-              "(slab only; Sims and Ford-Alexander have none)",
-              f"- flow stress: the case's law, sigma_f(strain, strain rate, T) in Pa "
-              f"({_law_text(s['flow_stress'])}), T = {s['temperature_K']:g} K, entry strain "
-              f"{s['entry_strain']:g}",
-              f"- slab friction: {result['slab_friction']}",
-              f"- {SIMS_MEAN_NOTE}",
-              f"- {REGIME_NOTE}"]
-    if result["slab_error"]:
-        lines += ["", f"**Slab (Orowan) not solved:** {result['slab_error']}"]
-    for key in ("sims_error", "ford_alexander_error"):
-        if result.get(key):
-            lines += ["", f"**{key.split('_error')[0]} not evaluated:** {result[key]}"]
-    lines += ["", "## Definitions (checked in the code)", ""] + [f"- {d}" for d in DEFINITIONS]
-    return "\n".join(lines) + "\n"
-
-
-def _law_text(d) -> str:
-    if isinstance(d, dict):
-        keys = [k for k in d if k not in ("validity", "units")]
-        return ", ".join(f"{k} = {d[k]}" for k in keys)
-    return str(d)
-
-
-DEFINITIONS = [
-    "FE roll force = summary.json `roll_force` = -int T_y ds over the upper roll contact "
-    "(fem/quantities.py `integrals`, docs/theory.md 4.2): the vertical force of the upper roll "
-    "on the strip. The FE models the upper half strip, which is all the upper roll touches, so "
-    "this is one roll's separating force; the slab `force` is the same (vertical force on one "
-    "roll, R int (p cos phi - s tau sin phi) dphi). No factor 2.",
-    "FE roll torque = `roll_torque` = int tau r ds of the upper roll; slab `torque` = "
-    "R^2 int (-s) tau dphi per roll. FE `roll_power` is one roll; slab `power` is both rolls "
-    "(the table halves it).",
-    "Neutral angle: both from the roll's vertical centre line, positive towards the entry. "
-    "Forward slip: both (v_exit - omega R)/(omega R); the slab's is h_n cos(phi_n)/h1 - 1 "
-    "(uniform velocity over the section at the neutral point), the FE's the mean exit velocity.",
-    "FE pressure = -normal_stress of contact.csv (the contact penalty's reaction, Pa, negative "
-    "= compressive, written as positive pressure here); the peak is taken from "
-    "`normal_stress_smooth` (P1 projection along the arc); the raw nodal peak is a separate row.",
-    "Mean pressure = roll force / projected contact length (FE: the x extent of its contact, "
-    "which starts where the free entry top meets the roll).",
-]
-
-
 def run_compare(case: Case, out: Path, progress=None) -> dict:
     """Run the FE model and the slab theory on ``case``; write compare.csv/.md/.json/.png
     into ``out`` (the FE run in ``out/fe``). Returns the table and its context as a dict."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     summary = run_case(case, out / "fe", progress=progress)
-    contact = _read_contact(out / "fe" / "contact.csv")
+    contact = RunDir(out / "fe").table("contact.csv")
     fe = fe_quantities(summary, contact, float(summary.get("h_contact") or case.mesh.h))
     th = run_theory(case)
     rows = build_table(case, fe, th)
@@ -398,8 +290,8 @@ def run_compare(case: Case, out: Path, progress=None) -> dict:
     except Exception as e:  # a figure must not lose the table
         result["files"]["figure"] = None
         result["figure_error"] = f"{type(e).__name__}: {e}"
-    _atomic(out / "compare.csv", _csv_text(rows))
-    _atomic(out / "compare.md", _md_text(case, result))
+    write_text(out / "compare.csv", csv_text(rows))
+    write_text(out / "compare.md", md_text(case, result))
 
     write_json(out / "compare.json", result)
     return result

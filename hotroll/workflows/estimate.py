@@ -21,7 +21,7 @@ import numpy as np
 
 from hotroll.fem.mesh import MeshSpec, plate_fine_length, plate_zone, steady_zone, top_height
 from hotroll.solvers.settling import default_end_time
-from hotroll.solvers.steady import SteadySettings
+from hotroll.solvers.steady_settings import SteadySettings
 
 #: unknowns per triangle of Taylor-Hood P2/P1 (2 x (vertices + edges) + vertices)
 DOFS_PER_TRIANGLE = 4.5

@@ -36,7 +36,8 @@ from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv, write_json, write_text
 from hotroll.results.study_plot import plot_profiles, plot_table
 from hotroll.results.units import UNITS
-from hotroll.solvers.steady import SteadyRun, WarmStart
+from hotroll.solvers.steady import SteadyRun
+from hotroll.solvers.steady_settings import WarmStart
 from hotroll.workflows.estimate import ResourceError
 from hotroll.workflows.runner import build_model, finished_summary, run_case, steady_settings
 from hotroll.workflows.schedule import ScheduleError, run_schedule

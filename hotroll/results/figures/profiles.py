@@ -9,9 +9,9 @@ from typing import Sequence
 import matplotlib.pyplot as plt
 import numpy as np
 
-from hotroll.results.compare_plot import plot_compare_profiles
 from hotroll.results.figures.draw import draw_vline, not_available, run_title, save_figure
 from hotroll.results.figures.run_files import RunFiles, column
+from hotroll.results.figures.slab import plot_compare_profiles
 
 
 def profile_panel(ax, x, y, ylabel: str, title: str, what: str, **style) -> None:

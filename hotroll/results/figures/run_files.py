@@ -2,14 +2,12 @@
 top.csv, history.csv, fields.npz; any may be missing."""
 from __future__ import annotations
 
-import csv
-import json
-import math
-import warnings
 from pathlib import Path
 
 import numpy as np
 from matplotlib.tri import Triangulation
+
+from hotroll.results.run_dir import RunDir
 
 Table = dict  # column name -> 1D float array
 
@@ -19,67 +17,6 @@ Table = dict  # column name -> 1D float array
 # ---------------------------------------------------------------------------
 # loading
 # ---------------------------------------------------------------------------
-
-def load_summary(out_dir: Path) -> dict:
-    path = Path(out_dir) / "summary.json"
-    if not path.is_file():
-        return {}
-    try:
-        with open(path) as f:
-            data = json.load(f)
-    except (OSError, ValueError) as exc:
-        warnings.warn(f"could not read {path}: {exc}")
-        return {}
-    return data if isinstance(data, dict) else {}
-
-
-def to_float(text: str) -> float:
-    text = text.strip()
-    if text.lower() in ("true", "false"):
-        return float(text.lower() == "true")
-    try:
-        return float(text)
-    except ValueError:
-        return math.nan
-
-
-def load_csv(out_dir: Path, name: str) -> Table | None:
-    """Read a comma separated file with a header line into {column: array}.
-
-    Returns None if the file is missing or holds no data rows.
-    """
-    path = Path(out_dir) / name
-    if not path.is_file():
-        return None
-    with open(path, newline="") as f:
-        reader = csv.reader(f, skipinitialspace=True)
-        rows = [r for r in reader if r and any(c.strip() for c in r)]
-    if len(rows) < 2:
-        return None
-    header = [h.strip() for h in rows[0]]
-    cols: dict[str, list[float]] = {h: [] for h in header}
-    for row in rows[1:]:
-        for h, cell in zip(header, row):
-            cols[h].append(to_float(cell))
-        for h in header[len(row):]:
-            cols[h].append(math.nan)
-    return {h: np.asarray(v, dtype=float) for h, v in cols.items()}
-
-
-def load_fields(out_dir: Path) -> dict | None:
-    path = Path(out_dir) / "fields.npz"
-    if not path.is_file():
-        return None
-    try:
-        with np.load(path, allow_pickle=False) as data:
-            fields = {k: np.asarray(data[k]) for k in data.files}
-    except (OSError, ValueError) as exc:
-        warnings.warn(f"could not read {path}: {exc}")
-        return None
-    if "points" not in fields or "triangles" not in fields:
-        return None
-    return fields
-
 
 def column(table: Table | None, name: str) -> np.ndarray | None:
     if table is None:
@@ -92,11 +29,12 @@ class RunFiles:
 
     def __init__(self, out_dir: Path):
         self.dir = Path(out_dir)
-        self.summary = load_summary(self.dir)
-        self.contact = load_csv(self.dir, "contact.csv")
-        self.top = load_csv(self.dir, "top.csv")
-        self.history = load_csv(self.dir, "history.csv")
-        self.fields = load_fields(self.dir)
+        files = RunDir(self.dir)
+        self.summary = files.summary(strict=False)
+        self.contact = files.table("contact.csv")
+        self.top = files.table("top.csv")
+        self.history = files.table("history.csv")
+        self.fields = files.fields()
 
     # -- derived quantities ---------------------------------------------
     @property

@@ -11,16 +11,10 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from hotroll.files import atomic  # noqa: E402
-
-DPI = 120
+from hotroll.results.figures.draw import save_figure
 
 
 def _clip_limits(ax, curves, raw, pad=0.12):
@@ -102,11 +96,4 @@ def plot_compare_profiles(contact: dict | None, slab, summary: dict, out_png: Pa
     _clip_limits(ap, pcurves, praw)
     _clip_limits(at, tcurves, traw)
     fig.suptitle(title)
-    out_png = Path(out_png)
-    out_png.parent.mkdir(parents=True, exist_ok=True)
-    try:
-        with atomic(out_png) as tmp:
-            fig.savefig(tmp, dpi=DPI)
-    finally:
-        plt.close(fig)
-    return out_png
+    return save_figure(fig, out_png)

@@ -1,0 +1,248 @@
+"""A solved run become its summary and files: ``summary.json`` (means over the last window of
+the history, leaving out unconverged steps; contact figures; checks and the exit code), the
+profiles, fields and history (docs/reference/summary.md). Positions are written where the case
+puts the roll axis (the steady solver works in the roll's frame)."""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from hotroll.config.case import Case
+from hotroll.fem import quantities as Q
+from hotroll.results.engineering import gap_means, width_totals
+from hotroll.results.outcome import conservation_problem, exit_code, leak_to_slip
+from hotroll.results.output import vertex_fields, write_csv, write_json, write_npz, write_vtk
+from hotroll.results.profiles import exit_profiles
+from hotroll.results.units import UNITS
+
+#: The history figures the summary averages over the last window.
+AVERAGED = ("roll_force", "roll_torque", "roll_power", "forward_slip", "entry_velocity",
+            "exit_velocity", "mass_flux_in", "mass_flux_out", "plastic_power", "friction_power",
+            "penalty_power", "outlet_penalty_power", "horizontal_force", "neutral_angle", "tension_power",
+            "contact_length", "a_f", "strain_rate_measure", "slip_measure")
+#: The thermal figures of the history rows that the summary averages (with a [thermal] section).
+THERMAL_AVERAGED = ("exit_temperature_mean", "exit_temperature_surface", "max_temperature",
+                    "min_temperature", "plastic_heat", "friction_heat_to_strip", "heat_to_roll",
+                    "heat_to_air", "advected_in", "advected_out", "conducted_in",
+                    "heat_balance_error")
+
+
+def exit_strain(case: Case, run) -> dict:
+    """Mean strain of the exit strip beside the homogeneous strain entry + 2/sqrt3 ln(h0/h1)
+    of plane-strain compression: steady strip, x in X_roll + [0.25, 0.75] D with D = max(l_c,
+    2 h1) (the downstream length, where it is rigid); report's scheme, the material past
+    X_roll + 2h that was ahead of the bite at the start (it has crossed the whole arc)."""
+    rp, pa = run.model.rp, case.pass_      # the run's frame (steady: the roll's, axis at 0)
+    homog = case.plate.mean_entry_strain + 2.0 / math.sqrt(3.0) * math.log(
+        pa.entry_thickness / pa.exit_thickness)
+    field = getattr(run, "strain", None)
+    if field is None:
+        return {"exit_strain": None, "homogeneous_exit_strain": homog}
+    D = max(rp.contact_length, 4.0 * rp.half_exit)
+    if hasattr(run, "advance"):
+        # the report's scheme: the material past the gap that was ahead of the bite at the
+        # start (it has crossed the whole arc; the head was in the gap from t = 0)
+        nv = run.mesh.nv
+        x_now = run.top.X0[:, 0] + run.d[:nv]
+        mask = (x_now > rp.axis_x + 2.0 * run.model.h) & (run.top.X0[:, 0] < rp.x_touch)
+        value = field.mean_where(mask) if mask.any() else float("nan")
+    else:
+        value = field.mean_between(rp.axis_x + 0.25 * D, rp.axis_x + 0.75 * D)
+    return {"exit_strain": value, "homogeneous_exit_strain": homog}
+
+
+def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = None) -> dict:
+    K, hist = run.model.material.K, run.state.history
+    thermal = getattr(run, "thermal", None)
+    columns = thermal.contact_columns() if thermal is not None else None
+    prof = Q.contact_profile(run.form, run.top, run.d, K, columns)
+    exact = run.form.exact     # exact contact: the raw multiplier needs no exit correction
+    prof["normal_stress_corrected"] = (Q.exit_corrected(prof, run.model.h)
+                                      if case.solver.exit_pressure_correction and not exact
+                                      else prof["normal_stress"])
+    prof["normal_stress_smooth"] = Q.smoothed(prof, prof["normal_stress"])
+    prof["shear_stress_smooth"] = Q.smoothed(prof, prof["shear_stress"])
+    # positions are written where the case puts the roll axis (``frame_shift``: the steady
+    # solver works in the roll's frame)
+    shift = getattr(run, "frame_shift", 0.0)
+    write_csv(out / "contact.csv", {**prof, "x": prof["x"] + shift})
+    top_columns = {"temperature": columns["temperature"]} if columns else None
+    top = Q.top_profile(run.form, run.top, run.d, top_columns)
+    write_csv(out / "top.csv", {**top, "x": top["x"] + shift})
+    write_csv(out / "history.csv", [{**r, **{k: r[k] + shift for k in ("neutral_x", "head_x")
+                                             if k in r}} for r in hist])
+    fields = vertex_fields(run)
+    fields["points"] = fields["points"] + [shift, 0.0]
+    write_npz(out / "fields.npz", **fields)
+    if thermal is not None:                   # the temperature's own (finer) strip mesh
+        strip = thermal.strip_fields()
+        strip["points"] = strip["points"] + [shift, 0.0]
+        write_npz(out / "thermal.npz", **strip)
+    if case.output.vtk:
+        write_vtk(run, out / "fields.vtu", shift=shift)
+    summary = summarise(case, run, prof, wall) | (extra or {})
+    shift_positions(summary, shift)
+    summary["leak_to_slip"] = leak_to_slip(summary)
+    problem = conservation_problem(summary) if summary["converged"] else None
+    summary["not_conserved"] = problem is not None
+    if problem:
+        summary["converged"], summary["failure"] = False, problem
+    if case.friction.law != "viscoplastic":
+        summary["a_f"] = None            # the law has no a_f
+
+    x_start = float(prof["x"][0]) if len(prof["x"]) else run.model.rp.x_touch
+    summary.update(gap_means(run.form, run.model.rp, x_start, K))
+    summary["mean_pressure"] = (summary["roll_force"] / summary["contact_length"]
+                                if summary.get("contact_length") else None)
+    summary.update(width_totals(summary, case.pass_.width))
+    summary["temperature"] = case.plate.temperature
+
+    profile = exit_profiles(run)
+    summary["exit_profile"] = profile      # eta, temperature (K), strain (-) at the outlet
+    if profile is not None:
+        write_csv(out / "exit_profile.csv",
+                  {k: np.asarray(v if v is not None else [math.nan] * len(profile["eta"]))
+                   for k, v in profile.items()})
+
+    summary["units"] = {k: u for k, u in UNITS.items() if k in summary}
+
+    summary["exit_code"] = exit_code(summary)
+    write_json(out / "summary.json", summary)
+    return summary
+
+
+def shift_positions(summary: dict, shift: float) -> None:
+    """Move the summary's x positions by ``shift`` (the roll's frame to the case's)."""
+    if not shift:
+        return
+    for key in ("neutral_point", "roll_centre", "contact_start", "contact_end"):
+        if summary.get(key) is not None:
+            summary[key] = [summary[key][0] + shift, summary[key][1]]
+    summary["contact_loss"] = [[a + shift, b + shift] for a, b in summary["contact_loss"]]
+
+
+def _nanmean(values) -> float:
+    """The mean of the finite values; NaN if there is none (the transient scheme's advected
+    flows, which a Lagrangian plate does not have)."""
+    vals = np.asarray(values, dtype=float)
+    vals = vals[np.isfinite(vals)]
+    return float(vals.mean()) if len(vals) else math.nan
+
+
+def summarise(case: Case, run, prof: dict, wall: float) -> dict:
+    """The summary.json dictionary: last-window means and run figures."""
+    rp, state, last = run.model.rp, run.state, run.state.history[-1]
+    # a step whose nonlinear solve did not converge (max_iterations reached) is not a solution:
+    # its figures stay in history.csv but not in the means
+    window = state.history[-run.window:]
+    solved = [r for r in window if r.get("solver_converged", True)] or window
+    steady_solver = case.solver.method == "steady"
+    mean = {k: float(np.nanmean([r[k] for r in solved])) if any(
+        math.isfinite(r[k]) for r in solved) else math.nan for k in AVERAGED}
+    # the neutral angle: the split of the slip's signs (``Q.neutral_index``). Where it lies in
+    # a sticking zone (slip below 1e-3 U) in which the slip changes sign more than once, the
+    # sign is noise and no point is neutral: null with the reason. The flux's (slab) neutral
+    # angle, which needs no slip sign, is given beside it
+    ang = mean["neutral_angle"]
+    ang_flux = Q.flux_neutral_angle(rp, mean["mass_flux_in"])
+    stick = Q.sticking_zone(prof, rp.u_roll, 2.0 * run.model.h)
+    in_stick = stick is not None and math.isfinite(ang) and (
+        stick[1] - run.model.h / rp.radius <= ang <= stick[0] + run.model.h / rp.radius)
+    flips = Q.slip_sign_changes(prof, stick) if in_stick else 0
+    no_neutral = (
+        f"the slip changes sign {flips} times in the sticking zone {stick[0]:.4g} .. "
+        f"{stick[1]:.4g} rad (|v_s| below {Q.STICKING_FLOOR:g} of the roll speed): the strip "
+        "moves with the roll, no point is neutral") if flips > 1 else None
+    cx, cy = rp.centre
+    outlet_driven = mean["outlet_penalty_power"] < -0.05 * mean["plastic_power"]
+    steady = state.status == "steady"
+    exact = run.form.exact
+    # exact contact: every tensile node of the raw multiplier (bilateral), and the stretch of the
+    # arc the strip has left (unilateral); penalties: stretches of 2h of the corrected stress
+    loss = Q.contact_loss(prof, prof["normal_stress_corrected"], 0.0 if exact else 2.0 * run.model.h)
+    active = getattr(run, "active", None)
+    if active is not None and len(prof["x"]):
+        gap = rp.centre[0]
+        if prof["x"][-1] < gap - 1e-9 * rp.radius:
+            loss.append([float(prof["x"][-1]), float(gap)])
+    contact_figures = {
+        "contact_method": run.form.contact,
+        "unilateral": active is not None,
+        "active_set_changes": active.changes if active is not None else None,
+        "active_set_cycled": bool(active.cycled) if active is not None else None,
+        "contact_start_angle": float(prof["angle"][0]) if len(prof["angle"]) else None,
+        "contact_end_angle": float(prof["angle"][-1]) if len(prof["angle"]) else None,
+        "min_contact_pressure": float(-np.max(prof["normal_stress"]))
+        if len(prof["normal_stress"]) else None,
+    }
+    sn_raw, sn_cor = prof["normal_stress"], prof["normal_stress_corrected"]
+    seg = np.hypot(np.diff(prof["x"]), np.diff(prof["y"])) if len(prof["x"]) > 1 else []
+    trap = (lambda f: float(np.sum(0.5 * (f[1:] + f[:-1]) * seg))) if len(seg) else (lambda f: 0.0)
+    iters = [r["iterations"] for r in state.history]
+    return {
+        "case_name": case.name, "method": case.solver.method, "status": state.status,
+        "failure": state.failure or None,
+        "converged": bool(steady and last["solver_converged"] and not outlet_driven),
+        "steady_state": steady, "outlet_driven": bool(outlet_driven),
+        # docs/theory.md 1e: null with the reason where the slip's sign is noise
+        "neutral_point": None if no_neutral else [cx - rp.radius * math.sin(ang),
+                                                  cy - rp.radius * math.cos(ang)],
+        "neutral_angle": None if no_neutral else ang, "neutral_angle_reason": no_neutral,
+        "neutral_angle_in_sticking_zone": bool(in_stick), "neutral_angle_flux": ang_flux,
+        "sticking_zone": stick,
+        **{k: mean[k] for k in ("roll_force", "roll_torque", "roll_power", "forward_slip",
+                                "entry_velocity", "exit_velocity", "mass_flux_in",
+                                "mass_flux_out", "plastic_power", "friction_power",
+                                "penalty_power", "outlet_penalty_power", "horizontal_force",
+                                "tension_power", "a_f", "contact_length")},
+        "force_balance": {part: [last.get(f"{part}_force_x", 0.0), last[f"{part}_force_y"]]
+                          for part in ("roll", "free_top", "face", "tension", "symmetry")},
+        "symmetry_stress_force_y": last["symmetry_stress_force_y"],
+        "balance_error": last["balance_error"],
+        "free_top_force_share": last["free_top_force_share"],
+        "power_balance_error": last["power_balance_error"],
+        "penalty_share": last["penalty_share"],
+        "mass_flux_error": abs(mean["mass_flux_out"] - mean["mass_flux_in"])
+        / abs(mean["mass_flux_in"]) if math.isfinite(mean["mass_flux_out"]) else math.nan,
+        "exit_correction_normal_force_change": (trap(sn_cor) - trap(sn_raw)) / trap(sn_raw)
+        if trap(sn_raw) else 0.0,
+        "contact_loss": loss, "contact_loss_detected": bool(loss), **contact_figures,
+        "exit_thickness": last.get("exit_thickness_measured", math.nan),
+        # exact contact: what the pressure still moved in the last Newton step (Pa; sticking
+        # zones, solvers/nonlinear.py)
+        "pressure_last_update": (run.result.stats[-1].multiplier_update * rp.u_roll
+                                 * run.form.lam_scale * run.model.material.K)
+        if steady_solver and exact else None,
+        "steps": 0 if steady_solver else last["step"] + 1,
+        "time": None if steady_solver else last["time"],
+        "dt": None if steady_solver else run.s.dt,
+        "newton_solves": len(run.result.stats) if steady_solver else None,
+        "coupling_updates": len(run.result.surface_moves or run.result.a_f_history)
+        if steady_solver else None,
+        "fixed_point_settled": bool(run.result.settled) if steady_solver else None,
+        "free_surface": case.plate.free_surface,
+        "surface_residual_h": float(run.result.surface_moves[-1] / run.model.h)
+        if steady_solver and run.result.surface_moves else None,
+        "nonlinear_iterations": int(np.sum(iters)),
+        "iterations_per_step": None if steady_solver else (
+            float(np.mean(iters[1:])) if len(iters) > 1 else float(iters[0])),
+        "dofs": run.form.fes.ndof, "h_contact": run.model.h, "wall_time_s": wall,
+        "roll_centre": [cx, cy], "roll_radius": rp.radius, "roll_surface_speed": rp.u_roll,
+        "contact_start": [float(prof["x"][0]), float(prof["y"][0])] if len(prof["x"]) else None,
+        "contact_end": [float(prof["x"][-1]), float(prof["y"][-1])] if len(prof["x"]) else None,
+        "K": run.model.material.K, "m": run.model.material.m,
+        "nonlinear": "newton" if steady_solver else run.s.nonlinear,
+        **exit_strain(case, run),
+        "friction_law": case.friction.law, "friction_mu": case.friction.mu,
+        "friction_factor": case.friction.factor,
+        "back_tension": case.pass_.back_tension, "front_tension": case.pass_.front_tension,
+        "averaged_over_steps": len(solved),
+        "unconverged_steps_in_window": len(window) - len(solved),
+        "thermal": case.thermal is not None,
+        **{k: _nanmean([r[k] for r in solved]) for k in THERMAL_AVERAGED
+           if case.thermal is not None},
+        **({"thermal_dofs": last["thermal_dofs"], "thermal_layer": last["thermal_layer"]}
+           if case.thermal is not None else {}),
+    }
