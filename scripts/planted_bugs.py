@@ -143,7 +143,7 @@ BUGS: dict[str, tuple[str, str, str, str]] = {
                       'summary["mean_pressure"] = (summary["roll_force"] / summary',
                       'summary["mean_pressure"] = (1.1 * summary["roll_force"] / summary',
                       "mean pressure x 1.1"),
-    "coulomb_max": ("hotroll/model/friction.py",
+    "coulomb_max": ("hotroll/model/friction/coulomb.py",
                     "return smooth_minimum(self.mu * smooth_positive_part(pressure, d / self.mu), k, d)",
                     "return -smooth_minimum(-self.mu * smooth_positive_part(pressure, d / self.mu), -k, d)",
                     "Coulomb: max(mu p, k) instead of min"),
@@ -181,7 +181,7 @@ BUGS: dict[str, tuple[str, str, str, str]] = {
                     "= np.asarray(self._rate_offset_at(T), dtype=float)",
                     "= 1.1 * np.asarray(self._rate_offset_at(T), dtype=float)",
                     "the rate exponent's temperature offset x 1.1"),
-    "friction_tangent": ("hotroll/model/friction.py",
+    "friction_tangent": ("hotroll/model/friction/coulomb.py",
                          "return m_a * mu * p_a, m_a",
                          "return 1.1 * m_a * mu * p_a, m_a",
                          "Newton's Coulomb tangent: d/dp x 1.1 (the results stay: only the "
@@ -236,10 +236,10 @@ BUGS: dict[str, tuple[str, str, str, str]] = {
                     "            row.update(_scalars(summary))\n"
                     "            row[\"roll_force\"] = 1.1 * row[\"roll_force\"]",
                     "the study table's roll force x 1.1"),
-    "api_contact": ("hotroll/api.py",
-                    "cols[name] = np.array([float(v) if v != \"\" else np.nan for v in vals])",
-                    "cols[name] = 1.1 * np.array([float(v) if v != \"\" else np.nan for v in vals])",
-                    "the API's contact/top columns x 1.1"),
+    "api_contact": ("hotroll/results/run_dir.py",
+                    "out[name_j] = (np.asarray(numbers, dtype=float) if None not in numbers",
+                    "out[name_j] = (1.1 * np.asarray(numbers, dtype=float) if None not in numbers",
+                    "the run directory's CSV columns x 1.1 (the API, figures, compare read them)"),
     "api_summary": ("hotroll/api.py", "            return summary[name]",
                     "            return 1.1 * summary[name] if isinstance(summary[name], float) "
                     "else summary[name]",

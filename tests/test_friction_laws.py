@@ -296,3 +296,28 @@ def test_written_shear_flow_stress_is_the_fields_k(fixture, request):
     # measured with exact contact (issue 30): 0.70 at one vertex mid-arc where the written
     # strain rate dips (Coulomb; 13 % with the penalty)
     assert np.max(np.abs(ratio - 1.0)) < 0.75
+
+
+def test_the_registry_builds_the_friction_section():
+    """[friction] is built from model/friction's registry: every law's parameters are fields
+    with their unit in the description, each law takes only its own (by hand: Coulomb's mu,
+    Tresca's factor, the viscoplastic a_f defaulting to "estimate"), the default v_reg is the
+    law's fraction of the roll speed, and each law names a slab form the comparison knows."""
+    from hotroll.config.friction import FrictionConfig
+    from hotroll.model.friction import FRICTION_LAWS
+
+    assert list(FRICTION_LAWS) == ["viscoplastic", "coulomb", "tresca"]
+    fields = FrictionConfig.model_fields
+    for spec in FRICTION_LAWS.values():
+        for p in spec.parameters:
+            assert p.name in fields and f"[{p.unit or '-'}]" in fields[p.name].description
+        assert spec.slab[0] in ("coulomb", "tresca", "sticking")
+    fr = FrictionConfig(law="viscoplastic")
+    assert fr.given() == {"a_f": "estimate"} and fr.a_f_rule is None
+    assert fr.regularisation_velocity(2.0) == pytest.approx(2e-4)
+    tr = FrictionConfig(law="tresca", factor=0.4)
+    assert tr.given() == {"factor": 0.4} and tr.a_f_rule == 0.0 and not tr.uses_a_f
+    assert tr.regularisation_velocity(2.0) == pytest.approx(2e-3)
+    assert tr.law_object(2.0, 0.2) == TrescaFriction(2e-3, factor=0.4)
+    with pytest.raises(ValueError, match="friction.mu: only for law"):
+        FrictionConfig(law="tresca", factor=0.4, mu=0.3)

@@ -1,73 +1,103 @@
-"""The case's ``[friction]`` section (the ``[material]`` section is ``config/material.py``).
+"""The case's ``[friction]`` section: the friction law by name (``model/friction``'s registry),
+its parameters, the regularisation speed and the cap of the estimated a_f.
 
-Part of the case description of :mod:`hotroll.config.case` (which re-exports it); each law's
-parameters are checked against the law chosen, with ``section.key`` errors.
+The section is built from the registry: every registered law's parameters are fields (with
+their unit and allowed range), a law takes only its own, a parameter with a default (the
+viscoplastic law's a_f = "estimate") takes it when omitted. Adding a law touches its own
+module, not this one. Part of the case description of :mod:`hotroll.config.case`.
 """
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Annotated, Literal
 
-from pydantic import model_validator
+from pydantic import Field, create_model, model_validator
 
 from hotroll.config.base import PosFloat, Problems, Section, field
-from hotroll.model.friction import CoulombFriction, TrescaFriction, ViscoplasticFriction
+from hotroll.model.friction import FRICTION_LAWS, FrictionLaw
 
 
-class FrictionConfig(Section):
-    law: Literal["viscoplastic", "coulomb", "tresca"] = field(
-        "viscoplastic", "friction law: viscoplastic (2.29a), Coulomb (mu p, capped at k = "
-        "sigma_ef/sqrt3) or Tresca (factor k)", "", '"viscoplastic", "coulomb" or "tresca"')
-    a_f: Literal["estimate"] | PosFloat | None = field(
-        None, "(omit: estimate) viscoplastic friction coefficient (tau = a_f K |dv|^(m-1) dv); law = "
-        '"viscoplastic" only', "m^-m", '"estimate" or a number > 0')
-    mu: float | None = field(None, 'Coulomb friction coefficient; law = "coulomb" only', "",
-                              "in (0, 2]", gt=0, le=2)
-    factor: float | None = field(None, 'friction factor m_f (tau = m_f k); law = "tresca" '
-                                  "only", "", "in (0, 1]", gt=0, le=1)
-    v_reg: PosFloat | None = field(
-        None, "friction regularisation velocity (omit: 1e-4 x roll surface speed for the "
-        "viscoplastic law, 1e-3 x for Coulomb and Tresca)", "m/s", "> 0")
-    a_f_max: float = field(1e6, "upper cap for the estimated a_f", "m^-m", "> 0", gt=0)
+class _FrictionSection(Section):
+    """The checks and the law object of ``FrictionConfig`` (its fields come from the registry)."""
+
+    def given(self) -> dict:
+        """The chosen law's parameters as set (given, or their defaults)."""
+        return {p.name: getattr(self, p.name) for p in FRICTION_LAWS[self.law].parameters
+                if getattr(self, p.name) is not None}
 
     @model_validator(mode="after")
-    def _check_law(self) -> FrictionConfig:
-        need = {"coulomb": "mu", "tresca": "factor"}.get(self.law)
-        problems = []
-        if need and getattr(self, need) is None:
-            problems.append(f"friction.{need}: required for law = \"{self.law}\" (allowed: "
-                            + ("in (0, 2]" if need == "mu" else "in (0, 1]") + ")")
-        for key, law in (("mu", "coulomb"), ("factor", "tresca")):
-            if getattr(self, key) is not None and self.law != law:
-                problems.append(f"friction.{key}: only for law = \"{law}\", the law is "
-                                f"\"{self.law}\"")
-        if self.law == "viscoplastic" and self.a_f is None:
-            self.a_f = "estimate"
-        if self.law != "viscoplastic" and self.a_f is not None:
-            problems.append(f"friction.a_f: only for law = \"viscoplastic\", the law is "
-                            f"\"{self.law}\"")
+    def _check_law(self):
+        spec, problems = FRICTION_LAWS[self.law], []
+        own = [p.name for p in spec.parameters]
+        for other in FRICTION_LAWS.values():
+            for p in other.parameters:
+                if p.name not in own and getattr(self, p.name) is not None:
+                    problems.append(f"friction.{p.name}: only for law = \"{other.name}\", the "
+                                    f"law is \"{self.law}\"")
+        for p in spec.parameters:
+            if getattr(self, p.name) is None:
+                if p.default is not None:
+                    setattr(self, p.name, p.default)
+                elif p.required:
+                    problems.append(f"friction.{p.name}: required for law = \"{self.law}\" "
+                                    f"(allowed: {p.allowed})")
         if problems:
             raise Problems(problems)
         return self
 
     def regularisation_velocity(self, u_roll: float) -> float:
-        """v_reg (m/s), or its default fraction of the roll surface speed ``u_roll``."""
+        """v_reg (m/s), or the law's default fraction of the roll surface speed ``u_roll``."""
         if self.v_reg is not None:
             return self.v_reg
-        return (1e-4 if self.law == "viscoplastic" else 1e-3) * u_roll
+        return FRICTION_LAWS[self.law].v_reg_fraction * u_roll
 
-    def law_object(self, u_roll: float, m: float):
-        """The friction law in reduced units (stresses over K), ``model/friction.py``."""
-        v = self.regularisation_velocity(u_roll)
-        if self.law == "coulomb":
-            return CoulombFriction(v, mu=self.mu)
-        if self.law == "tresca":
-            return TrescaFriction(v, factor=self.factor)
-        return ViscoplasticFriction(v, K=1.0, m=m)
+    def law_object(self, u_roll: float, m: float) -> FrictionLaw:
+        """The friction law in reduced units (stresses over K), ``model/friction``."""
+        return FRICTION_LAWS[self.law].build(self.given(), self.regularisation_velocity(u_roll), m)
+
+    @property
+    def uses_a_f(self) -> bool:
+        """The law takes a_f (the viscoplastic law: given, or estimated by (3.15))."""
+        return "a_f" in [p.name for p in FRICTION_LAWS[self.law].parameters]
 
     @property
     def a_f_rule(self) -> float | None:
         """a_f for the solvers: None = estimate (3.15); 0 for the laws without a_f."""
-        if self.law != "viscoplastic":
+        if not self.uses_a_f:
             return 0.0
         return None if self.a_f == "estimate" else float(self.a_f)
+
+
+def _parameter_fields() -> dict:
+    """Every registered law's parameters as optional fields (a name once)."""
+    out: dict = {}
+    for spec in FRICTION_LAWS.values():
+        for p in spec.parameters:
+            if p.name in out:
+                continue
+            limits = {k: v for k in ("gt", "ge", "lt", "le") if (v := getattr(p, k)) is not None}
+            if p.words:     # words besides numbers: the limits go on the number alone
+                kind = Literal[p.words] | Annotated[float, Field(**limits)] | None
+                out[p.name] = (kind, field(None, p.text, p.unit, p.allowed))
+            else:
+                laws = " or ".join(f'"{s.name}"' for s in FRICTION_LAWS.values()
+                                   if any(q.name == p.name for q in s.parameters))
+                out[p.name] = (float | None, field(None, f"{p.text}; law = {laws} only", p.unit,
+                                                   p.allowed, **limits))
+    return out
+
+
+FrictionConfig = create_model(
+    "FrictionConfig", __base__=_FrictionSection, __module__=__name__,
+    law=(Literal[tuple(FRICTION_LAWS)], field(
+        next(iter(FRICTION_LAWS)), "friction law: " + "; ".join(
+            f"{s.name} ({s.summary})" for s in FRICTION_LAWS.values()), "",
+        ", ".join(f'"{n}"' for n in FRICTION_LAWS))),
+    **_parameter_fields(),
+    v_reg=(PosFloat | None, field(
+        None, "friction regularisation velocity (omit: " + ", ".join(
+            f"{s.v_reg_fraction:g} x roll surface speed for {s.name}"
+            for s in FRICTION_LAWS.values()) + ")", "m/s", "> 0")),
+    a_f_max=(float, field(1e6, "upper cap for the estimated a_f", "m^-m", "> 0", gt=0)),
+)
+FrictionConfig.__doc__ = "The [friction] section: a friction law of the registry and its data."

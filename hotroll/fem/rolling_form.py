@@ -5,7 +5,7 @@ and stresses are K times the reduced ones; this is how the penalties of Table 1 
 
 - Norton-Hoff volume term (2.21) with the pressure as Lagrange multiplier (2.24);
 - on the contact Gamma_C (edges flagged by ``chi``): the friction law (viscoplastic (2.29a),
-  Coulomb or Tresca, ``model/friction.py``) on the slip v_s = (v - U_roll).t t (2.27), and the
+  Coulomb or Tresca, ``model/friction/``) on the slip v_s = (v - U_roll).t t (2.27), and the
   bilateral penalty gamma_vC (dv.n)(phi.n) for (2.28a); n and t are the roll's normal and
   tangent at the point, so U_roll.n = 0 exactly. Coulomb's pressure is the penalty reaction
   gamma_vC (v.n) at the same point; the shear flow stress k = sigma_ef/sqrt3 of the Coulomb cap

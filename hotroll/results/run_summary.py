@@ -89,7 +89,7 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
     summary["not_conserved"] = problem is not None
     if problem:
         summary["converged"], summary["failure"] = False, problem
-    if case.friction.law != "viscoplastic":
+    if not case.friction.uses_a_f:
         summary["a_f"] = None            # the law has no a_f
 
     x_start = float(prof["x"][0]) if len(prof["x"]) else run.model.rp.x_touch

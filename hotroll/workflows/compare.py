@@ -34,6 +34,7 @@ import numpy as np
 
 from hotroll.config.case import Case
 from hotroll.model.flow_stress import NortonHoffStress
+from hotroll.model.friction import FRICTION_LAWS
 from hotroll.results.compare_table import (
     COLUMNS,
     DEFINITIONS,
@@ -89,14 +90,16 @@ def _flow_law(case: Case):
 def slab_friction(case: Case):
     """(theory friction object, note) for the case's friction law."""
     fr = case.friction
-    if fr.law == "coulomb":
+    form, key = FRICTION_LAWS[fr.law].slab or ("sticking", None)
+    if form == "coulomb":
         return Coulomb(fr.mu), f"coulomb mu = {fr.mu:g} (tau = min(mu p, k), as the FE)"
-    if fr.law == "tresca":
-        return Tresca(fr.factor), f"tresca factor = {fr.factor:g} (tau = factor k, as the FE)"
-    if fr.a_f == "estimate":
+    if form == "tresca":
+        return Tresca(getattr(fr, key)), (f"tresca factor = {getattr(fr, key):g} (tau = factor k,"
+                                          " as the FE)")
+    if fr.law == "viscoplastic" and fr.a_f == "estimate":
         return Sticking(), ("sticking (no slab form of the viscoplastic law; the estimated a_f "
                             "(3.15) sticks the whole arc, so sticking is its slab counterpart)")
-    return Sticking(), "sticking (no slab form of the viscoplastic law)"
+    return Sticking(), f"sticking (no slab form of the {fr.law} law)"
 
 
 def map_case(case: Case) -> SlabInputs:

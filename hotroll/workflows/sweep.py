@@ -39,12 +39,8 @@ def parameters(case: Case) -> dict[str, float]:
     rp = case.pass_.roll_pass()
     p = {"m": case.material.rate_exponent(case.plate.temperature), "u_roll": rp.u_roll, "eps0": case.material.eps0,
          "v_reg": case.friction.regularisation_velocity(rp.u_roll)}
-    fr = case.friction
-    if fr.law == "viscoplastic" and fr.a_f != "estimate":
-        p["a_f"] = float(fr.a_f)
-    for key, value in (("mu", fr.mu), ("factor", fr.factor)):
-        if value is not None:
-            p[key] = value
+    # the friction law's own parameters (an estimated a_f is not one: it follows the solve)
+    p.update({k: float(v) for k, v in case.friction.given().items() if not isinstance(v, str)})
     return p
 
 

@@ -11,21 +11,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 from hotroll.model.flow_stress.base import FlowStressLaw
-
-
-@dataclass(frozen=True)
-class Parameter:
-    """One parameter of a law as the case file gives it (SI units; ``unit`` as printed)."""
-
-    name: str
-    text: str
-    unit: str
-    allowed: str
-    required: bool = True
-    gt: float | None = None
-    ge: float | None = None
-    lt: float | None = None
-    le: float | None = None
+from hotroll.model.parameters import Parameter
 
 
 @dataclass(frozen=True)

@@ -1,4 +1,6 @@
-"""Friction laws on the roll contact, one interface for the weak form and the post-processing.
+"""The interface of the friction laws on the roll contact (one for the weak form and the
+post-processing) and the smoothing they share; the laws are one module each
+(``viscoplastic.py``, ``coulomb.py``, ``tresca.py``), registered in ``registry.py``.
 
 Every law gives the shear traction on the plate as T_tau = -k_f v_s (secant form), v_s the slip
 (2.27), with the coefficient ``k_f = coefficient(slip2, a_f=, m=, pressure=, k=)``. All
@@ -19,7 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 
-def _is_cf(*values) -> bool:
+def is_cf(*values) -> bool:
     try:
         from ngsolve import CoefficientFunction
     except ImportError:  # pragma: no cover - ngsolve is a dependency
@@ -27,8 +29,8 @@ def _is_cf(*values) -> bool:
     return any(isinstance(v, CoefficientFunction) for v in values)
 
 
-def _sqrt(a):
-    if _is_cf(a):
+def sqrt_any(a):
+    if is_cf(a):
         from ngsolve import sqrt
 
         return sqrt(a)
@@ -39,23 +41,23 @@ def _sqrt(a):
 
 def smooth_positive_part(a, delta):
     """max(a, 0) rounded over |a| < delta: (a + sqrt(a^2 + delta^2)) / 2 (error <= delta/2)."""
-    return 0.5 * (a + _sqrt(a * a + delta * delta))
+    return 0.5 * (a + sqrt_any(a * a + delta * delta))
 
 
 def smooth_minimum(a, b, delta):
     """min(a, b) rounded over |a - b| < delta: (a + b - sqrt((a - b)^2 + delta^2)) / 2."""
-    return 0.5 * (a + b - _sqrt((a - b) ** 2 + delta * delta))
+    return 0.5 * (a + b - sqrt_any((a - b) ** 2 + delta * delta))
 
 
 def smooth_positive_part_partials(a, delta):
     """(d/da, d/ddelta) of ``smooth_positive_part``."""
-    root = _sqrt(a * a + delta * delta)
+    root = sqrt_any(a * a + delta * delta)
     return 0.5 * (1.0 + a / root), 0.5 * delta / root
 
 
 def smooth_minimum_partials(a, b, delta):
     """(d/da, d/db, d/ddelta) of ``smooth_minimum``."""
-    root = _sqrt((a - b) ** 2 + delta * delta)
+    root = sqrt_any((a - b) ** 2 + delta * delta)
     return 0.5 * (1.0 - (a - b) / root), 0.5 * (1.0 + (a - b) / root), -0.5 * delta / root
 
 
@@ -98,68 +100,3 @@ class FrictionLaw:
         return self.coefficient(slip * slip, **kw) * slip * slip
 
 
-@dataclass(frozen=True)
-class ViscoplasticFriction(FrictionLaw):
-    """Viscoplastic friction (2.29a): T_tau = -a_f K |v_s|^(m-1) v_s (regularised)."""
-
-    K: float = 1.0   # consistency the law scales with (1 in reduced units)
-    m: float = 0.2   # exponent, the material's strain-rate sensitivity (Section 2.6)
-
-    name = "viscoplastic"
-    uses_a_f = True
-
-    def coefficient(self, slip2, *, a_f=None, m=None, pressure=None, k=None, K=None):
-        """Secant coefficient a_f K (|v_s|^2 + v_reg^2)^((m-1)/2)."""
-        m = self.m if m is None else m
-        K = self.K if K is None else K
-        return a_f * K * (slip2 + self.v_reg**2) ** ((m - 1.0) / 2.0)
-
-    def coefficient_partials(self, slip2, *, a_f=None, m=None, pressure=None, k=None, K=None):
-        """(d k_f/d slip2, 0, 0): the law takes neither the pressure nor k."""
-        m = self.m if m is None else m
-        K = self.K if K is None else K
-        return a_f * K * (m - 1.0) / 2.0 * (slip2 + self.v_reg**2) ** ((m - 3.0) / 2.0), 0.0, 0.0
-
-
-@dataclass(frozen=True)
-class CoulombFriction(FrictionLaw):
-    """Coulomb friction capped by sticking: |T_tau| = min(mu p, k), p = max(pressure, 0).
-
-    The two kinks (p = 0, mu p = k) are rounded over ``rounding`` x k (error <= 0.5 % of k at
-    the kink, none away from it), so that Newton converges to its tolerance instead of
-    oscillating between the two sides at a quadrature point (docs/theory.md 1b)."""
-
-    mu: float = 0.3
-    rounding: float = 0.01
-
-    name = "coulomb"
-    uses_pressure = True
-    uses_k = True
-
-    def limit(self, *, pressure=None, k=None):
-        d = self.rounding * k
-        return smooth_minimum(self.mu * smooth_positive_part(pressure, d / self.mu), k, d)
-
-    def limit_partials(self, *, pressure=None, k=None):
-        r, mu = self.rounding, self.mu
-        d = r * k
-        capped = mu * smooth_positive_part(pressure, d / mu)
-        p_a, p_delta = smooth_positive_part_partials(pressure, d / mu)
-        m_a, m_b, m_delta = smooth_minimum_partials(capped, k, d)
-        return m_a * mu * p_a, m_a * mu * p_delta * (r / mu) + m_b + m_delta * r
-
-
-@dataclass(frozen=True)
-class TrescaFriction(FrictionLaw):
-    """Friction factor (Tresca, constant shear): |T_tau| = factor k."""
-
-    factor: float = 0.8
-
-    name = "tresca"
-    uses_k = True
-
-    def limit(self, *, pressure=None, k=None):
-        return self.factor * k
-
-    def limit_partials(self, *, pressure=None, k=None):
-        return 0.0, self.factor
