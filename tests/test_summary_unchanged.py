@@ -29,32 +29,35 @@ def _script():
 
 @pytest.mark.parametrize("name", ["2", "hot_aluminium"])
 def test_bundled_example_summary_is_the_one_before_the_recut(name, tmp_path):
-    """Keys and units identical, every number to 1e-9 (relative, or of its unit's largest
-    figure for rounding-level ones such as the horizontal force)."""
+    """Keys and units identical, every number to 1e-8 (relative, or of its unit's largest
+    figure for rounding-level ones such as the horizontal force): NGSolve's threaded assembly
+    sums in a different order from run to run, which moved the torque of the same code by
+    1.05e-9 between two runs (measured), so 1e-9 is the noise, not a change."""
     out = tmp_path / name
     proc = subprocess.run([sys.executable, "-m", "hotroll.cli", "example", name, "--out", str(out)],
                           capture_output=True, text=True)
     assert proc.returncode == 0, proc.stderr[-2000:]
-    problems = _script().compare(BEFORE / "example" / name, out, 1e-9)
+    problems = _script().compare(BEFORE / "example" / name, out, 1e-8)
     assert not problems, "\n".join(problems)
 
 
 def test_the_comparison_sees_a_change(tmp_path):
-    """The comparison itself: a roll force x (1 + 1e-8), a renamed key and a changed unit are
-    each reported; a horizontal force moved by 1e-10 of the roll force is rounding."""
+    """The comparison itself at the suite's 1e-8: a roll force x (1 + 1e-7), a renamed key and
+    a changed unit are each reported; a horizontal force moved by 1e-9 of the roll force is
+    rounding."""
     sd = _script()
     s = json.loads((BEFORE / "example" / "2" / "summary.json").read_text())
-    for change, expect in ((lambda d: d.update(roll_force=d["roll_force"] * (1 + 1e-8)),
+    for change, expect in ((lambda d: d.update(roll_force=d["roll_force"] * (1 + 1e-7)),
                             "roll_force"),
                            (lambda d: d.update(roll_forse=d.pop("roll_force")), "keys only"),
                            (lambda d: d["units"].update(roll_force="kN/m"), "units.roll_force")):
         d = json.loads(json.dumps(s))
         change(d)
         found: list[str] = []
-        sd.diff(s, d, 1e-9, "s", found)
+        sd.diff(s, d, 1e-8, "s", found)
         assert any(expect in p for p in found), (expect, found)
     d = json.loads(json.dumps(s))
-    d["horizontal_force"] += 1e-10 * s["roll_force"]
+    d["horizontal_force"] += 1e-9 * s["roll_force"]
     found = []
-    sd.diff(s, d, 1e-9, "s", found)
+    sd.diff(s, d, 1e-8, "s", found)
     assert not found, found

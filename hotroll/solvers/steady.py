@@ -36,6 +36,7 @@ from hotroll.fem.rolling_form import PenaltyTable, RollingForm
 from hotroll.fem.top_boundary import TopBoundary
 from hotroll.model.friction_estimate import estimate_a_f
 from hotroll.model.material import NortonHoff
+from hotroll.solvers import couplings as C
 from hotroll.solvers.nonlinear import LinearSolveError, SolveStats, newton
 from hotroll.solvers.steady_settings import (
     SteadyResult,
@@ -91,6 +92,7 @@ class SteadyRun:
         self.shape = StripShape.flat(rp)
         self._set_shape()
         self._top_part = self._top_parts()
+        self.couplings = self._couplings()
         self.mesh_key = mesh_key(self.mesh)
         self.mesh_time = time.perf_counter() - t0
         self.record = True    # measure after every solve (history.csv); off in benchmarks
@@ -267,8 +269,7 @@ class SteadyRun:
             record(SolveStats(iterations=0, converged=False))
             return True
 
-        coupled = (s.a_f is None or s.free_surface == "traced" or self.strain is not None
-                   or self.thermal is not None)
+        coupled = any(c.in_fixed_point for c in self.couplings)
         st = newton(f.problem, s.tol, s.max_it + 3 * s.max_outer,
                     couple=couple if coupled else None, couple_below=s.couple_below,
                     full_step=True)
@@ -276,31 +277,25 @@ class SteadyRun:
         res.settled = state["settled"] or not coupled
         record(st)
 
-    def _update_coupled(self, res: SteadyResult) -> float:
-        """Update a_f (3.15), the strain field and the free surface; return the largest change
-        in units of its tolerance."""
-        s, f = self.s, self.form
-        change = math.inf if self._update_active_set() else 0.0
-        change = max(change, self._update_strain() / s.strain_rtol)
-        change = max(change, self._update_thermal(newton_steps=1) / s.thermal_rtol)
+    def _couplings(self) -> list[C.Coupling]:
+        """The run's couplings in their update order (``solvers/couplings.py``): the active set
+        (unilateral contact), the strain, the temperature, a_f (3.15), the traced free tops."""
+        s, out = self.s, []
+        if self.active is not None:
+            out.append(C.ActiveSet(self.active, self._set_contact))
+        if self.strain is not None:
+            out.append(C.StrainTransport(self.strain, self.form.problem.velocity, s.strain_rtol))
+        if self.thermal is not None:
+            out.append(C.Temperature(self.thermal, s.thermal_rtol))
         if s.a_f is None:
-            a_old, a_new = f.a_f.Get(), self._estimate_a_f()
-            res.a_f_history.append(a_new)
-            f.a_f.Set(a_new)
-            change = max(change, abs(a_new - a_old) / (s.a_f_rtol * a_new))
+            out.append(C.AfEstimate(self.form.a_f, self._estimate_a_f, s.a_f_rtol))
         if s.free_surface == "traced":
-            moved = self.update_surface()
-            res.surface_moves.append(moved)
-            change = max(change, moved / (s.surface_tol * self.model.h))
-        return change
+            out.append(C.FreeSurface(self.update_surface, s.surface_tol * self.model.h))
+        return out
 
-    def _update_active_set(self) -> bool:
-        """Unilateral contact: one active-set update (``fem/contact_set.py``); the
-        contact edges (friction) and the top's parts follow it. True if it changed."""
-        if self.active is None or not self.active.update():
-            return False
-        self._set_contact()
-        return True
+    def _update_coupled(self, res: SteadyResult) -> float:
+        """One update of every coupling; the largest change in units of its tolerance."""
+        return max((c.update(res) for c in self.couplings), default=0.0)
 
     def _set_contact(self) -> None:
         """The contact edges: arc edges with both vertices active (all of the arc without an

@@ -29,6 +29,7 @@ from hotroll.model.friction import FrictionLaw
 from hotroll.model.friction_estimate import estimate_a_f
 from hotroll.model.geometry import RollPass
 from hotroll.model.material import NortonHoff
+from hotroll.solvers import couplings as C
 from hotroll.solvers.nonlinear import LinearSolveError, SolveStats, picard, solve
 from hotroll.solvers.settling import steady_reached, summary_windows, transit_time
 from hotroll.solvers.thermal_coupling import ThermalCoupling
@@ -159,6 +160,10 @@ class TransientRun:
         self.top = TopBoundary(self.mesh, V.ndof // 2)
         if self.thermal is not None:     # the temperature carried with the material
             self.thermal.attach(self.form, self.disp, self.top)
+        # carried with the material by ``advance`` (solvers/couplings.py)
+        self.couplings = ([C.StrainTransport(self.strain, self.form.problem.velocity)]
+                          if self.strain is not None else [])
+        self.couplings += [C.Temperature(self.thermal)] if self.thermal is not None else []
         self.d = self.disp.vec.FV().NumPy()
         self._det = ngsolve.GridFunction(ngsolve.L2(self.mesh, order=0))   # for _check_mesh
         # summary means: whole projection periods covering 3 h of roll travel; the steady test
@@ -292,10 +297,10 @@ class TransientRun:
     def advance(self) -> None:
         """(3.7) for every P2 node, then contact detection (3.9)."""
         nv_dofs = self.form.fes.components[0].ndof
-        if self.strain is not None:   # the nodes are material points: eps += dt edot
-            self.strain.integrate(self.form.problem.velocity, self.s.dt)
-        if self.thermal is not None:  # ... and keep their temperature: one implicit step
-            self.thermal.step(self.s.dt)
+        # the nodes are material points: eps += dt edot, and they keep their temperature (one
+        # implicit step); a_f (3.15) is set before each solve (``run``)
+        for coupling in self.couplings:
+            coupling.advance(self.s.dt)
         self.d += self.s.dt * self.form.problem.gf.vec.FV().NumPy()[:nv_dofs]
         self.state.step += 1
         self.state.time += self.s.dt

@@ -1,0 +1,111 @@
+"""The couplings of a rolling solve: what the flow depends on besides the velocity and the
+pressure, behind one interface that both solvers call (docs/theory.md 4b).
+
+- the steady solver's fixed point (``SteadyRun``): ``update(result)`` once the Newton update is
+  small, returning the change in units of the coupling's tolerance; the solve has settled when
+  every change is at most 1;
+- the report's scheme (``TransientRun``): ``advance(dt)`` carries the field with the material
+  through one step.
+
+A new coupling (the elastic roll, microstructure) is one class here and one line where the
+solver builds its list (``SteadyRun.couplings``, ``TransientRun.couplings``).
+"""
+from __future__ import annotations
+
+import math
+from typing import Callable
+
+
+class Coupling:
+    """A field or parameter coupled to the flow; the default does nothing."""
+
+    name = ""
+    #: its change decides whether the steady fixed point has settled (the active set's does
+    #: not: it is updated with the others but never keeps the iteration going on its own)
+    in_fixed_point = True
+
+    def update(self, result) -> float:
+        """Steady fixed point: one update; its change over its tolerance."""
+        return 0.0
+
+    def advance(self, dt: float) -> None:
+        """The report's scheme: carry the field through one step of ``dt`` seconds."""
+
+
+class ActiveSet(Coupling):
+    """Unilateral contact's active set (``fem/contact_set.py``); ``changed`` re-derives the
+    contact edges and the top's parts. A change counts as infinitely large."""
+
+    name = "active_set"
+    in_fixed_point = False
+
+    def __init__(self, active, changed: Callable[[], None]):
+        self.active, self.changed = active, changed
+
+    def update(self, result) -> float:
+        if not self.active.update():
+            return 0.0
+        self.changed()
+        return math.inf
+
+
+class StrainTransport(Coupling):
+    """The strain carried with the material (``fem/strain.py``): steady, transported along the
+    current flow; the report's scheme, eps += dt edot at the material nodes."""
+
+    name = "strain"
+
+    def __init__(self, field, velocity, rtol: float = 1.0):
+        self.field, self.velocity, self.rtol = field, velocity, rtol
+
+    def update(self, result) -> float:
+        return self.field.transport(self.velocity) / self.rtol
+
+    def advance(self, dt: float) -> None:
+        self.field.integrate(self.velocity, dt)
+
+
+class Temperature(Coupling):
+    """The strip's temperature (``solvers/thermal_coupling.py``): steady, one Newton step of
+    the heat equation on the current flow per update; the report's scheme, one implicit step."""
+
+    name = "temperature"
+
+    def __init__(self, thermal, rtol: float = 1.0):
+        self.thermal, self.rtol = thermal, rtol
+
+    def update(self, result) -> float:
+        return self.thermal.update_steady(max_iter=1) / self.rtol
+
+    def advance(self, dt: float) -> None:
+        self.thermal.step(dt)
+
+
+class AfEstimate(Coupling):
+    """The friction coefficient a_f from (3.15) on the current flow (``form.a_f``)."""
+
+    name = "a_f"
+
+    def __init__(self, a_f, estimate: Callable[[], float], rtol: float):
+        self.a_f, self.estimate, self.rtol = a_f, estimate, rtol
+
+    def update(self, result) -> float:
+        a_old, a_new = self.a_f.Get(), self.estimate()
+        result.a_f_history.append(a_new)
+        self.a_f.Set(a_new)
+        return abs(a_new - a_old) / (self.rtol * a_new)
+
+
+class FreeSurface(Coupling):
+    """The traced free tops (``fem/free_surface.py``): moved onto the streamlines of the
+    current flow; the change is the largest move in units of ``tol`` (m)."""
+
+    name = "free_surface"
+
+    def __init__(self, trace: Callable[[], float], tol: float):
+        self.trace, self.tol = trace, tol
+
+    def update(self, result) -> float:
+        moved = self.trace()
+        result.surface_moves.append(moved)
+        return moved / self.tol
