@@ -9,7 +9,7 @@
 # mutant against any test by hand (below). mutmut learns which tests call which function in a
 # "stats" run; a shared (module) fixture is built inside one test only, so the fixtures that
 # several tests read use tests/casebuild.shared_scope, function-scoped in that run:
-#   cd mutants && MUTANT_UNDER_TEST=<name> ../.venv/bin/python -m pytest tests/test_rolling.py -x
+#   cd mutants && MUTANT_UNDER_TEST=<name> ../.venv/bin/python -m pytest tests/solvers/test_rolling.py -x
 #
 # NOT part of CI (it takes long): run it by hand, in the background, after changing the physics or
 # its tests. About 35 minutes on 2 workers for the ~3100 mutants (~460 of them in code no selected

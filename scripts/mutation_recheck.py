@@ -7,7 +7,7 @@ default, with ``-x``. It runs two at a time and writes the verdicts to
 ``docs/mutation/recheck-<date>.txt``. Run it after ``scripts/mutation.sh`` has finished, from
 the repository root:
 
-    .venv/bin/python scripts/mutation_recheck.py [--tests tests/test_rolling.py ...] [NAME ...]
+    .venv/bin/python scripts/mutation_recheck.py [--tests tests/solvers/test_rolling.py ...] [NAME ...]
 
 (one --tests per file; a pytest error other than failing tests is reported as "error")
 

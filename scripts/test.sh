@@ -6,12 +6,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-# the report test renders the pages in Debian's headless chromium (tests/test_report.py)
+# the report test renders the pages in Debian's headless chromium (tests/results/test_report.py)
 if ! command -v chromium >/dev/null && [ -z "${HOTROLL_SKIP_BROWSER:-}" ]; then
   if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
     apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium
   else
-    echo "tests/test_report.py needs Debian's chromium: sudo apt-get install chromium" \
+    echo "tests/results/test_report.py needs Debian's chromium: sudo apt-get install chromium" \
          "(or HOTROLL_SKIP_BROWSER=1 to skip the browser part)" >&2
   fi
 fi

@@ -47,7 +47,7 @@ class Case(Section):
     name: str = Field("case", description="case name (used for output folders)")
     pass_: PassConfig = Field(..., alias="pass", description="roll and pass geometry")
     plate: PlateConfig = Field(..., description="plate")
-    material: MaterialConfig = Field(..., description="Norton-Hoff material")
+    material: MaterialConfig = Field(..., description="flow-stress law, its parameters and the strip's thermal data")
     friction: FrictionConfig = Field(default_factory=FrictionConfig, description="friction law")
     mesh: MeshConfig = Field(default_factory=MeshConfig, description="mesh sizes")
     solver: SolverConfig = Field(default_factory=SolverConfig, description="solver settings")

@@ -20,7 +20,7 @@ test function w + tau v.grad w on every term of the strong residual (the diffusi
 P2 up: for P1 it vanishes in the elements), tau = h_v / (2 |v|) (coth Pe - 1/Pe),
 Pe = |v| h_v rho c / (2 k), h_v = 2 |v| / sum_i |v.grad N_i| the element length along the flow
 (Tezduyar; exact for P1 triangles: long thin elements get their streamline length), rho c and k
-of the previous iterate, one value per element. Measured (tests/test_thermal.py): it removes
+of the previous iterate, one value per element. Measured (tests/fem/test_thermal.py): it removes
 the node-to-node zigzag of the plain Galerkin method (``supg=0``) before a cold roll; it adds
 O(h) streamline diffusion where U dT/dx ~ alpha d2T/dy2 (Graetz series at U H / alpha = 2000:
 max error 1.3e-3 of T0 - T_roll on rows of H/32 near the top, 2.4x the Galerkin error; rate 1.8

@@ -13,7 +13,7 @@ All sets are in Spittel's original form (no strain / strain-rate offsets), T in 
 formula, A converted from the published MPa to Pa.  The pyroll-freiberg-flow-stress package (where
 the steel sets were read) evaluates the same coefficients at (eps + 0.1, edot + 0.1); its value at
 (eps, edot, T) is ``get_grade(name).law().sigma(eps + 0.1, edot + 0.1, T)`` (see
-``tests/test_flow_stress.py``).  We keep the original form because the Landolt-Boernstein formula
+``tests/model/test_flow_stress.py``).  We keep the original form because the Landolt-Boernstein formula
 has no offsets (as also printed in the pyroll team's own paper table,
 pyroll-project/publication-weiner-variation, weiner_variation/tbl/flow_stress.tex).
 

@@ -46,9 +46,9 @@ def _finite(value) -> bool:
 
 #: Conservation checks of a run that converged (docs/theory.md 4.2, 4.4): |Q_out - Q_in| / Q_in
 #: and the power-balance defect over the roll power. The coarse runs of the tests stay below 1 %
-#: (h = 0.02 m: measured 0.6 %, tests/test_rolling.py, test_steady.py); beyond twice that the
+#: (h = 0.02 m: measured 0.6 %, tests/solvers/test_rolling.py, test_steady.py); beyond twice that the
 #: figures are not an answer, and the run says so (exit code 7). Seen (issue 18,
-#: tests/test_case_properties.py): the contact penalty lets the strip leak through the roll,
+#: tests/config/test_case_properties.py): the contact penalty lets the strip leak through the roll,
 #: at low roll speeds (the penalties of Table 1 are fixed numbers in units of K, not scaled with
 #: the speed: 3 % of the flux at U = 0.05 m/s and m = 0.05, the forward slip 13 % low) and with
 #: sticking friction (the estimated a_f at m = 0.8: 3-7 %, 2.6 % on a 5 times finer mesh).

@@ -35,8 +35,8 @@ SPEC = register(FrictionSpec(
     name="viscoplastic",
     summary="tau = a_f K |dv|^(m-1) dv, the report's (2.29a); a_f estimated by (3.15) or given",
     source="Touloupoulos 2020 (the report), (2.29a), (3.15)",
-    parameters=(Parameter("a_f", "viscoplastic friction coefficient (tau = a_f K |dv|^(m-1) dv);"
-                          " estimate: the report's (3.15)", "m^-m", '"estimate" or a number > 0',
+    parameters=(Parameter("a_f", "(omit: estimate) viscoplastic friction coefficient (tau = a_f K "
+                          "|dv|^(m-1) dv); estimate: the report's (3.15)", "m^-m", '"estimate" or a number > 0',
                           required=False, words=("estimate",), default="estimate", gt=0.0),),
     build=lambda p, v_reg, m: ViscoplasticFriction(v_reg, K=1.0, m=m),
     v_reg_fraction=1e-4,

@@ -1,6 +1,6 @@
 """Fast unit tests of hotroll/physics (flow-stress laws, grades, Norton-Hoff, friction helpers).
 
-Complements tests/test_flow_stress.py and tests/test_quantities_unit.py (not repeated here): the
+Complements tests/model/test_flow_stress.py and tests/fem/test_quantities_unit.py (not repeated here): the
 boundaries of every validity check, the error messages (each names the field and the allowed
 range: the project's rule for bad input), the user-facing ``describe()`` / ``as_dict()`` /
 ``range_report()`` outputs written out literally, NGSolve CoefficientFunctions given for only one
@@ -292,7 +292,7 @@ def test_zero_rate_gives_zero_stress_without_floating_point_warnings():
 
 
 # S355J2 at (strain 0.3, 10 1/s, 1100 degC): 109752700.426743497912764 Pa, the hand value of
-# tests/test_flow_stress.py (each factor of Spittel's formula in 30-digit decimal)
+# tests/model/test_flow_stress.py (each factor of Spittel's formula in 30-digit decimal)
 S355_HAND = 109752700.426743497912764
 
 
@@ -472,7 +472,7 @@ def test_hensel_spittel_describe_literal():
 # public transcription of the Landolt-Boernstein datasheet cited in hotroll/model/grades.py
 # ('al995_hot_deformed.py': A = 367.651, theta 250..550 degC, phi 0.03..1.50, phidot 0.01..500).
 # Expected values: Spittel's formula, each factor in 30-digit decimal (Python's decimal module,
-# x^y = exp(y ln x)), at points other than those of tests/test_flow_stress.py: the steels at
+# x^y = exp(y ln x)), at points other than those of tests/model/test_flow_stress.py: the steels at
 # (0.1, 0.1 1/s, 900 degC) and (1.0, 100 1/s, 1250 degC), Al99.5 at the two corners of its box.
 # Factors listed: e^(m1 T), eps^m2, e^(m4/eps), (1+eps)^(m5 T), e^(m7 eps), edot^(m8 T).
 PUBLISHED = {

@@ -187,7 +187,7 @@ def test_command_line_overrides_go_on_the_base_after_the_files_own(tmp_path):
     assert all(c.case.solver.method == "transient" and c.case.material.m == 0.3 for c in cases)
 
 
-SCHEDULE = Path(__file__).with_name("data") / "two_pass_schedule.toml"
+SCHEDULE = Path(__file__).resolve().parents[1] / "data" / "two_pass_schedule.toml"
 
 
 def _schedule_study(tmp_path, vary: str, set_: str = ""):

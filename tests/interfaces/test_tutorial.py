@@ -6,7 +6,7 @@ import os
 import re
 from pathlib import Path
 
-TUTORIAL = Path(__file__).resolve().parents[1] / "docs" / "tutorial.md"
+TUTORIAL = Path(__file__).resolve().parents[2] / "docs" / "tutorial.md"
 
 
 def test_the_tutorial_runs(tmp_path, capsys):

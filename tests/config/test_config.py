@@ -291,3 +291,24 @@ def test_thermal_is_accepted_by_both_methods(base):
     assert case_from_dict(data).thermal is not None
     data["solver"]["method"] = "steady"
     assert case_from_dict(data).thermal is not None
+
+
+def test_the_case_reference_page_is_the_schema():
+    """docs/reference/case.md's key tables are generated from the schema (plumbing): the page
+    holds what ``scripts/reference_docs.py`` writes now, every section and key of the case in
+    it with its unit (a new field or law shows up here until the page is regenerated)."""
+    from pathlib import Path
+
+    from hotroll.config.base import fields_of
+    from hotroll.config.case import Case, MaterialConfig
+    from hotroll.config.reference import case_keys_markdown, with_generated
+
+    page = (Path(__file__).resolve().parents[2] / "docs" / "reference" / "case.md").read_text()
+    assert with_generated(page) == page, "run: python scripts/reference_docs.py"
+    block = case_keys_markdown()
+    for section in ("pass", "plate", "material", "friction", "mesh", "solver", "contact",
+                    "output", "thermal"):
+        assert f"## [{section}]" in block
+    assert "| `carbon` | none | wt % | in [0, 1.2] |" in block
+    assert all(f"| `{key}` |" in block for key in fields_of(MaterialConfig))
+    assert len(fields_of(Case)) == 10

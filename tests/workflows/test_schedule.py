@@ -20,7 +20,7 @@ from hotroll.config.case import CaseError
 from hotroll.config.schedule import load_schedule, schedule_from_dict
 from hotroll.workflows.schedule import run_schedule
 
-DATA = Path(__file__).with_name("data") / "two_pass_schedule.toml"
+DATA = Path(__file__).resolve().parents[1] / "data" / "two_pass_schedule.toml"
 
 
 @pytest.fixture(scope=shared_scope)

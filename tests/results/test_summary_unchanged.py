@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-HERE = Path(__file__).parent
+HERE = Path(__file__).resolve().parents[1]
 BEFORE = HERE / "data" / "before_recut"
 SCRIPT = HERE.parent / "scripts" / "summary_diff.py"
 
