@@ -92,7 +92,6 @@ class SteadyRun:
         self.shape = StripShape.flat(rp)
         self._set_shape()
         self._top_part = self._top_parts()
-        self.couplings = self._couplings()
         self.mesh_key = mesh_key(self.mesh)
         self.mesh_time = time.perf_counter() - t0
         self.record = True    # measure after every solve (history.csv); off in benchmarks
@@ -164,6 +163,9 @@ class SteadyRun:
         solution on the same mesh), with a_f (3.15) and the free surface updated inside the
         iteration."""
         s, res = self.s, SteadyResult(mesh_time=self.mesh_time)
+        # built for this solve: a run kept by a sweep gets each case's settings (a_f given or
+        # estimated, the free-surface model) before it solves
+        self.couplings = self._couplings()
 
         def record(st):
             if self.record:
