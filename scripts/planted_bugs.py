@@ -287,7 +287,9 @@ def plant(name: str, workdir: Path) -> Path:
     path, old, new, _ = BUGS[name]
     copy = workdir / name
     shutil.rmtree(copy, ignore_errors=True)
-    for part in ("hotroll", "tests"):
+    # the tests read docs (the tutorial, the reference page) and scripts (the summary
+    # comparison): a copy without them fails for a missing file, not for the bug
+    for part in ("hotroll", "tests", "docs", "scripts"):
         shutil.copytree(ROOT / part, copy / part, ignore=shutil.ignore_patterns("__pycache__"))
     shutil.copy(ROOT / "pyproject.toml", copy / "pyproject.toml")
     target = copy / path

@@ -1,4 +1,4 @@
-"""A solved run become its summary and files: ``summary.json`` (means over the last window of
+"""A solved run becomes its summary and files: ``summary.json`` (means over the last window of
 the history, leaving out unconverged steps; contact figures; checks and the exit code), the
 profiles, fields and history (docs/reference/summary.md). Positions are written where the case
 puts the roll axis (the steady solver works in the roll's frame)."""
