@@ -9,31 +9,24 @@ module, not this one. Part of the case description of :mod:`hotroll.config.case`
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import ClassVar, Literal
 
-from pydantic import Field, create_model, model_validator
+from pydantic import create_model, model_validator
 
-from hotroll.config.base import PosFloat, Problems, Section, field
+from hotroll.config.base import PosFloat, Problems, field
+from hotroll.config.law_section import LawSection, parameter_fields
 from hotroll.model.friction import FRICTION_LAWS, FrictionLaw
 
 
-class _FrictionSection(Section):
+class _FrictionSection(LawSection):
     """The checks and the law object of ``FrictionConfig`` (its fields come from the registry)."""
 
-    def given(self) -> dict:
-        """The chosen law's parameters as set (given, or their defaults)."""
-        return {p.name: getattr(self, p.name) for p in FRICTION_LAWS[self.law].parameters
-                if getattr(self, p.name) is not None}
+    registry: ClassVar[dict] = FRICTION_LAWS
+    section: ClassVar[str] = "friction"
 
     @model_validator(mode="after")
     def _check_law(self):
-        spec, problems = FRICTION_LAWS[self.law], []
-        own = [p.name for p in spec.parameters]
-        for other in FRICTION_LAWS.values():
-            for p in other.parameters:
-                if p.name not in own and getattr(self, p.name) is not None:
-                    problems.append(f"friction.{p.name}: only for law = \"{other.name}\", the "
-                                    f"law is \"{self.law}\"")
+        spec, problems = FRICTION_LAWS[self.law], self.other_law_problems()
         for p in spec.parameters:
             if getattr(self, p.name) is None:
                 if p.default is not None:
@@ -68,32 +61,13 @@ class _FrictionSection(Section):
         return None if self.a_f == "estimate" else float(self.a_f)
 
 
-def _parameter_fields() -> dict:
-    """Every registered law's parameters as optional fields (a name once)."""
-    out: dict = {}
-    for spec in FRICTION_LAWS.values():
-        for p in spec.parameters:
-            if p.name in out:
-                continue
-            limits = {k: v for k in ("gt", "ge", "lt", "le") if (v := getattr(p, k)) is not None}
-            if p.words:     # words besides numbers: the limits go on the number alone
-                kind = Literal[p.words] | Annotated[float, Field(**limits)] | None
-                out[p.name] = (kind, field(None, p.text, p.unit, p.allowed))
-            else:
-                laws = " or ".join(f'"{s.name}"' for s in FRICTION_LAWS.values()
-                                   if any(q.name == p.name for q in s.parameters))
-                out[p.name] = (float | None, field(None, f"{p.text}; law = {laws} only", p.unit,
-                                                   p.allowed, **limits))
-    return out
-
-
 FrictionConfig = create_model(
     "FrictionConfig", __base__=_FrictionSection, __module__=__name__,
     law=(Literal[tuple(FRICTION_LAWS)], field(
         next(iter(FRICTION_LAWS)), "friction law: " + "; ".join(
             f"{s.name} ({s.summary})" for s in FRICTION_LAWS.values()), "",
         ", ".join(f'"{n}"' for n in FRICTION_LAWS))),
-    **_parameter_fields(),
+    **parameter_fields(FRICTION_LAWS),
     v_reg=(PosFloat | None, field(
         None, "friction regularisation velocity (omit: " + ", ".join(
             f"{s.v_reg_fraction:g} x roll surface speed for {s.name}"

@@ -8,12 +8,13 @@ for its coefficients. Adding a law touches its own module, not this one.
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import ClassVar, Literal
 
 import numpy as np
 from pydantic import create_model, field_validator, model_validator
 
-from hotroll.config.base import Problems, Section, field, fields_of
+from hotroll.config.base import Problems, field, fields_of
+from hotroll.config.law_section import LawSection, parameter_fields
 from hotroll.config.thermal import Property, check_property
 from hotroll.model.flow_stress import LAWS, FlowStressLaw
 from hotroll.model.grades import get_grade, list_grades
@@ -23,28 +24,20 @@ from hotroll.model.thermal_properties import ThermalProperties
 GRADE_LAW = "hensel-spittel"
 
 
-class _MaterialSection(Section):
+class _MaterialSection(LawSection):
     """The checks and the law object of ``MaterialConfig`` (its fields come from the registry)."""
+
+    registry: ClassVar[dict] = LAWS
+    section: ClassVar[str] = "material"
 
     @field_validator("density", "specific_heat", "conductivity", mode="before", check_fields=False)
     @classmethod
     def _property(cls, v, info):
         return check_property(info.field_name, v)
 
-    def given(self) -> dict:
-        """The chosen law's parameters that the case gives (SI)."""
-        return {p.name: getattr(self, p.name) for p in LAWS[self.law].parameters
-                if getattr(self, p.name) is not None}
-
     @model_validator(mode="after")
     def _check_law(self):
-        spec, problems = LAWS[self.law], []
-        own = [p.name for p in spec.parameters]
-        for other in LAWS.values():
-            for p in other.parameters:
-                if p.name not in own and getattr(self, p.name) is not None:
-                    problems.append(f"material.{p.name}: only for law = \"{other.name}\" (law = "
-                                    f"\"{self.law}\" takes {', '.join(own) or 'nothing'})")
+        spec, problems = LAWS[self.law], self.other_law_problems()
         if self.grade is not None:
             if self.law != GRADE_LAW:
                 problems.append(f"material.grade: only for law = \"{GRADE_LAW}\" (a grade is a "
@@ -102,18 +95,6 @@ class _MaterialSection(Section):
         return float(self.flow_stress().rate_exponent(temperature))
 
 
-def _parameter_fields() -> dict:
-    """Every registered law's parameters as optional fields (a name once)."""
-    out: dict = {}
-    for spec in LAWS.values():
-        for p in spec.parameters:
-            if p.name not in out:
-                limits = {k: v for k in ("gt", "ge", "lt", "le")
-                          if (v := getattr(p, k)) is not None}
-                out[p.name] = (float | None, field(None, p.text, p.unit, p.allowed, **limits))
-    return out
-
-
 MaterialConfig = create_model(
     "MaterialConfig", __base__=_MaterialSection, __module__=__name__,
     law=(Literal[tuple(LAWS)], field(
@@ -122,7 +103,7 @@ MaterialConfig = create_model(
         + f"; {GRADE_LAW} also by grade", "", " or ".join(f'"{n}"' for n in LAWS))),
     grade=(str | None, field(None, "Hensel-Spittel parameter set by name (hotroll grades)", "",
                              "a name from model/grades.py")),
-    **_parameter_fields(),
+    **parameter_fields(LAWS),
     eps0=(float, field(1e-4, "strain-rate regularisation eps0", "1/s", "> 0", gt=0)),
     # thermal properties: used only with a [thermal] section (config/thermal.py)
     density=(Property | None, field(None, "density (with [thermal])", "kg/m^3",
