@@ -12,7 +12,7 @@ import math
 
 from hotroll.fem.forms import strain_rate
 from hotroll.model.material import edot_squared
-from hotroll.results.units import UNITS  # noqa: F401 (the table lives there)
+from hotroll.results.units import UNITS
 
 
 def gap_means(form, rp, x_start: float, K: float) -> dict:

@@ -33,7 +33,6 @@ from typing import Callable
 import numpy as np
 
 from hotroll.config.case import Case
-from hotroll.model.flow_stress import NortonHoffStress
 from hotroll.model.friction import FRICTION_LAWS
 from hotroll.results.compare_table import (
     COLUMNS,
@@ -80,13 +79,6 @@ class SlabInputs:
                 "back_tension_Pa": self.back_tension, "front_tension_Pa": self.front_tension}
 
 
-def _flow_law(case: Case):
-    if hasattr(case.material, "flow_stress"):
-        return case.material.flow_stress()
-
-    return NortonHoffStress(case.material.K, case.material.m, case.material.eps0)
-
-
 def slab_friction(case: Case):
     """(theory friction object, note) for the case's friction law."""
     fr = case.friction
@@ -104,7 +96,7 @@ def slab_friction(case: Case):
 
 def map_case(case: Case) -> SlabInputs:
     """Map a case onto the slab solver's inputs."""
-    p, law = case.pass_, _flow_law(case)
+    p, law = case.pass_, case.material.flow_stress()
     friction, note = slab_friction(case)
 
     def flow_stress(strain: float, strain_rate: float, temperature: float) -> float:

@@ -43,11 +43,6 @@ def reference_material(case: Case):
     return NortonHoff(K_ref, m, case.material.eps0), flow
 
 
-def strain_dependent(flow) -> bool:
-    """Whether the flow stress depends on the strain (a strain field is then carried)."""
-    return bool(flow.depends_on_strain)
-
-
 def build_model(case: Case):
     """Translate the case description into the solver's model and settings."""
     sv = case.solver
@@ -62,10 +57,10 @@ def build_model(case: Case):
                          case.friction.law_object(rp.u_roll, material.m), spec,
                          back_tension=case.pass_.back_tension,
                          front_tension=case.pass_.front_tension,
-                         flow_stress=flow if strain_dependent(flow) or case.thermal else None,
+                         flow_stress=flow if flow.depends_on_strain or case.thermal else None,
                          temperature=case.plate.temperature,
                          entry_strain=case.plate.mean_entry_strain,
-                         carries_strain=strain_dependent(flow),
+                         carries_strain=flow.depends_on_strain,
                          thermal=(case.material.thermal_properties(),
                                   case.thermal.boundary(case.plate.temperature, t_profile),
                                   case.thermal.mesh_refinement)

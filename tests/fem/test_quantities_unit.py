@@ -34,7 +34,8 @@ from hotroll.model.friction import (
     smooth_positive_part,
 )
 from hotroll.model.friction_estimate import estimate_a_f, lambda_factor
-from hotroll.results.engineering import UNITS, display, width_totals
+from hotroll.results.engineering import display, width_totals
+from hotroll.results.units import UNITS
 
 
 # =============================================================================================
