@@ -26,7 +26,7 @@ from hotroll.config.case import MESH_TABLE, Case, CaseError, load_case
 from hotroll.examples import EXAMPLES, example_path
 from hotroll.results.engineering import display
 from hotroll.results.figures import plot_compare
-from hotroll.results.outcome import EXIT_CODES, exit_code
+from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv
 from hotroll.results.units import UNITS
 from hotroll.workflows.compare import run_compare
@@ -106,7 +106,7 @@ def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
     except ResourceError as e:
         raise fail(f"{case.name}: refused: {e}", code=8) from None
     console.print(Text(f"running {case.name} -> {out} ({est.text()})", style="bold"))
-    summary = run_case(case, out, resume=resume, progress=_Progress(), sweep=sweep) or {}
+    summary = run_case(case, out, resume=resume, progress=_Progress(), sweep=sweep)
     table = Table(title=escape(f"{case.name}: summary"))
     table.add_column("quantity")
     table.add_column("value", justify="right")
@@ -121,7 +121,7 @@ def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
                           escape(unit or UNITS.get(key, "")))
     console.print(table)
 
-    code = summary.setdefault("exit_code", exit_code(summary))   # the runner has written it
+    code = summary["exit_code"]
     if code:
         err_console.print(Text(f"{case.name}: {EXIT_CODES[code]} (exit code {code}; status "
                                f"{summary.get('status')}"

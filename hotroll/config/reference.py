@@ -61,8 +61,9 @@ def case_keys_markdown() -> str:
     return "\n".join(lines).rstrip() + "\n"
 
 
-def with_generated(page: str) -> str:
-    """``page`` with the text between the generated marks replaced by the current keys."""
+def with_generated(page: str, body: str | None = None) -> str:
+    """``page`` with the text between the generated marks replaced by ``body`` (default: the
+    case's keys)."""
     head, rest = page.split(BEGIN, 1)
     _, tail = rest.split(END, 1)
-    return f"{head}{BEGIN}\n\n{case_keys_markdown()}\n{END}{tail}"
+    return f"{head}{BEGIN}\n\n{case_keys_markdown() if body is None else body}\n{END}{tail}"

@@ -26,7 +26,7 @@ class ActiveSet:
         self.form = form
         verts, dofs = form.multiplier_vertices()
         self.vertices = verts                                  # mesh vertex numbers
-        self.dofs = form.problem.multiplier_range().start + dofs   # in the product vector
+        self.dofs = form.nonlinear.multiplier_range().start + dofs   # in the product vector
         self.active = np.ones(len(dofs), dtype=bool)
         self.c = c0 * form.rp.contact_length / form.penalties.h
         self.changes = 0
@@ -59,7 +59,7 @@ class ActiveSet:
     def normal_velocity(self) -> np.ndarray:
         """g_j / m_j: the weighted normal velocity at each node (m/s, > 0 into the roll), read
         from the constraint rows of the residual (s int phi_j u.n)."""
-        problem = self.form.problem
+        problem = self.form.nonlinear
         r = problem.gf.vec.CreateVector()
         problem.a_newton.Apply(problem.gf.vec, r)
         g = r.FV().NumPy()[self.dofs] / self.form.lam_scale
@@ -69,7 +69,7 @@ class ActiveSet:
         """One active-set update at the current iterate; True if the set changed."""
         if self.frozen:
             return False
-        lam = self.form.problem.gf.vec.FV().NumPy()[self.dofs]
+        lam = self.form.nonlinear.gf.vec.FV().NumPy()[self.dofs]
         new = lam + self.c * self.normal_velocity() > 0.0
         if not new.any():        # no contact at all is not a rolling pass: keep the old set
             return False
@@ -89,7 +89,7 @@ class ActiveSet:
         return True
 
     def _apply(self, active: np.ndarray) -> None:
-        problem = self.form.problem
+        problem = self.form.nonlinear
         vec = problem.gf.vec.FV().NumPy()
         vec[self.dofs[~active]] = 0.0
         problem.set_free(self.dofs[active], True)

@@ -32,7 +32,7 @@ def top_nodes(form: RollingForm, top: TopBoundary, disp: np.ndarray, contact_onl
     """(xy, velocity) at the top-boundary P2 nodes (vertices, then edge midpoints)."""
     verts = top.verts[top.vertex_contact] if contact_only else top.verts
     rows = np.nonzero(top.edge_contact)[0] if contact_only else np.arange(len(top.edge))
-    vel = form.problem.gf.vec.FV().NumPy()
+    vel = form.nonlinear.gf.vec.FV().NumPy()
     xy = np.vstack([top.vertex_positions(disp, verts), top.midpoint_positions(disp, rows)])
     return xy, np.vstack([top.vertex_values(vel, verts), top.midpoint_values(vel, rows)])
 
@@ -89,7 +89,7 @@ def _nodal_k(form: RollingForm, top: TopBoundary, contact_only: bool):
     from ngsolve import H1, GridFunction
 
     k = GridFunction(H1(form.mesh, order=1))
-    k.Set(form.shear_flow_stress(form.problem.velocity))
+    k.Set(form.shear_flow_stress(form.nonlinear.velocity))
     return at_top_nodes(k.vec.FV().NumPy(), top, contact_only)
 
 
@@ -134,7 +134,7 @@ def integrals(form: RollingForm, K: float) -> dict:
     from ngsolve import BND, CF, VOL, IfPos, InnerProduct, Integrate, specialcf, sqrt, x, y
 
     mesh, rp, pen, m = form.mesh, form.rp, form.penalties, form.m
-    u = form.problem.velocity
+    u = form.nonlinear.velocity
     top = mesh.Boundaries(TOP)
     chi = form.chi
     n, t = form.roll_frame()
@@ -207,7 +207,7 @@ def force_balance(form: RollingForm, K: float) -> dict:
     from ngsolve import BND, CF, Grad, IfPos, Integrate, specialcf, x
 
     mesh, rp = form.mesh, form.rp
-    u, chi = form.problem.velocity, form.chi
+    u, chi = form.nonlinear.velocity, form.chi
     n, t = form.roll_frame()
     gam = form.penalties.surface(x, rp.soft_zone)
     s = form.slip(u)
@@ -236,7 +236,7 @@ def force_balance(form: RollingForm, K: float) -> dict:
     tension = np.add(force(-form.tension_back * nh, "in"), force(-form.tension_front * nh, "out"))
     # symmetry reaction: the residual of (3.6) in the Dirichlet rows v_y = 0, at the vertices
     # (the constant e_y has coefficient 1 there and 0 on the edge bubbles)
-    problem = form.problem
+    problem = form.nonlinear
     r = problem.gf.vec.CreateVector()
     problem.a_newton.Apply(problem.gf.vec, r)
     nv = problem.n_velocity_dofs() // 2
@@ -265,7 +265,7 @@ def a_f_inputs(form: RollingForm) -> tuple[float, float]:
     """The two integrals of (3.15): int_Omega |v|^p dx and the length of Gamma_C^-."""
     from ngsolve import BND, VOL, IfPos, Integrate, Norm
 
-    u, p = form.problem.velocity, form.m.Get() + 1.0
+    u, p = form.nonlinear.velocity, form.m.Get() + 1.0
     vol = float(Integrate((Norm(u) ** 2 + 1e-300) ** (p / 2), form.mesh, VOL))
     back = float(Integrate(form.chi * IfPos(-form.slip(u), 1.0, 0.0), form.mesh, BND,
                            definedon=form.mesh.Boundaries(TOP)))
@@ -279,6 +279,6 @@ def face_flow(form: RollingForm, face: str) -> dict:
 
     nh = specialcf.normal(2)
     region = form.mesh.Boundaries(face)
-    q = abs(float(Integrate(form.problem.velocity * nh, form.mesh, BND, definedon=region)))
+    q = abs(float(Integrate(form.nonlinear.velocity * nh, form.mesh, BND, definedon=region)))
     height = abs(float(Integrate(nh[0], form.mesh, BND, definedon=region)))
     return {"velocity": q / height if height > 0 else math.nan, "thickness": height, "flux": q}

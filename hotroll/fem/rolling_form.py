@@ -162,7 +162,7 @@ class RollingForm:
         # back / front tension over K (reduced, like every stress in the form)
         self.tension_back, self.tension_front = Parameter(tensions[0]), Parameter(tensions[1])
         self.top_elements = _elements_on(mesh, TOP) if friction.uses_k else None
-        self.problem = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll,
+        self.nonlinear = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll,
                                         jacobian=self.jacobian,
                                         pressure_row_scale=self.mu_ref)
 
@@ -199,7 +199,7 @@ class RollingForm:
     def multiplier(self):
         """The solution's scaled multiplier lambda~ (a GridFunction on the arc; None with
         penalties)."""
-        return self.problem.gf.components[2] if self.exact else None
+        return self.nonlinear.gf.components[2] if self.exact else None
 
     def multiplier_vertices(self):
         """(vertex numbers, multiplier DOFs) of the arc's P1 multiplier, in the component's

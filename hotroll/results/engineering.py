@@ -24,7 +24,7 @@ def gap_means(form, rp, x_start: float, K: float) -> dict:
     area = float(Integrate(band, form.mesh))
     if not area > 0:
         return {"mean_flow_stress": math.nan, "mean_strain_rate": math.nan}
-    e2 = edot_squared(strain_rate(form.problem.velocity))
+    e2 = edot_squared(strain_rate(form.nonlinear.velocity))
     sigma = form.material.sigma_ef_reg(e2, m=form.m_material, K=form.consistency)
     return {"mean_flow_stress": K * float(Integrate(band * sigma, form.mesh)) / area,
             "mean_strain_rate": float(Integrate(band * sqrt(e2 + 1e-300), form.mesh)) / area}

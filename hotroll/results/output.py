@@ -5,6 +5,7 @@ import csv
 import io
 import json
 import math
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
@@ -30,7 +31,7 @@ def _clean(v):
         return bool(v)
     if isinstance(v, (list, tuple, np.ndarray)):
         return [_clean(x) for x in v]
-    if isinstance(v, dict):
+    if isinstance(v, Mapping):       # a dict or a typed Summary
         return {k: _clean(x) for k, x in v.items()}
     return v
 
@@ -74,19 +75,19 @@ def vertex_fields(run) -> dict:
     flow stress at that strain, rate and flow temperature); SI units."""
     import ngsolve
 
-    mesh, form, K = run.mesh, run.form, run.model.material.K
+    mesh, form, K = run.mesh, run.form, run.problem.material.K
     nv = mesh.nv
     ns = form.fes.components[0].ndof // 2
-    sol = form.problem.gf.vec.FV().NumPy()
+    sol = form.nonlinear.gf.vec.FV().NumPy()
     pts = run.top.X0 + np.stack([run.d[:nv], run.d[ns:ns + nv]], -1)
     tris = mesh_triangles(mesh)
     vel = np.stack([sol[:nv], sol[ns:ns + nv]], -1)
-    pressure = K * form.problem.pressure.vec.FV().NumPy()[:nv]
+    pressure = K * form.nonlinear.pressure.vec.FV().NumPy()[:nv]
     g = ngsolve.GridFunction(ngsolve.H1(mesh, order=1))
-    g.Set(ngsolve.sqrt(edot_squared(strain_rate(form.problem.velocity)) + 1e-300))
+    g.Set(ngsolve.sqrt(edot_squared(strain_rate(form.nonlinear.velocity)) + 1e-300))
     edot = np.maximum(g.vec.FV().NumPy()[:nv].copy(), 0.0)
     rows = np.nonzero(run.top.edge_contact)[0]
-    model, field = run.model, getattr(run, "strain", None)
+    model, field = run.problem, getattr(run, "strain", None)
     strain = (field.values[:nv].copy() if field is not None
               else np.full(nv, model.entry_strain))
     thermal = getattr(run, "thermal", None)
@@ -99,7 +100,7 @@ def vertex_fields(run) -> dict:
         "strain": strain, "sigma_ef": np.asarray(sigma), "temperature": temperature,
         "flow_temperature": flow_T,
         "contact_edges": np.stack([run.top.ea[rows], run.top.eb[rows]], -1),
-        "roll_centre": np.array(run.model.rp.centre), "roll_radius": run.model.rp.radius,
+        "roll_centre": np.array(run.problem.rp.centre), "roll_radius": run.problem.rp.radius,
     }
 
 
@@ -127,10 +128,10 @@ def write_vtk(run, path: Path, shift: float = 0.0) -> Path:
                 strip.mesh.SetDeformation(strip.disp)
     import ngsolve
 
-    form, K = run.form, run.model.material.K
-    edot = ngsolve.sqrt(edot_squared(strain_rate(form.problem.velocity)) + 1e-300)
-    m = run.model.material.m
-    coefs = [form.problem.velocity, K * form.problem.pressure, edot,
+    form, K = run.form, run.problem.material.K
+    edot = ngsolve.sqrt(edot_squared(strain_rate(form.nonlinear.velocity)) + 1e-300)
+    m = run.problem.material.m
+    coefs = [form.nonlinear.velocity, K * form.nonlinear.pressure, edot,
              K * form.consistency * 3.0 ** ((m + 1) / 2) * edot**m]
     names = ["velocity", "pressure", "edot", "sigma_ef"]
     if getattr(run, "strain", None) is not None:

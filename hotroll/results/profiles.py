@@ -20,7 +20,7 @@ def exit_profiles(run) -> dict | None:
     """{"eta": [...], "temperature": [...] or None, "strain": [...] or None} at the outlet of a
     steady run (``algorithms.steady.SteadyRun``); None if it carries neither field."""
     thermal, strain = getattr(run, "thermal", None), getattr(run, "strain", None)
-    if (thermal is None and strain is None) or hasattr(run, "advance"):
+    if (thermal is None and strain is None) or run.time_stepping:
         return None
     if thermal is not None:
         strip = thermal.strip

@@ -14,49 +14,14 @@ import re
 import tomllib
 from pathlib import Path
 
+from hotroll.results.run_dir import RunDir
+from hotroll.results.summary import Summary
 from hotroll.results.units import UNITS
 
-#: Summary keys of the table, by group (the remaining numbers follow under "other").
-GROUPS = {
-    "Pass": ("roll_force", "roll_force_total", "roll_torque", "roll_torque_total", "roll_power",
-             "roll_power_total", "mill_power", "forward_slip", "neutral_angle", "neutral_point", "sticking_zone",
-             "mean_pressure", "mean_flow_stress", "mean_strain_rate", "contact_length",
-             "entry_velocity", "exit_velocity", "exit_strain", "homogeneous_exit_strain",
-             "horizontal_force", "a_f"),
-    "Temperature and heat": ("exit_temperature_mean", "exit_temperature_surface",
-                             "max_temperature", "min_temperature", "plastic_heat",
-                             "friction_heat_to_strip", "heat_to_roll", "heat_to_air",
-                             "advected_in", "advected_out", "conducted_in"),
-    "Checks": ("balance_error", "power_balance_error", "mass_flux_error", "heat_balance_error",
-               "penalty_share", "free_top_force_share", "surface_residual_h",
-               "unconverged_steps_in_window", "exit_correction_normal_force_change"),
-    "Solver": ("h_contact", "dofs", "steps", "time", "dt", "newton_solves", "coupling_updates",
-               "nonlinear_iterations", "iterations_per_step", "averaged_over_steps",
-               "wall_time_s"),
-}
-LABELS = {
-    "roll_force": "roll force, one roll", "roll_force_total": "roll force, whole width",
-    "roll_torque": "roll torque, one roll", "roll_torque_total": "roll torque, whole width",
-    "roll_power": "roll power, one roll", "roll_power_total": "roll power, whole width",
-    "mill_power": "mill power, both rolls", "forward_slip": "forward slip",
-    "neutral_angle": "neutral angle", "neutral_point": "neutral point (x, y)",
-    "sticking_zone": "sticking zone (from, to)",
-    "mean_pressure": "mean roll pressure", "mean_flow_stress": "mean flow stress in the gap",
-    "mean_strain_rate": "mean strain rate in the gap", "contact_length": "contact arc length",
-    "entry_velocity": "entry velocity", "exit_velocity": "exit velocity",
-    "exit_strain": "exit strain (mean)", "homogeneous_exit_strain": "homogeneous exit strain",
-    "horizontal_force": "horizontal roll force", "a_f": "friction coefficient a_f",
-    "exit_temperature_mean": "exit temperature, mean", "exit_temperature_surface":
-    "exit temperature, surface", "heat_to_roll": "heat to the roll", "heat_to_air":
-    "heat to the air", "plastic_heat": "plastic heat", "friction_heat_to_strip":
-    "friction heat to the strip", "balance_error": "force balance error",
-    "power_balance_error": "power balance error", "mass_flux_error": "mass flux error",
-    "heat_balance_error": "heat balance error", "penalty_share": "penalty power share",
-    "surface_residual_h": "last free-surface move (in mesh sizes h)",
-    "h_contact": "contact mesh size",
-    "dofs": "unknowns", "wall_time_s": "wall time", "nonlinear_iterations":
-    "nonlinear iterations",
-}
+#: Summary keys of the table, by group (the remaining numbers follow under "other"), and their
+#: labels: both declared with the keys (``results/summary.py``).
+GROUPS = Summary.groups()
+LABELS = Summary.labels()
 #: Dimensionless ratios shown in percent.
 PERCENT = ("forward_slip", "balance_error", "power_balance_error", "mass_flux_error",
            "heat_balance_error", "penalty_share", "free_top_force_share", "reduction",
@@ -279,7 +244,7 @@ def run_context(d: Path) -> dict:
     compare_dir = d if (d / "compare.json").is_file() else (
         d.parent if d.name == "fe" and (d.parent / "compare.json").is_file() else None)
     run_dir = d / "fe" if compare_dir == d else d
-    s = read_json(run_dir / "summary.json")
+    s = RunDir(run_dir).summary()
     name, inputs = (case_inputs(run_dir / "case.toml") if (run_dir / "case.toml").is_file()
                     else (None, []))
     compare = compare_context(compare_dir) if compare_dir is not None else None

@@ -17,6 +17,7 @@ from hotroll.results.report_run import (
     run_warnings,
     scale,
 )
+from hotroll.results.run_dir import RunDir
 from hotroll.results.units import UNITS
 
 #: A study's result columns shown (when the table has them), after the varied keys.
@@ -225,7 +226,7 @@ def schedule_context(d: Path, title: str | None = None) -> dict:
     for i, p in enumerate(passes):
         sub = str(p.get("case") or "")
         s = d / sub / "summary.json"
-        w = run_warnings(read_json(s)) if sub and s.is_file() else []
+        w = run_warnings(RunDir(d / sub).summary()) if sub and s.is_file() else []
         warns += [{"level": x["level"], "text": f"pass {p.get('name')}: {x['text']}"} for x in w]
         table.append({"case": str(p.get("name")), "failed": any(x["level"] == "error" for x in w),
                       "status": "warnings" if w else "ok", "reason": "", "link": _link(d, sub),

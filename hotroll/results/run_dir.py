@@ -12,6 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
+from hotroll.results.summary import Summary
+
 #: Cells that read as numbers besides the numerals: switches written by the history.
 _SWITCHES = {"true": 1.0, "false": 0.0}
 
@@ -35,8 +37,9 @@ class RunDir:
     def __init__(self, path: str | Path):
         self.path = Path(path)
 
-    def summary(self, *, strict: bool = True) -> dict:
-        """``summary.json``; ``strict=False``: {} (with a warning if it is unreadable) when it is
+    def summary(self, *, strict: bool = True) -> Summary:
+        """``summary.json`` as a ``Summary`` (keys another version wrote are kept);
+        ``strict=False``: an empty one (with a warning if the file is unreadable) when it is
         missing or broken, for drawing what the other files allow."""
         path = self.path / "summary.json"
         try:
@@ -46,12 +49,12 @@ class RunDir:
                 raise
             if path.is_file():
                 warnings.warn(f"could not read {path}: {exc}")
-            return {}
+            return Summary()
         if not isinstance(data, dict):
             if strict:
                 raise ValueError(f"{path}: expected a JSON object")
-            return {}
-        return data
+            return Summary()
+        return Summary.from_dict(data, strict=False)
 
     def table(self, name: str) -> dict[str, np.ndarray] | None:
         """A CSV table as columns: numbers as float arrays (empty cells NaN, true/false 1/0),
@@ -87,10 +90,10 @@ class RunDir:
             return None
         return fields
 
-    def finished_summary(self, case_toml: str) -> dict | None:
+    def finished_summary(self, case_toml: str) -> Summary | None:
         """The summary of a finished run of this very case (``case.toml`` the same text), else
         None: what a schedule or a study reads back instead of solving again."""
         s, c = self.path / "summary.json", self.path / "case.toml"
         if s.is_file() and c.is_file() and c.read_text() == case_toml:
-            return json.loads(s.read_text())
+            return Summary.from_dict(json.loads(s.read_text()), strict=False)
         return None

@@ -15,6 +15,7 @@ from hotroll.results.engineering import gap_means, width_totals
 from hotroll.results.outcome import conservation_problem, exit_code, leak_to_slip
 from hotroll.results.output import vertex_fields, write_csv, write_json, write_npz, write_vtk
 from hotroll.results.profiles import exit_profiles
+from hotroll.results.summary import Summary
 from hotroll.results.units import UNITS
 
 #: The history figures the summary averages over the last window.
@@ -34,32 +35,32 @@ def exit_strain(case: Case, run) -> dict:
     of plane-strain compression: steady strip, x in X_roll + [0.25, 0.75] D with D = max(l_c,
     2 h1) (the downstream length, where it is rigid); report's scheme, the material past
     X_roll + 2h that was ahead of the bite at the start (it has crossed the whole arc)."""
-    rp, pa = run.model.rp, case.pass_      # the run's frame (steady: the roll's, axis at 0)
+    rp, pa = run.problem.rp, case.pass_      # the run's frame (steady: the roll's, axis at 0)
     homog = case.plate.mean_entry_strain + 2.0 / math.sqrt(3.0) * math.log(
         pa.entry_thickness / pa.exit_thickness)
     field = getattr(run, "strain", None)
     if field is None:
         return {"exit_strain": None, "homogeneous_exit_strain": homog}
     D = max(rp.contact_length, 4.0 * rp.half_exit)
-    if hasattr(run, "advance"):
+    if run.time_stepping:
         # the report's scheme: the material past the gap that was ahead of the bite at the
         # start (it has crossed the whole arc; the head was in the gap from t = 0)
         nv = run.mesh.nv
         x_now = run.top.X0[:, 0] + run.d[:nv]
-        mask = (x_now > rp.axis_x + 2.0 * run.model.h) & (run.top.X0[:, 0] < rp.x_touch)
+        mask = (x_now > rp.axis_x + 2.0 * run.problem.h) & (run.top.X0[:, 0] < rp.x_touch)
         value = field.mean_where(mask) if mask.any() else float("nan")
     else:
         value = field.mean_between(rp.axis_x + 0.25 * D, rp.axis_x + 0.75 * D)
     return {"exit_strain": value, "homogeneous_exit_strain": homog}
 
 
-def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = None) -> dict:
-    K, hist = run.model.material.K, run.state.history
+def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = None) -> Summary:
+    K, hist = run.problem.material.K, run.state.history
     thermal = getattr(run, "thermal", None)
     columns = thermal.contact_columns() if thermal is not None else None
     prof = Q.contact_profile(run.form, run.top, run.d, K, columns)
     exact = run.form.exact     # exact contact: the raw multiplier needs no exit correction
-    prof["normal_stress_corrected"] = (Q.exit_corrected(prof, run.model.h)
+    prof["normal_stress_corrected"] = (Q.exit_corrected(prof, run.problem.h)
                                       if case.solver.exit_pressure_correction and not exact
                                       else prof["normal_stress"])
     prof["normal_stress_smooth"] = Q.smoothed(prof, prof["normal_stress"])
@@ -92,8 +93,8 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
     if not case.friction.uses_a_f:
         summary["a_f"] = None            # the law has no a_f
 
-    x_start = float(prof["x"][0]) if len(prof["x"]) else run.model.rp.x_touch
-    summary.update(gap_means(run.form, run.model.rp, x_start, K))
+    x_start = float(prof["x"][0]) if len(prof["x"]) else run.problem.rp.x_touch
+    summary.update(gap_means(run.form, run.problem.rp, x_start, K))
     summary["mean_pressure"] = (summary["roll_force"] / summary["contact_length"]
                                 if summary.get("contact_length") else None)
     summary.update(width_totals(summary, case.pass_.width))
@@ -109,8 +110,9 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
     summary["units"] = {k: u for k, u in UNITS.items() if k in summary}
 
     summary["exit_code"] = exit_code(summary)
-    write_json(out / "summary.json", summary)
-    return summary
+    typed = Summary.from_dict(summary)      # every key declared once, with its unit
+    write_json(out / "summary.json", typed.to_dict())
+    return typed
 
 
 def shift_positions(summary: dict, shift: float) -> None:
@@ -133,7 +135,7 @@ def _nanmean(values) -> float:
 
 def summarise(case: Case, run, prof: dict, wall: float) -> dict:
     """The summary.json dictionary: last-window means and run figures."""
-    rp, state, last = run.model.rp, run.state, run.state.history[-1]
+    rp, state, last = run.problem.rp, run.state, run.state.history[-1]
     # a step whose nonlinear solve did not converge (max_iterations reached) is not a solution:
     # its figures stay in history.csv but not in the means
     window = state.history[-run.window:]
@@ -147,9 +149,9 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
     # angle, which needs no slip sign, is given beside it
     ang = mean["neutral_angle"]
     ang_flux = Q.flux_neutral_angle(rp, mean["mass_flux_in"])
-    stick = Q.sticking_zone(prof, rp.u_roll, 2.0 * run.model.h)
+    stick = Q.sticking_zone(prof, rp.u_roll, 2.0 * run.problem.h)
     in_stick = stick is not None and math.isfinite(ang) and (
-        stick[1] - run.model.h / rp.radius <= ang <= stick[0] + run.model.h / rp.radius)
+        stick[1] - run.problem.h / rp.radius <= ang <= stick[0] + run.problem.h / rp.radius)
     flips = Q.slip_sign_changes(prof, stick) if in_stick else 0
     no_neutral = (
         f"the slip changes sign {flips} times in the sticking zone {stick[0]:.4g} .. "
@@ -161,7 +163,7 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
     exact = run.form.exact
     # exact contact: every tensile node of the raw multiplier (bilateral), and the stretch of the
     # arc the strip has left (unilateral); penalties: stretches of 2h of the corrected stress
-    loss = Q.contact_loss(prof, prof["normal_stress_corrected"], 0.0 if exact else 2.0 * run.model.h)
+    loss = Q.contact_loss(prof, prof["normal_stress_corrected"], 0.0 if exact else 2.0 * run.problem.h)
     active = getattr(run, "active", None)
     if active is not None and len(prof["x"]):
         gap = rp.centre[0]
@@ -213,7 +215,7 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         # exact contact: what the pressure still moved in the last Newton step (Pa; sticking
         # zones, solvers/nonlinear.py)
         "pressure_last_update": (run.result.stats[-1].multiplier_update * rp.u_roll
-                                 * run.form.lam_scale * run.model.material.K)
+                                 * run.form.lam_scale * run.problem.material.K)
         if steady_solver and exact else None,
         "steps": 0 if steady_solver else last["step"] + 1,
         "time": None if steady_solver else last["time"],
@@ -223,16 +225,16 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         if steady_solver else None,
         "fixed_point_settled": bool(run.result.settled) if steady_solver else None,
         "free_surface": case.plate.free_surface,
-        "surface_residual_h": float(run.result.surface_moves[-1] / run.model.h)
+        "surface_residual_h": float(run.result.surface_moves[-1] / run.problem.h)
         if steady_solver and run.result.surface_moves else None,
         "nonlinear_iterations": int(np.sum(iters)),
         "iterations_per_step": None if steady_solver else (
             float(np.mean(iters[1:])) if len(iters) > 1 else float(iters[0])),
-        "dofs": run.form.fes.ndof, "h_contact": run.model.h, "wall_time_s": wall,
+        "dofs": run.form.fes.ndof, "h_contact": run.problem.h, "wall_time_s": wall,
         "roll_centre": [cx, cy], "roll_radius": rp.radius, "roll_surface_speed": rp.u_roll,
         "contact_start": [float(prof["x"][0]), float(prof["y"][0])] if len(prof["x"]) else None,
         "contact_end": [float(prof["x"][-1]), float(prof["y"][-1])] if len(prof["x"]) else None,
-        "K": run.model.material.K, "m": run.model.material.m,
+        "K": run.problem.material.K, "m": run.problem.material.m,
         "nonlinear": "newton" if steady_solver else run.s.nonlinear,
         **exit_strain(case, run),
         "friction_law": case.friction.law, "friction_mu": case.friction.mu,

@@ -38,6 +38,7 @@ from hotroll.model.friction_estimate import estimate_a_f
 from hotroll.model.material import NortonHoff
 from hotroll.solvers import couplings as C
 from hotroll.solvers.nonlinear import LinearSolveError, SolveStats, newton
+from hotroll.solvers.problem import Problem, Solution
 from hotroll.solvers.steady_settings import (
     SteadyResult,
     SteadySettings,
@@ -47,30 +48,29 @@ from hotroll.solvers.steady_settings import (
     mesh_key,
 )
 from hotroll.solvers.threads import solver_threads
-from hotroll.solvers.transient import RollingModel, TransientState
 
 
 class SteadyRun:
     """The steady strip, its form and the coupled Newton solve."""
 
-    def __init__(self, model: RollingModel, settings: SteadySettings, plate_length: float):
+    def __init__(self, problem: Problem, settings: SteadySettings, plate_length: float):
         import ngsolve
 
         t0 = time.perf_counter()
         if settings.free_surface not in ("traced", "constrained"):
             raise ValueError(f"plate.free_surface must be 'traced' or 'constrained', got "
                              f"{settings.free_surface!r}")
-        self.model, self.s = model, settings
-        rp, mat = model.rp, model.material
-        self.upstream, self.downstream, margin, core = settings.mesh_zone(rp, model.h)
+        self.problem, self.s = problem, settings
+        rp, mat = problem.rp, problem.material
+        self.upstream, self.downstream, margin, core = settings.mesh_zone(rp, problem.h)
         self.plate_length = plate_length
-        spec = replace(model.mesh, core_factor=core)
+        spec = replace(problem.mesh, core_factor=core)
         self.mesh = build_steady_mesh(rp, self.upstream, self.downstream, spec, margin=margin)
         reduced = NortonHoff(1.0, mat.m, mat.eps0)
-        self.strain, self.thermal, consistency = model.field_setup(self.mesh)
-        self.form = RollingForm(self.mesh, rp, reduced, model.friction, PenaltyTable(model.h),
+        self.strain, self.thermal, consistency = problem.field_setup(self.mesh)
+        self.form = RollingForm(self.mesh, rp, reduced, problem.friction, PenaltyTable(problem.h),
                                 free_surface=settings.free_surface,
-                                tensions=model.reduced_tensions, consistency=consistency,
+                                tensions=problem.reduced_tensions, consistency=consistency,
                                 rate_offset=self.thermal.rate_offset()
                                 if self.thermal is not None else None,
                                 contact=settings.contact)
@@ -96,10 +96,11 @@ class SteadyRun:
         self.mesh_time = time.perf_counter() - t0
         self.record = True    # measure after every solve (history.csv); off in benchmarks
 
-    # --- the interface the runner shares with TransientRun -------------------------------------
+    # --- the Solver interface (solvers/problem.py), shared with TransientRun ---------------------
+    time_stepping = False
     window = 1           # summary scalars: the last (converged) row
 
-    def run(self, progress=None, warm: WarmStart | None = None) -> TransientState:
+    def run(self, progress=None, warm: WarmStart | None = None) -> Solution:
         """Solve, record one history row per Newton solve (its m, a_f and figures)."""
         self.result = self.solve(warm, progress)
         r = self.result
@@ -107,7 +108,7 @@ class SteadyRun:
                   "unsettled" if r.stats[-1].converged else "failed")
         if not r.rows:     # benchmarks switch recording off: keep one row for the summary
             r.rows.append(self.measure(r.stats[-1], 0))
-        self.state = TransientState(step=len(r.rows) - 1, time=math.nan, history=r.rows,
+        self.state = Solution(step=len(r.rows) - 1, time=math.nan, history=r.rows,
                                     status=status,
                                     failure=r.failure if status == "failed" else "")
         return self.state
@@ -122,17 +123,17 @@ class SteadyRun:
 
     def measure(self, stats: SolveStats, index: int) -> dict:
         row = {"step": index, "time": math.nan, "m": self.form.m.Get()}
-        row.update(Q.measure(self.form, self.top, self.d, self.model.material.K, self.model.h,
+        row.update(Q.measure(self.form, self.top, self.d, self.problem.material.K, self.problem.h,
                              self.head_x()))
         if self.thermal is not None:     # the heat flows after the solves, not every update
-            row.update(self.thermal.measure(self.model.rp.axis_x, self.model.h,
+            row.update(self.thermal.measure(self.problem.rp.axis_x, self.problem.h,
                                             heat_flows=stats.iterations > 0))
         row.update({"iterations": stats.iterations, "residual": stats.residual,
                     "solver_converged": stats.converged})
         return row
 
     def head_x(self) -> float:
-        return self.model.rp.axis_x + self.downstream
+        return self.problem.rp.axis_x + self.downstream
 
     @property
     def dofs(self) -> int:
@@ -142,20 +143,20 @@ class SteadyRun:
     def _estimate_a_f(self) -> float:
         if self.s.a_f is not None:
             return self.s.a_f
-        rp, m = self.model.rp, self.model.material.m
+        rp, m = self.problem.rp, self.problem.material.m
         prof = Q.contact_profile(self.form, self.top, self.d, 1.0)
         vol, back = Q.a_f_inputs(self.form)
         v_in = Q.face_flow(self.form, "in")["velocity"]
         rest = max(self.plate_length - (self.upstream + rp.contact_length), 0.0)
         vol += rest * rp.half_entry * abs(v_in) ** (m + 1.0)
         lam = abs(prof["v_slip"][0]) / rp.u_roll if len(prof["v_slip"]) else 0.0
-        return estimate_a_f(vol, self.model.h, lam, back, rp.u_roll, m, a_f_max=self.s.a_f_max)
+        return estimate_a_f(vol, self.problem.h, lam, back, rp.u_roll, m, a_f_max=self.s.a_f_max)
 
     # --- the solve ------------------------------------------------------------------------------
     def warm_start(self) -> WarmStart:
         """This run's solved state, to start a neighbouring case from."""
         return WarmStart(self.solution, self.shape.copy(), self.form.a_f.Get(),
-                         self.form.m.Get(), self.model.rp.u_roll, self.mesh_key,
+                         self.form.m.Get(), self.problem.rp.u_roll, self.mesh_key,
                          self.s.free_surface)
 
     def solve(self, warm: WarmStart | None = None, progress=None) -> SteadyResult:
@@ -173,9 +174,9 @@ class SteadyRun:
                 if progress:
                     progress(res.rows[-1])
 
-        target = self.model.material.m
+        target = self.problem.material.m
         t0 = time.perf_counter()
-        vec = self.form.problem.gf.vec.FV().NumPy()
+        vec = self.form.nonlinear.gf.vec.FV().NumPy()
         with solver_threads():
             if warm is not None:
                 self._warm(warm, vec, target)
@@ -210,9 +211,9 @@ class SteadyRun:
             if warm.free_surface != self.s.free_surface:
                 raise ValueError(f"warm start: the neighbour has {warm.free_surface!r} free "
                                  f"tops, this case {self.s.free_surface!r}")
-            ratio = self.model.rp.u_roll / warm.u_roll
-            nv = self.form.problem.n_velocity_dofs()
-            pr, lr = self.form.problem.pressure_range(), self.form.problem.multiplier_range()
+            ratio = self.problem.rp.u_roll / warm.u_roll
+            nv = self.form.nonlinear.n_velocity_dofs()
+            pr, lr = self.form.nonlinear.pressure_range(), self.form.nonlinear.multiplier_range()
             vec[:nv] = ratio * warm.solution[:nv]
             vec[pr] = ratio**target * warm.solution[pr]
             vec[lr] = ratio * warm.solution[lr]     # the multiplier is scaled to a velocity
@@ -225,7 +226,7 @@ class SteadyRun:
 
     def _cold_start(self) -> None:
         """Reference strip shape, kinematic velocity guess and a_f (3.15) from it."""
-        self.shape = StripShape.flat(self.model.rp)
+        self.shape = StripShape.flat(self.problem.rp)
         if self.active is not None:
             self.active.reset()
         self._set_shape()
@@ -237,7 +238,7 @@ class SteadyRun:
             # is that of a flow converged to couple_below, not of the slab guess (whose plastic
             # heat is the guess's): fewer Newton iterations on five of six passes measured
             # (docs/studies/thermal_cost.md)
-            self.thermal.reset(self.model.temperature)
+            self.thermal.reset(self.problem.temperature)
 
     def _follow_or_fail(self, path: list[float], res: SteadyResult, record) -> None:
         """``_follow``; a linear solve that fails ends the path as an unconverged solve, its
@@ -255,7 +256,7 @@ class SteadyRun:
         f, s = self.form, self.s
         for m in path[:-1]:
             f.m.Set(m)
-            st = newton(f.problem, s.stage_tol, s.max_it)
+            st = newton(f.nonlinear, s.stage_tol, s.max_it)
             res.stats.append(st)
             self._update_coupled(res)
             record(st)
@@ -272,7 +273,7 @@ class SteadyRun:
             return True
 
         coupled = any(c.in_fixed_point for c in self.couplings)
-        st = newton(f.problem, s.tol, s.max_it + 3 * s.max_outer,
+        st = newton(f.nonlinear, s.tol, s.max_it + 3 * s.max_outer,
                     couple=couple if coupled else None, couple_below=s.couple_below,
                     full_step=True)
         res.stats.append(st)
@@ -286,13 +287,13 @@ class SteadyRun:
         if self.active is not None:
             out.append(C.ActiveSet(self.active, self._set_contact))
         if self.strain is not None:
-            out.append(C.StrainTransport(self.strain, self.form.problem.velocity, s.strain_rtol))
+            out.append(C.StrainTransport(self.strain, self.form.nonlinear.velocity, s.strain_rtol))
         if self.thermal is not None:
             out.append(C.Temperature(self.thermal, s.thermal_rtol))
         if s.a_f is None:
             out.append(C.AfEstimate(self.form.a_f, self._estimate_a_f, s.a_f_rtol))
         if s.free_surface == "traced":
-            out.append(C.FreeSurface(self.update_surface, s.surface_tol * self.model.h))
+            out.append(C.FreeSurface(self.update_surface, s.surface_tol * self.problem.h))
         return out
 
     def _update_coupled(self, res: SteadyResult) -> float:
@@ -319,7 +320,7 @@ class SteadyRun:
         the flow stress does not depend on the strain)."""
         if self.strain is None:
             return 0.0
-        return self.strain.transport(self.form.problem.velocity)
+        return self.strain.transport(self.form.nonlinear.velocity)
 
     def _update_thermal(self, newton_steps: int = 30) -> float:
         """The steady temperature of the current flow (``solvers/thermal_coupling.py``; in the fixed
@@ -344,8 +345,8 @@ class SteadyRun:
         """Trace the free tops along the flow, move the contact start, remap the mesh.
 
         Returns the largest distance (m) between a traced top and the current one."""
-        top, rp = self.top, self.model.rp
-        vel = self.form.problem.gf.vec.FV().NumPy()
+        top, rp = self.top, self.problem.rp
+        vel = self.form.nonlinear.gf.vec.FV().NumPy()
         xy = np.vstack([top.vertex_positions(self.d), top.midpoint_positions(self.d)])
         v = np.vstack([top.vertex_values(vel), top.midpoint_values(vel)])
         order = np.argsort(xy[:, 0], kind="stable")
@@ -368,7 +369,7 @@ class SteadyRun:
         to the top and to the symmetry line. Pressure 0."""
         from ngsolve import CF, IfPos, sqrt, x, y
 
-        rp = self.model.rp
+        rp = self.problem.rp
         cx, cy = rp.centre
         root = sqrt(IfPos(rp.radius**2 - (x - cx) ** 2, rp.radius**2 - (x - cx) ** 2, 1e-300))
         on_arc = IfPos(x - rp.x_touch, IfPos(rp.axis_x - x, 1.0, 0.0), 0.0)
@@ -379,9 +380,9 @@ class SteadyRun:
         # kink of the outlet's one-sided condition (3.2b), whose side would then be decided by
         # rounding (different at another roll speed: the scaling test caught it)
         q = 1.01 * rp.u_roll * rp.half_exit
-        self.form.problem.gf.vec[:] = 0.0
-        self.form.problem.gf.components[0].Set(CF((q / H, q * y * dH / H**2)))
+        self.form.nonlinear.gf.vec[:] = 0.0
+        self.form.nonlinear.gf.components[0].Set(CF((q / H, q * y * dH / H**2)))
 
     @property
     def solution(self) -> np.ndarray:
-        return self.form.problem.gf.vec.FV().NumPy().copy()
+        return self.form.nonlinear.gf.vec.FV().NumPy().copy()

@@ -122,7 +122,7 @@ class ThermalCoupling(FlowStressFeedback):
         self._strip_tris = mesh_triangles(self.strip.mesh)
         # the CFs evaluated at every update, built and compiled once (they read GridFunctions
         # and Parameters): 2-3x faster to evaluate than the plain expression trees
-        u = form.problem.velocity
+        u = form.nonlinear.velocity
         plastic, friction = self.sources()
         self._position_cf = CF((x, y)).Compile()
         self._column_cf = CF((x, y, u[0], u[1])).Compile()

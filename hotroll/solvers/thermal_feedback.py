@@ -56,7 +56,7 @@ class FlowStressFeedback:
         from ngsolve import InnerProduct
 
         f = self.form
-        u = f.problem.velocity
+        u = f.nonlinear.velocity
         eps = strain_rate(u)
         mu = f.material.viscosity(self._e2(), m=f.m_material, K=f.consistency)
         s = f.slip(u)
@@ -64,7 +64,7 @@ class FlowStressFeedback:
                 self.K_ref * f.friction_coefficient(u, k) * s * s)
 
     def _e2(self):
-        return edot_squared(strain_rate(self.form.problem.velocity))
+        return edot_squared(strain_rate(self.form.nonlinear.velocity))
 
     def vertex_temperature(self) -> np.ndarray:  # pragma: no cover - each coupling has one
         raise NotImplementedError

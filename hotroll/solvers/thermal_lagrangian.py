@@ -65,9 +65,9 @@ class LagrangianThermal(FlowStressFeedback):
         from a P1 field (the top's boundary integrals have no volume gradient)."""
         f = self.form
         if f.friction.uses_k:
-            self._k.Set(f.shear_flow_stress(f.problem.velocity))
+            self._k.Set(f.shear_flow_stress(f.nonlinear.velocity))
         plastic, friction = self._heat_sources(k=self._k)
-        return f.problem.velocity, plastic, friction, f.chi
+        return f.nonlinear.velocity, plastic, friction, f.chi
 
     def step(self, dt: float) -> SolveInfo:
         """One implicit step on the current mesh (before the nodes move), and its energy
@@ -113,7 +113,7 @@ class LagrangianThermal(FlowStressFeedback):
         do not apply (NaN)."""
         from ngsolve import IfPos, Integrate, x
 
-        u, T, mesh = self.form.problem.velocity, self.field.gf, self.mesh
+        u, T, mesh = self.form.nonlinear.velocity, self.field.gf, self.mesh
         sel = IfPos(x - x_exit, IfPos(x_exit + 2.0 * h - x, 1.0, 0.0), 0.0)
         flux = float(Integrate(sel * u[0], mesh))
         mean = float(Integrate(sel * u[0] * T, mesh)) / flux if flux > 0 else math.nan

@@ -29,7 +29,7 @@ from hotroll.fem.free_surface import StripShape, roll_height
 
 def _knots(run) -> np.ndarray:
     """The strip's knots in x: inlet, touching point, roll gap, outlet (reference mesh)."""
-    rp = run.model.rp
+    rp = run.problem.rp
     return np.array([rp.x_touch - run.upstream, rp.x_touch, rp.axis_x,
                      rp.axis_x + run.downstream])
 
@@ -67,7 +67,7 @@ class SimilarPass:
 
     def shape_for(self, dst) -> StripShape:
         """The solved strip shape carried onto ``dst``'s pass."""
-        src, rs, rd = self.run, self.run.model.rp, dst.model.rp
+        src, rs, rd = self.run, self.run.problem.rp, dst.problem.rp
         a, b = _knots(src), _knots(dst)
         sh = src.shape
         x_c = float(np.clip(knot_map(sh.x_c, a, b), *dst.map.x_bounds()))
@@ -82,7 +82,7 @@ class SimilarPass:
 
     def apply(self, dst, vec: np.ndarray) -> None:
         """Set ``dst``'s shape and its velocity-pressure vector ``vec`` from the solved pass."""
-        src, rs, rd = self.run, self.run.model.rp, dst.model.rp
+        src, rs, rd = self.run, self.run.problem.rp, dst.problem.rp
         dst.shape = self.shape_for(dst)
         dst._set_shape()
         nodes = dst.map.nodes
@@ -95,7 +95,7 @@ class SimilarPass:
         xs = np.clip(knot_map(X[:, 0], a, b), b[0] + 1e-9 * span, b[-1] - 1e-9 * span)
         ys = eta * np.interp(xs, xs_top, ys_top)
         pts = self._find(xs, ys)
-        u, p = src.form.problem.gf.components[:2]
+        u, p = src.form.nonlinear.gf.components[:2]
         vel = np.asarray(u(pts), dtype=float).reshape(len(xs), 2)
         # by the roll speeds (scaling by the fluxes over the local heights, closer by mass
         # conservation, took more Newton iterations on the finishing mill: 159 against 120)
@@ -106,12 +106,12 @@ class SimilarPass:
         n = len(coeff)
         vec[:n] = coeff
         nv = dst.mesh.nv
-        m_s, m_d = src.model.material.m, dst.model.material.m
+        m_s, m_d = src.problem.material.m, dst.problem.material.m
         factor = _mean_rate(rd) ** m_d / _mean_rate(rs) ** m_s
         press = np.asarray(p(pts), dtype=float).reshape(-1)[:nv]
         vec[n:n + nv] = factor * press
         # the contact multiplier (exact contact) starts from zero: Newton's first step sets it
-        vec[dst.form.problem.multiplier_range()] = 0.0
+        vec[dst.form.nonlinear.multiplier_range()] = 0.0
 
     def _find(self, xs: np.ndarray, ys: np.ndarray):
         """Mesh points of the solved pass's mesh (searched undeformed, evaluated deformed)."""

@@ -13,27 +13,23 @@ from __future__ import annotations
 import json
 import math
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Callable
 
 import numpy as np
 
 from hotroll.fem import quantities as Q
-from hotroll.fem.mesh import MeshSpec, build_plate_mesh
+from hotroll.fem.mesh import build_plate_mesh
 from hotroll.fem.rolling_form import PenaltyTable, RollingForm
-from hotroll.fem.strain import StrainField
 from hotroll.fem.top_boundary import TopBoundary
 from hotroll.files import atomic
-from hotroll.model.friction import FrictionLaw
 from hotroll.model.friction_estimate import estimate_a_f
-from hotroll.model.geometry import RollPass
 from hotroll.model.material import NortonHoff
 from hotroll.solvers import couplings as C
 from hotroll.solvers.nonlinear import LinearSolveError, SolveStats, picard, solve
+from hotroll.solvers.problem import Problem, Solution
 from hotroll.solvers.settling import steady_reached, summary_windows, transit_time
-from hotroll.solvers.thermal_coupling import ThermalCoupling
-from hotroll.solvers.thermal_lagrangian import LagrangianThermal
 from hotroll.solvers.threads import solver_threads
 
 
@@ -61,98 +57,30 @@ class TransientSettings:
                                   # "constrained": (3.2d) on them, held at their flat heights
 
 
-@dataclass
-class RollingModel:
-    """Everything the discrete problem needs, in SI units."""
-
-    rp: RollPass
-    length: float
-    material: NortonHoff
-    friction: FrictionLaw     # in reduced units (stresses over K): viscoplastic with K = 1
-    mesh: MeshSpec
-    back_tension: float = 0.0   # Pa, mean tensile stress on the entry face
-    front_tension: float = 0.0  # Pa, mean tensile stress on the exit face
-    flow_stress: object = None  # flow-stress law of a strain or temperature field (None: the
-                                # material is the law)
-    temperature: float = 1373.15  # K: uniform, or the entry temperature with ``thermal``
-    entry_strain: float = 0.0
-    carries_strain: bool = True   # the law depends on the strain: a strain field is carried
-    thermal: tuple | None = None  # (ThermalProperties, ThermalBoundary, strip mesh refinement)
-    strain_profile: object = None  # the inlet's strain over the half thickness (a
-                                   # process.profile.ThicknessProfile; steady solver), or None
-
-    @property
-    def v_reg(self) -> float:
-        return self.friction.v_reg
-
-    def field_setup(self, mesh, lagrangian: bool = False):
-        """(StrainField or None, ThermalCoupling or None, the form's consistency K(eps, T)/K_ref
-        as a CF, or 1.0): the fields a strain- or temperature-dependent flow stress needs
-        (``fem/strain.py``, ``solvers/thermal_coupling.py``)."""
-        strain = None
-        if self.flow_stress is not None and self.carries_strain:
-            strain = StrainField(mesh, self.entry_strain, profile=self.strain_profile)
-        if self.thermal is not None and lagrangian:     # carried with the moving mesh
-
-            props, bc, _ = self.thermal
-            coupling = LagrangianThermal(mesh, props, bc, K_ref=self.material.K,
-                                         m_ref=self.material.m, eps0=self.material.eps0,
-                                         flow=self.flow_stress, strain=strain,
-                                         entry_strain=self.entry_strain)
-            return strain, coupling, coupling.consistency()
-        if self.thermal is not None:
-            props, bc, refine = self.thermal
-            coupling = ThermalCoupling(mesh, props, bc, refine=refine, K_ref=self.material.K,
-                                       m_ref=self.material.m, eps0=self.material.eps0,
-                                       flow=self.flow_stress, strain=strain,
-                                       entry_strain=self.entry_strain)
-            return strain, coupling, coupling.consistency()
-        if strain is None:
-            return None, None, 1.0
-        ratio = self.flow_stress.consistency(strain.gf, self.temperature) / self.material.K
-        return strain, None, ratio
-
-    @property
-    def reduced_tensions(self) -> tuple[float, float]:
-        """(back, front) tension over K, as the form takes every stress."""
-        return (self.back_tension / self.material.K, self.front_tension / self.material.K)
-
-    @property
-    def h(self) -> float:
-        return self.mesh.h
-
-
-@dataclass
-class TransientState:
-    step: int = 0
-    time: float = 0.0
-    history: list = field(default_factory=list)
-    status: str = "running"   # running | steady | end_time | max_steps | wall_time | failed
-    failure: str = ""         # why a failed run stopped
-
-
 class TransientRun:
     """The report's scheme on one case; ``run`` advances it and returns its state."""
 
-    def __init__(self, model: RollingModel, settings: TransientSettings,
+    time_stepping = True    # the Solver interface (solvers/problem.py)
+
+    def __init__(self, problem: Problem, settings: TransientSettings,
                  checkpoint_dir: Path | None = None, fingerprint: str = ""):
         import ngsolve
 
-        self.model, self.s = model, settings
+        self.problem, self.s = problem, settings
         self.ckpt = Path(checkpoint_dir) if checkpoint_dir else None
         self.fingerprint = fingerprint
-        self.state = TransientState()
-        rp, mat = model.rp, model.material
+        self.state = Solution()
+        rp, mat = problem.rp, problem.material
         resumed_mesh = self._load_mesh()
-        self.mesh = resumed_mesh or build_plate_mesh(rp, model.length, model.mesh)
+        self.mesh = resumed_mesh or build_plate_mesh(rp, problem.length, problem.mesh)
         if self.ckpt and not resumed_mesh:
             self.ckpt.mkdir(parents=True, exist_ok=True)
             self.mesh.ngmesh.Save(str(self.ckpt / "mesh.vol"))
         reduced = NortonHoff(1.0, mat.m, mat.eps0)
-        self.strain, self.thermal, consistency = model.field_setup(self.mesh, lagrangian=True)
-        self.form = RollingForm(self.mesh, rp, reduced, model.friction, PenaltyTable(model.h),
+        self.strain, self.thermal, consistency = problem.field_setup(self.mesh, lagrangian=True)
+        self.form = RollingForm(self.mesh, rp, reduced, problem.friction, PenaltyTable(problem.h),
                                 free_surface=settings.free_surface,
-                                tensions=model.reduced_tensions, consistency=consistency,
+                                tensions=problem.reduced_tensions, consistency=consistency,
                                 rate_offset=self.thermal.rate_offset()
                                 if self.thermal is not None else None)
         V = self.form.fes.components[0]
@@ -161,14 +89,14 @@ class TransientRun:
         if self.thermal is not None:     # the temperature carried with the material
             self.thermal.attach(self.form, self.disp, self.top)
         # carried with the material by ``advance`` (solvers/couplings.py)
-        self.couplings = ([C.StrainTransport(self.strain, self.form.problem.velocity)]
+        self.couplings = ([C.StrainTransport(self.strain, self.form.nonlinear.velocity)]
                           if self.strain is not None else [])
         self.couplings += [C.Temperature(self.thermal)] if self.thermal is not None else []
         self.d = self.disp.vec.FV().NumPy()
         self._det = ngsolve.GridFunction(ngsolve.L2(self.mesh, order=0))   # for _check_mesh
         # summary means: whole projection periods covering 3 h of roll travel; the steady test
         # compares two windows of at least 6 periods each
-        self.window, self.steady_window = summary_windows(model.h, rp.u_roll, settings.dt,
+        self.window, self.steady_window = summary_windows(problem.h, rp.u_roll, settings.dt,
                                                           settings.project_every)
         self.last_stats = SolveStats()
         if not self._load_state():
@@ -177,7 +105,7 @@ class TransientRun:
 
     # --- geometry ----------------------------------------------------------------------------
     def _detect(self, project: bool) -> None:
-        self.top.detect(self.model.rp, self.d, self.s.contact_tol, project,
+        self.top.detect(self.problem.rp, self.d, self.s.contact_tol, project,
                         bilateral=True)
         self.top.write_indicator(self.form.chi.vec.FV().NumPy())
 
@@ -186,16 +114,16 @@ class TransientRun:
 
     # --- one solve -----------------------------------------------------------------------------
     def _solve(self) -> SolveStats:
-        return solve(self.form.problem, self.s.nonlinear, self.s.tol, self.s.max_it)
+        return solve(self.form.nonlinear, self.s.nonlinear, self.s.tol, self.s.max_it)
 
     def _estimate_a_f(self) -> float:
         if self.s.a_f is not None:
             return self.s.a_f
         prof = Q.contact_profile(self.form, self.top, self.d, 1.0)
         vol, back = Q.a_f_inputs(self.form)
-        lam = abs(prof["v_slip"][0]) / self.model.rp.u_roll if len(prof["v_slip"]) else 0.0
-        return estimate_a_f(vol, self.model.h, lam, back,
-                            self.model.rp.u_roll, self.model.material.m,
+        lam = abs(prof["v_slip"][0]) / self.problem.rp.u_roll if len(prof["v_slip"]) else 0.0
+        return estimate_a_f(vol, self.problem.h, lam, back,
+                            self.problem.rp.u_roll, self.problem.material.m,
                             a_f_max=self.s.a_f_max)
 
     def initial_solve(self) -> SolveStats:
@@ -203,8 +131,8 @@ class TransientRun:
         f = self.form
         f.a_f.Set(self.s.a_f if self.s.a_f is not None else self.s.a_f_start)
         f.m.Set(1.0)
-        first = picard(f.problem, self.s.tol, 1)
-        f.m.Set(self.model.material.m)
+        first = picard(f.nonlinear, self.s.tol, 1)
+        f.m.Set(self.problem.material.m)
         stats = self._solve()
         stats.iterations += first.iterations
         if self.s.a_f is None:  # iterate a_f <- (3.15)(v) to a fixed point, as the notes do
@@ -221,10 +149,10 @@ class TransientRun:
     def measure(self) -> dict:
         """All per-step figures in SI units (stresses times K)."""
         row = {"step": self.state.step, "time": self.state.time}
-        row.update(Q.measure(self.form, self.top, self.d, self.model.material.K, self.model.h,
+        row.update(Q.measure(self.form, self.top, self.d, self.problem.material.K, self.problem.h,
                              self.head_x()))
         if self.thermal is not None:
-            row.update(self.thermal.measure(self.model.rp.axis_x, self.model.h))
+            row.update(self.thermal.measure(self.problem.rp.axis_x, self.problem.h))
         row.update({"iterations": self.last_stats.iterations,
                     "residual": self.last_stats.residual,
                     "solver_converged": self.last_stats.converged})
@@ -232,14 +160,14 @@ class TransientRun:
 
     # --- steady state ----------------------------------------------------------------------------
     def is_steady(self) -> bool:
-        rp = self.model.rp
+        rp = self.problem.rp
         carried = self.strain is not None or self.thermal is not None
         return (self.state.time >= transit_time(rp, carried)
                 and steady_reached(self.state.history, self.steady_window, self.s.project_every,
                                    self.s.steady_tol, rp.bite_angle))
 
     # --- main loop -------------------------------------------------------------------------------
-    def run(self, progress: Callable[[dict], None] | None = None) -> TransientState:
+    def run(self, progress: Callable[[dict], None] | None = None) -> Solution:
         st, s = self.state, self.s
         t_wall = time.perf_counter()
         with solver_threads():
@@ -254,7 +182,7 @@ class TransientRun:
                 else:
                     if s.a_f is None:
                         self.form.a_f.Set(self._estimate_a_f())
-                    vec = self.form.problem.gf.vec.FV().NumPy()
+                    vec = self.form.nonlinear.gf.vec.FV().NumPy()
                     last = vec.copy()
                     try:
                         self._check_mesh()
@@ -301,7 +229,7 @@ class TransientRun:
         # implicit step); a_f (3.15) is set before each solve (``run``)
         for coupling in self.couplings:
             coupling.advance(self.s.dt)
-        self.d += self.s.dt * self.form.problem.gf.vec.FV().NumPy()[:nv_dofs]
+        self.d += self.s.dt * self.form.nonlinear.gf.vec.FV().NumPy()[:nv_dofs]
         self.state.step += 1
         self.state.time += self.s.dt
         self._detect(project=self.state.step % self.s.project_every == 0)
@@ -313,7 +241,7 @@ class TransientRun:
         """Constrained model: (3.2d) says the free tops do not move normally; the flat tops
         keep their heights (entry thickness before X_roll, the gap after it) and the nodes only
         slide along them. Without this they creep by the penalty's leak v.n = sigma_n/gamma."""
-        rp, top = self.model.rp, self.top
+        rp, top = self.problem.rp, self.top
         free = ~self.top.vertex_contact
         verts = top.verts[free]
         xy = top.vertex_positions(self.d, verts)
@@ -349,7 +277,7 @@ class TransientRun:
             self._write_state(tmp, st)
 
     def _write_state(self, tmp, st) -> None:
-        np.savez(tmp, disp=self.d, sol=self.form.problem.gf.vec.FV().NumPy(),
+        np.savez(tmp, disp=self.d, sol=self.form.nonlinear.gf.vec.FV().NumPy(),
                  contact=self.top.vertex_contact,
                  strain=self.strain.values if self.strain is not None else np.zeros(0),
                  temperature=(self.thermal.values if self.thermal is not None
@@ -376,7 +304,7 @@ class TransientRun:
             if z["disp"].shape != self.d.shape:
                 return False
             self.d[:] = z["disp"]
-            self.form.problem.gf.vec.FV().NumPy()[:] = z["sol"]
+            self.form.nonlinear.gf.vec.FV().NumPy()[:] = z["sol"]
             self.form.a_f.Set(float(z["a_f"]))
             if "contact" in z.files:      # the bilateral contact set carries over
                 self.top.vertex_contact[:] = z["contact"]
@@ -386,7 +314,7 @@ class TransientRun:
                     and z["temperature"].size):
                 self.thermal.values[:] = z["temperature"]
             meta = json.loads(str(z["meta"]))
-            self.state = TransientState(int(z["step"]), float(z["time"]), meta["history"],
+            self.state = Solution(int(z["step"]), float(z["time"]), meta["history"],
                                         "running")
         self._detect(project=False)
         return True

@@ -21,10 +21,11 @@ from hotroll.results.output import (
 )
 from hotroll.results.run_dir import RunDir
 from hotroll.results.run_summary import write_results
+from hotroll.solvers.problem import Problem
 from hotroll.solvers.settling import default_end_time  # noqa: F401  (runner's API)
 from hotroll.solvers.steady import SteadyRun
 from hotroll.solvers.steady_settings import SteadySettings
-from hotroll.solvers.transient import RollingModel, TransientRun, TransientSettings
+from hotroll.solvers.transient import TransientRun, TransientSettings
 from hotroll.workflows.estimate import check
 
 
@@ -53,7 +54,7 @@ def build_model(case: Case):
                     h_far=case.mesh.h_far, grading=case.mesh.grading)
     material, flow = reference_material(case)
     t_profile, e_profile = case.plate.entry_profiles()
-    model = RollingModel(rp, case.plate.length, material,
+    model = Problem(rp, case.plate.length, material,
                          case.friction.law_object(rp.u_roll, material.m), spec,
                          back_tension=case.pass_.back_tension,
                          front_tension=case.pass_.front_tension,

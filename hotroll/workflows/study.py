@@ -154,7 +154,7 @@ def restore_run(case, warm):
     strip shape): the start of a next case on another mesh (``transfer.SimilarPass``)."""
     model, _ = build_model(case)
     run = SteadyRun(model, steady_settings(case), case.plate.length)
-    run.form.problem.gf.vec.FV().NumPy()[:] = warm.solution
+    run.form.nonlinear.gf.vec.FV().NumPy()[:] = warm.solution
     run.shape = warm.shape.copy()
     run._set_shape()
     return run

@@ -62,7 +62,7 @@ class Sweep:
         key, settings = form_key(case), steady_settings(case)
         if self._kept is not None and self._kept[0] == key:
             run = self._kept[1]
-            run.model, run.s, run.plate_length = model, settings, case.plate.length
+            run.problem, run.s, run.plate_length = model, settings, case.plate.length
             run.mesh_time = 0.0
         else:
             run = SteadyRun(model, settings, case.plate.length)

@@ -113,8 +113,8 @@ def test_checkpoint_round_trip(tmp_path):
     # edges back on the arc, here those next to the node moved off it)
     assert np.allclose(again.top.vertex_positions(again.d), top.vertex_positions(run.d),
                        rtol=0.0, atol=1e-12)
-    assert np.array_equal(again.form.problem.gf.vec.FV().NumPy(),
-                          run.form.problem.gf.vec.FV().NumPy())
+    assert np.array_equal(again.form.nonlinear.gf.vec.FV().NumPy(),
+                          run.form.nonlinear.gf.vec.FV().NumPy())
     assert again.form.a_f.Get() == 4.25
     assert np.array_equal(again.top.vertex_contact, run.top.vertex_contact)
     assert np.array_equal(again.strain.values, run.strain.values)

@@ -277,8 +277,8 @@ def test_penalty_powers_and_forces_of_a_rigid_motion_by_hand():
     up, down, h0, h1 = run.upstream, run.downstream, rp.half_entry, rp.half_exit
 
     def rigid(a, c):
-        run.form.problem.gf.vec[:] = 0.0
-        run.form.problem.gf.components[0].Set(CF((a * U, c * U)))
+        run.form.nonlinear.gf.vec[:] = 0.0
+        run.form.nonlinear.gf.components[0].Set(CF((a * U, c * U)))
         return Q.integrals(run.form, 1.0)
 
     slow = rigid(0.5, 0.1)
@@ -334,7 +334,7 @@ def test_contact_profile_vertex_flags_and_no_contact():
     from ngsolve import CF
 
     U = model.rp.u_roll
-    run.form.problem.gf.components[0].Set(CF((U, 0.0)))
+    run.form.nonlinear.gf.components[0].Set(CF((U, 0.0)))
     moving = Q.contact_profile(run.form, run.top, run.d, 1.0)
     (lo, hi), (cx, cy) = model.rp.soft_zone, model.rp.centre
     x, y = moving["x"], moving["y"]
@@ -489,7 +489,7 @@ def test_mass_and_power_checks_fire_on_a_wrong_field():
 
     mass, power = errors()
     assert mass < 0.01 and power < 1e-3
-    vel = run.form.problem.gf.components[0]
+    vel = run.form.nonlinear.gf.components[0]
     old = GridFunction(vel.space)
     old.vec.data = vel.vec
     # the symmetry line's reaction (the residual of (3.6) in its Dirichlet rows) depends only

@@ -415,7 +415,7 @@ def test_pressure_last_update_is_the_last_newton_step(tmp_path, monkeypatch):
     monkeypatch.setattr(S.SteadyRun, "solve", keep)
     s = run_case(case_from_dict(with_(example1_coarse("plu"), **{"material.K": 3e7})), tmp_path)
     r = runs[-1]
-    expected = (r.result.stats[-1].multiplier_update * r.model.rp.u_roll * r.form.lam_scale
-                * r.model.material.K)
+    expected = (r.result.stats[-1].multiplier_update * r.problem.rp.u_roll * r.form.lam_scale
+                * r.problem.material.K)
     assert s["pressure_last_update"] == pytest.approx(expected, rel=1e-12)
     assert 0.0 <= s["pressure_last_update"]

@@ -205,9 +205,9 @@ def test_a_uniform_consistency_ratio_scales_every_stress(tmp_path_factory, plain
     penalties (3.2), not scaled by c, break the scaling: measured 0.27 % on the force, 0.02 %
     on the torque, 0.11 % on the ratio. The stress force without the field in sigma_yy (the
     viscous part a third of it here) would move the ratio by 13 %."""
-    from hotroll.solvers.transient import RollingModel
+    from hotroll.solvers.problem import Problem
 
-    monkeypatch.setattr(RollingModel, "field_setup", lambda self, mesh: (None, None, 2.0))
+    monkeypatch.setattr(Problem, "field_setup", lambda self, mesh: (None, None, 2.0))
     doubled = _run(tmp_path_factory, "hs_c2")
     assert doubled["roll_force"] == pytest.approx(2.0 * plain["roll_force"], rel=0.008)
     assert doubled["roll_torque"] == pytest.approx(2.0 * plain["roll_torque"], rel=0.002)

@@ -29,13 +29,13 @@ def _rms_normal_velocity(run: SteadyRun) -> float:
     """RMS of v.n (mesh normal) over the free tops, per unit roll speed."""
     from ngsolve import BND, Integrate, specialcf
 
-    mesh, u = run.mesh, run.form.problem.velocity
+    mesh, u = run.mesh, run.form.nonlinear.velocity
     free = (1 - run.form.chi)
     n = specialcf.normal(2)
     top = mesh.Boundaries("top|arc|exit")
     vn2 = Integrate(free * (u * n) ** 2, mesh, BND, definedon=top, order=6)
     length = Integrate(free, mesh, BND, definedon=top)
-    return math.sqrt(vn2 / length) / run.model.rp.u_roll
+    return math.sqrt(vn2 / length) / run.problem.rp.u_roll
 
 
 @pytest.fixture(scope="module")
@@ -50,7 +50,7 @@ def test_traced_tops_are_streamlines(traced):
     RMS 4.1e-3 U at h = 0.02, 2.4e-3 U at h = 0.01: the corners where the tops meet the roll);
     the same flow on the flat tops, before any update, has 1.9e-2 U."""
     assert traced.result.converged and traced.state.status == "steady"
-    assert traced.result.surface_moves[-1] < 1e-3 * traced.model.h
+    assert traced.result.surface_moves[-1] < 1e-3 * traced.problem.h
     assert _rms_normal_velocity(traced) < 6e-3
     flat = _steady(**{"solver.max_iterations": 30})
     flat.s.max_outer = 0            # no surface update: the flat tops of the reference shape
@@ -62,7 +62,7 @@ def test_contact_starts_where_the_entry_top_meets_the_roll(traced):
     """The first contact node lies on the roll at x_c; the entry top sags ahead of the bite
     (x_c > x_touch) and reaches the roll there continuously; the exit top leaves the roll at
     the gap."""
-    rp, top, d = traced.model.rp, traced.top, traced.d
+    rp, top, d = traced.problem.rp, traced.top, traced.d
     x_c = traced.shape.x_c
     assert rp.x_touch < x_c < rp.x_touch + 0.1 * rp.contact_length
     contact = top.vertex_positions(d, top.verts[top.vertex_contact])
@@ -71,7 +71,7 @@ def test_contact_starts_where_the_entry_top_meets_the_roll(traced):
     assert abs(rp.signed_distance(first[None])[0]) < 1e-12
     free = top.vertex_positions(d, top.verts[~top.vertex_contact])
     before = free[free[:, 0] < x_c]
-    assert np.all(before[:, 1] <= rp.half_entry + 1e-3 * traced.model.h)   # no bulge
+    assert np.all(before[:, 1] <= rp.half_entry + 1e-3 * traced.problem.h)   # no bulge
     assert np.all(rp.signed_distance(free) > 0)  # no free node inside the roll
     assert np.interp(rp.axis_x, traced.shape.exit_x, traced.shape.exit_y) == pytest.approx(
         rp.half_exit, abs=1e-12 * rp.radius)     # traced from the last contact node, the gap
@@ -80,7 +80,7 @@ def test_contact_starts_where_the_entry_top_meets_the_roll(traced):
 def test_flat_shape_is_the_reference_mesh(traced):
     """The map of the flat shape is the reference strip (arc midpoints on the roll), after a
     solve has moved the mesh to a traced shape and back."""
-    rp, solved = traced.model.rp, traced.shape
+    rp, solved = traced.problem.rp, traced.shape
     traced.shape = StripShape.flat(rp)
     traced._set_shape()
     d_flat = traced.d.copy()

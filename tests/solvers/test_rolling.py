@@ -289,7 +289,7 @@ def test_free_exit_surface_penalises_vertical_motion_only():
     for i in run.top.verts:                            # a saw-tooth of amplitude h/4
         run.d[ns + i] += 0.25 * model.h * (-1) ** int(round(X[i, 0] / model.h))
     run.mesh.SetDeformation(run.disp)
-    vel = run.form.problem.gf.components[0]
+    vel = run.form.nonlinear.gf.components[0]
     vel.Set((rp.u_roll, 0.0))
     mesh, nh = run.mesh, specialcf.normal(2)
 
@@ -443,11 +443,11 @@ def test_newton_jacobian_is_the_exact_linearisation(hand, law):
     run._cold_start()
     form = run.form
     form.a_f.Set(37.0)
-    prob = form.problem if hand else NonlinearProblem(form.fes, form.integrand,
+    prob = form.nonlinear if hand else NonlinearProblem(form.fes, form.integrand,
                                                       velocity_scale=model.rp.u_roll)
     rng = np.random.default_rng(1)
     vec = prob.gf.vec.FV().NumPy()
-    vec[:] = form.problem.gf.vec.FV().NumPy()
+    vec[:] = form.nonlinear.gf.vec.FV().NumPy()
     vec[:] *= 1.0 + 0.3 * rng.standard_normal(vec.size)   # both signs of slip, inlet/outlet active
     assert np.sum(form.chi.vec.FV().NumPy()) > 5
     prob.a_newton.AssembleLinearization(prob.gf.vec)

@@ -32,7 +32,7 @@ def test_kinematic_guess_is_incompressible_and_tangent():
 
     run = _steady_run()
     run._cold_start()
-    u, mesh, rp, h = run.form.problem.velocity, run.mesh, run.model.rp, run.model.h
+    u, mesh, rp, h = run.form.nonlinear.velocity, run.mesh, run.problem.rp, run.problem.h
     away = IfPos((x - rp.x_touch) ** 2 - (3 * h) ** 2, 1.0, 0.0)
     rms_div = (Integrate(away * div(u) ** 2, mesh, order=6) / Integrate(away, mesh)) ** 0.5
     assert rms_div < 5e-3 * rp.u_roll / rp.half_exit   # measured 2.9e-3 (a sign slip in H': 0.6)
@@ -64,7 +64,7 @@ def test_unsettled_fixed_point_is_reported():
 def test_factorisation_is_kept_and_refreshed():
     run = _steady_run()
     run.run()
-    problem = run.form.problem
+    problem = run.form.nonlinear
     assert id(problem.a_jacobian) in problem.inverses
     kept = problem.inverses[id(problem.a_jacobian)]
     nv = problem.n_velocity_dofs()
@@ -72,7 +72,7 @@ def test_factorisation_is_kept_and_refreshed():
     st = newton(problem, 1e-5, 5)                    # at the solution: refactorised values
     assert st.converged and st.iterations <= 2
     assert problem.inverses[id(problem.a_jacobian)] is kept
-    assert np.max(np.abs(problem.gf.vec.FV().NumPy()[:nv] - before)) < 1e-4 * run.model.rp.u_roll
+    assert np.max(np.abs(problem.gf.vec.FV().NumPy()[:nv] - before)) < 1e-4 * run.problem.rp.u_roll
 
 
 def test_sweep_warm_starts_agree_with_cold_solves(tmp_path):

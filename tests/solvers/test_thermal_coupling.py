@@ -253,7 +253,7 @@ def test_form_stress_is_the_law_with_a_temperature_dependent_rate_exponent():
     rng = np.random.default_rng(7)
     th.T_mean.vec.FV().NumPy()[:] = rng.uniform(900.0, T_ENTRY, th.T_mean.space.ndof)
     th._set_ratio()
-    e2 = edot_squared(strain_rate(form.problem.velocity))
+    e2 = edot_squared(strain_rate(form.nonlinear.velocity))
     sigma = model.material.K * form.material.sigma_ef_reg(e2, m=form.m_material,
                                                         K=form.consistency)
     mesh = run.mesh

@@ -1,0 +1,310 @@
+"""The typed summary of a run: every key of ``summary.json`` declared once, with its SI unit,
+its label for a person and its meaning (docs/reference/summary.md is generated from it).
+
+``Summary`` is a read-only mapping (``s["roll_force"]``, ``s.get(...)``, ``dict(s)``) and a
+dataclass (``s.roll_force``). ``Summary.from_dict(d)`` refuses an unknown key or a missing one
+(a typo in the code that builds it fails at once); ``strict=False`` reads what an older
+version wrote (unknown keys kept, missing ones absent). Figures that exist only under a
+condition (``when``: a ``[thermal]`` section, a ``[pass] width``, a run written by
+``run_case``) are absent, not null, when the condition does not hold.
+"""
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, field, fields
+from typing import Any
+
+
+class _Absent:
+    """The value of a key the summary does not have (written nowhere, not even as null)."""
+
+    def __repr__(self) -> str:
+        return "ABSENT"
+
+
+ABSENT: Any = _Absent()
+#: The groups of the HTML page's table (in this order; the rest under "Other").
+GROUPS = ("Pass", "Temperature and heat", "Checks", "Solver")
+
+
+def _f(unit: str | None, label: str, meaning: str = "", *, group: str | None = None,
+       when: str | None = None):
+    """A summary field: SI ``unit`` (None: a name, flag, count or list without one), ``label``
+    for a person, ``meaning`` for the reference, the page's ``group``, and ``when`` it exists
+    (None: always; "thermal", "width", "run")."""
+    return field(default=ABSENT, metadata={"unit": unit, "label": label, "meaning": meaning,
+                                           "group": group, "when": when})
+
+
+@dataclass(eq=False)
+class Summary(Mapping):
+    """summary.json: means over the last window of the history and the run's figures."""
+
+    # --- the run ------------------------------------------------------------------------------
+    case_name: str = _f(None, "case", "the case's name")
+    method: str = _f(None, "method", "`steady` or `transient`")
+    status: str = _f(None, "status", "`steady`, `unsettled`, `failed`, `end_time`, ...")
+    failure: str | None = _f(None, "failure", "the reason a run failed or is not conserved")
+    converged: bool = _f(None, "converged", "steady, its last solve converged, not outlet driven")
+    steady_state: bool = _f(None, "steady state", "the run reached its steady state")
+    outlet_driven: bool = _f(None, "outlet driven", "no neutral point: the outlet penalty drives "
+                             "the strip (exit code 6)")
+    # --- the pass (group "Pass", in the page's order) -----------------------------------------
+    roll_force: float = _f("N/m", "roll force, one roll", "per m of width, one roll", group="Pass")
+    roll_force_total: float = _f("N", "roll force, whole width", "one roll's force over the whole "
+                                 "width", group="Pass", when="width")
+    roll_torque: float = _f("N m/m", "roll torque, one roll", "per m of width, one roll",
+                            group="Pass")
+    roll_torque_total: float = _f("N m", "roll torque, whole width", "one roll's torque",
+                                  group="Pass", when="width")
+    roll_power: float = _f("W/m", "roll power, one roll", "per m of width, one roll",
+                           group="Pass")
+    roll_power_total: float = _f("W", "roll power, whole width", "one roll's power", group="Pass",
+                                 when="width")
+    mill_power: float = _f("W", "mill power, both rolls", "both rolls' power",
+                           group="Pass", when="width")
+    forward_slip: float = _f("-", "forward slip", "v_exit / |U_roll| - 1", group="Pass")
+    neutral_angle: float | None = _f("rad", "neutral angle", "from the roll's vertical centre "
+                                     "line, positive towards the entry; null where the slip's "
+                                     "sign is noise", group="Pass")
+    neutral_point: list | None = _f("m", "neutral point (x, y)", "(x, y) on the roll",
+                                    group="Pass")
+    sticking_zone: list | None = _f("rad", "sticking zone (from, to)", "start and end angle of "
+                                    "the longest stretch slipping below 1e-3 of the roll speed",
+                                    group="Pass")
+    mean_pressure: float | None = _f("Pa", "mean roll pressure", "roll force over contact "
+                                     "length", group="Pass")
+    mean_flow_stress: float = _f("Pa", "mean flow stress in the gap", "mean over the roll gap",
+                                 group="Pass")
+    mean_strain_rate: float = _f("1/s", "mean strain rate in the gap", "mean over the roll gap",
+                                 group="Pass")
+    contact_length: float = _f("m", "contact arc length", "the arc in contact", group="Pass")
+    entry_velocity: float = _f("m/s", "entry velocity", "", group="Pass")
+    exit_velocity: float = _f("m/s", "exit velocity", "", group="Pass")
+    exit_strain: float | None = _f("-", "exit strain (mean)", "the strain carried to the exit",
+                                   group="Pass")
+    homogeneous_exit_strain: float = _f("-", "homogeneous exit strain", "entry strain + 2/sqrt3 "
+                                        "ln(h0/h1)", group="Pass")
+    horizontal_force: float = _f("N/m", "horizontal roll force", "the roll's horizontal force on "
+                                 "the plate", group="Pass")
+    a_f: float | None = _f("m^-m", "friction coefficient a_f", "the viscoplastic friction "
+                           "parameter used (estimated or given); null for another law",
+                           group="Pass")
+    # --- temperature and heat (with [thermal]) -------------------------------------------------
+    exit_temperature_mean: float = _f("K", "exit temperature, mean", "the outlet's mean",
+                                      group="Temperature and heat", when="thermal")
+    exit_temperature_surface: float = _f("K", "exit temperature, surface", "the surface at the "
+                                         "gap", group="Temperature and heat", when="thermal")
+    max_temperature: float = _f("K", "max temperature", "over the strip",
+                                group="Temperature and heat", when="thermal")
+    min_temperature: float = _f("K", "min temperature", "over the strip",
+                                group="Temperature and heat", when="thermal")
+    plastic_heat: float = _f("W/m", "plastic heat", "half strip", group="Temperature and heat",
+                             when="thermal")
+    friction_heat_to_strip: float = _f("W/m", "friction heat to the strip", "half strip",
+                                       group="Temperature and heat", when="thermal")
+    heat_to_roll: float = _f("W/m", "heat to the roll", "half strip",
+                             group="Temperature and heat", when="thermal")
+    heat_to_air: float = _f("W/m", "heat to the air", "half strip",
+                            group="Temperature and heat", when="thermal")
+    advected_in: float = _f("W/m", "advected in", "heat carried in through the inlet",
+                            group="Temperature and heat", when="thermal")
+    advected_out: float = _f("W/m", "advected out", "heat carried out through the outlet",
+                             group="Temperature and heat", when="thermal")
+    conducted_in: float = _f("W/m", "conducted in", "heat conducted in through the inlet",
+                             group="Temperature and heat", when="thermal")
+    # --- checks -------------------------------------------------------------------------------
+    balance_error: float = _f("-", "force balance error", "the sum of `force_balance` over the "
+                              "roll force", group="Checks")
+    power_balance_error: float = _f("-", "power balance error", "", group="Checks")
+    mass_flux_error: float = _f("-", "mass flux error", "|out - in| / in", group="Checks")
+    heat_balance_error: float = _f("-", "heat balance error", "", group="Checks", when="thermal")
+    penalty_share: float = _f("-", "penalty power share", "penalty power over roll power",
+                              group="Checks")
+    free_top_force_share: float = _f("-", "free top force share", "the constrained model's share "
+                                     "of the roll load on the free tops", group="Checks")
+    surface_residual_h: float | None = _f("h", "last free-surface move (in mesh sizes h)",
+                                          "the steady fixed point's last move of the free tops",
+                                          group="Checks")
+    unconverged_steps_in_window: int = _f(None, "unconverged steps in window", "left out of the "
+                                          "means", group="Checks")
+    exit_correction_normal_force_change: float = _f(None, "exit correction normal force change",
+                                                    "what the exit-pressure correction changes",
+                                                    group="Checks")
+    # --- solver -------------------------------------------------------------------------------
+    h_contact: float = _f("m", "contact mesh size", "", group="Solver")
+    dofs: int = _f(None, "unknowns", "of the flow problem", group="Solver")
+    steps: int = _f(None, "steps", "time steps (transient); 0 for the steady solver",
+                    group="Solver")
+    time: float | None = _f("s", "time", "simulated time (transient)", group="Solver")
+    dt: float | None = _f("s", "dt", "time step (transient)", group="Solver")
+    newton_solves: int | None = _f(None, "newton solves", "steady: Newton solves", group="Solver")
+    coupling_updates: int | None = _f(None, "coupling updates", "steady: updates of a_f and the "
+                                      "free tops", group="Solver")
+    nonlinear_iterations: int = _f(None, "nonlinear iterations", "in all", group="Solver")
+    iterations_per_step: float | None = _f(None, "iterations per step", "transient",
+                                           group="Solver")
+    averaged_over_steps: int = _f(None, "averaged over steps", "the window of the summary means",
+                                  group="Solver")
+    wall_time_s: float = _f("s", "wall time", "of the solve and the files", group="Solver")
+    # --- the rest -----------------------------------------------------------------------------
+    neutral_angle_reason: str | None = _f(None, "why no neutral angle", "why `neutral_angle` "
+                                          "is null")
+    neutral_angle_in_sticking_zone: bool = _f(None, "neutral angle in sticking zone", "the sign "
+                                              "change lies in the sticking zone")
+    neutral_angle_flux: float | None = _f("rad", "neutral angle (flux)", "the slab neutral angle "
+                                          "of the computed flux")
+    mass_flux_in: float = _f("m^2/s", "mass flux in", "half strip")
+    mass_flux_out: float = _f("m^2/s", "mass flux out", "half strip")
+    plastic_power: float = _f("W/m", "plastic power", "")
+    friction_power: float = _f("W/m", "friction power", "")
+    penalty_power: float = _f("W/m", "penalty power", "")
+    outlet_penalty_power: float = _f("W/m", "outlet penalty power", "")
+    tension_power: float = _f("W/m", "tension power", "")
+    force_balance: dict = _f("N/m", "force balance", "the forces on the plate (x, y) from the "
+                             "roll, the free tops, the cut faces (`tension`) and the symmetry "
+                             "line")
+    symmetry_stress_force_y: float = _f("N/m", "symmetry stress force y", "the force through the "
+                                        "symmetry line from the stress on it")
+    contact_loss: list = _f(None, "contact loss", "stretches (x from, x to) where the pressure "
+                            "turns tensile")
+    contact_loss_detected: bool = _f(None, "contact loss detected", "")
+    contact_method: str = _f(None, "contact method", "`multiplier` or `penalty`")
+    unilateral: bool = _f(None, "unilateral", "the active-set option")
+    active_set_changes: int | None = _f(None, "active set changes", "unilateral contact")
+    active_set_cycled: bool | None = _f(None, "active set cycled", "unilateral contact")
+    contact_start_angle: float | None = _f("rad", "contact start angle", "")
+    contact_end_angle: float | None = _f("rad", "contact end angle", "")
+    min_contact_pressure: float | None = _f("Pa", "min contact pressure", "the most tensile "
+                                            "(lowest) contact pressure")
+    exit_thickness: float = _f("m", "exit thickness", "measured (unilateral: below the gap)")
+    pressure_last_update: float | None = _f("Pa", "pressure last update", "exact contact: the "
+                                            "last Newton step's multiplier change")
+    fixed_point_settled: bool | None = _f(None, "fixed point settled", "the steady "
+                                          "free-surface/a_f fixed point settled")
+    free_surface: str = _f(None, "free surface", "`traced` or `constrained`")
+    nonlinear: str = _f(None, "nonlinear solver", "`newton` or `picard`")
+    roll_centre: list = _f("m", "roll centre", "(x, y)")
+    roll_radius: float = _f("m", "roll radius", "")
+    roll_surface_speed: float = _f("m/s", "roll surface speed", "")
+    contact_start: list | None = _f("m", "contact start", "(x, y)")
+    contact_end: list | None = _f("m", "contact end", "(x, y)")
+    K: float = _f("Pa s^m", "consistency K", "reference value for a temperature- or "
+                  "strain-dependent law")
+    m: float = _f("-", "rate exponent m", "reference value for a temperature-dependent law")
+    friction_law: str = _f(None, "friction law", "")
+    friction_mu: float | None = _f(None, "friction mu", "Coulomb's mu")
+    friction_factor: float | None = _f(None, "friction factor", "Tresca's factor")
+    back_tension: float = _f("Pa", "back tension", "")
+    front_tension: float = _f("Pa", "front tension", "")
+    thermal: bool = _f(None, "thermal", "whether `[thermal]` is on")
+    thermal_dofs: int = _f("-", "thermal unknowns", "the strip mesh's unknowns", when="thermal")
+    thermal_layer: float = _f("m", "thermal layer", "the chilled layer's thickness",
+                              when="thermal")
+    estimated_dofs: int = _f(None, "estimated unknowns", "the estimate made before meshing",
+                             when="run")
+    estimated_memory: float = _f("B", "estimated memory", "the estimate made before meshing",
+                                 when="run")
+    estimated_seconds: float = _f("s", "estimated seconds", "the estimate made before meshing",
+                                  when="run")
+    warm_start_from: str | None = _f(None, "warm start from", "the neighbour a warm start came "
+                                     "from", when="run")
+    warm_start_failed: bool = _f(None, "warm start failed", "solved again from cold", when="run")
+    leak_to_slip: float = _f("-", "leak to slip", "the leak through the roll over the forward "
+                             "slip")
+    not_conserved: bool = _f(None, "not conserved", "a conservation check failed")
+    width: float | None = _f("m", "width", "`[pass] width`")
+    temperature: float = _f("K", "plate temperature", "")
+    exit_profile: dict | None = _f(None, "exit profile", "the outlet's temperature and strain "
+                                   "profiles over eta")
+    units: dict = _f(None, "units", "each figure's SI unit")
+    exit_code: int = _f(None, "exit code", "see cli.md#exit-codes")
+
+    _other: dict = field(default_factory=dict, repr=False, metadata={"internal": True})
+
+    # --- construction ------------------------------------------------------------------------
+    @classmethod
+    def keys_declared(cls) -> list[str]:
+        return [f.name for f in fields(cls) if not f.metadata.get("internal")]
+
+    @classmethod
+    def from_dict(cls, data: Mapping, *, strict: bool = True) -> Summary:
+        """The summary of ``data``. ``strict``: every key declared, every unconditional one
+        present (ValueError naming them); else unknown keys kept, missing ones absent."""
+        declared = cls.keys_declared()
+        unknown = [k for k in data if k not in declared]
+        if strict:
+            cond = {f.name for f in fields(cls) if f.metadata.get("when")}
+            missing = [k for k in declared if k not in data and k not in cond]
+            if unknown or missing:
+                raise ValueError(f"summary: undeclared keys {unknown}, missing keys {missing} "
+                                 "(hotroll/results/summary.py declares each key)")
+        obj = cls(**{k: data[k] for k in data if k in declared})
+        obj._other = {k: data[k] for k in unknown}
+        return obj
+
+    def replace(self, **changes) -> Summary:
+        """A copy with ``changes`` (declared keys)."""
+        return Summary.from_dict({**self.to_dict(), **changes}, strict=False)
+
+    # --- the mapping --------------------------------------------------------------------------
+    def __getitem__(self, key: str):
+        if key in self._other:
+            return self._other[key]
+        value = getattr(self, key, ABSENT) if key in _DECLARED else ABSENT
+        if value is ABSENT:
+            raise KeyError(key)
+        return value
+
+    def __iter__(self) -> Iterator[str]:
+        yield from (k for k in _DECLARED if getattr(self, k) is not ABSENT)
+        yield from self._other
+
+    def __len__(self) -> int:
+        return sum(1 for _ in self)
+
+    def to_dict(self) -> dict:
+        """The plain dict summary.json holds (absent keys left out)."""
+        return {k: self[k] for k in self}
+
+    # --- what each key is ---------------------------------------------------------------------
+    @classmethod
+    def units_map(cls) -> dict[str, str]:
+        """key -> SI unit of every declared key that has one."""
+        return {f.name: f.metadata["unit"] for f in fields(cls) if f.metadata.get("unit")}
+
+    @classmethod
+    def labels(cls) -> dict[str, str]:
+        return {f.name: f.metadata["label"] for f in fields(cls) if "label" in f.metadata}
+
+    @classmethod
+    def groups(cls) -> dict[str, tuple[str, ...]]:
+        """The HTML page's groups: name -> keys, in declaration order."""
+        return {g: tuple(f.name for f in fields(cls) if f.metadata.get("group") == g)
+                for g in GROUPS}
+
+    @classmethod
+    def reference_rows(cls) -> list[tuple[str, str, str, str]]:
+        """(key, unit, label, meaning with its condition) for docs/reference/summary.md."""
+        note = {"thermal": "with `[thermal]`", "width": "with `[pass] width`",
+                "run": "written by a run (`hotroll run`, a schedule, a study)"}
+        rows = []
+        for f in fields(cls):
+            if f.metadata.get("internal"):
+                continue
+            md = f.metadata
+            meaning = "; ".join(x for x in (md["meaning"], note.get(md["when"], "")) if x)
+            rows.append((f.name, md["unit"] or "", md["label"], meaning))
+        return rows
+
+
+_DECLARED = tuple(Summary.keys_declared())
+
+
+def summary_keys_markdown() -> str:
+    """The table of summary.json's keys for docs/reference/summary.md."""
+    lines = ["| key | unit | label | meaning |", "|---|---|---|---|"]
+    bar = "\\|"          # a | inside a table cell
+    lines += [f"| `{k}` | {u} | {lab} | {m.replace('|', bar)} |"
+              for k, u, lab, m in Summary.reference_rows()]
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,108 @@
+"""The typed stages of a solve: the ``Problem`` (what is solved), the ``Solver`` interface that
+the direct steady solver (``steady.py``) and the report's scheme (``transient.py``) both
+implement, and the ``Solution`` their ``run`` returns (docs/architecture.md)."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Protocol
+
+from hotroll.fem.mesh import MeshSpec
+from hotroll.fem.strain import StrainField
+from hotroll.model.friction import FrictionLaw
+from hotroll.model.geometry import RollPass
+from hotroll.model.material import NortonHoff
+from hotroll.solvers.thermal_coupling import ThermalCoupling
+from hotroll.solvers.thermal_lagrangian import LagrangianThermal
+
+
+@dataclass
+class Problem:
+    """What is solved: the pass, the material, friction, mesh, tensions and the fields a
+    strain- or temperature-dependent flow stress needs, in SI units; both solvers take it."""
+
+    rp: RollPass
+    length: float
+    material: NortonHoff
+    friction: FrictionLaw     # in reduced units (stresses over K): viscoplastic with K = 1
+    mesh: MeshSpec
+    back_tension: float = 0.0   # Pa, mean tensile stress on the entry face
+    front_tension: float = 0.0  # Pa, mean tensile stress on the exit face
+    flow_stress: object = None  # flow-stress law of a strain or temperature field (None: the
+                                # material is the law)
+    temperature: float = 1373.15  # K: uniform, or the entry temperature with ``thermal``
+    entry_strain: float = 0.0
+    carries_strain: bool = True   # the law depends on the strain: a strain field is carried
+    thermal: tuple | None = None  # (ThermalProperties, ThermalBoundary, strip mesh refinement)
+    strain_profile: object = None  # the inlet's strain over the half thickness (a
+                                   # process.profile.ThicknessProfile; steady solver), or None
+
+    @property
+    def v_reg(self) -> float:
+        return self.friction.v_reg
+
+    def field_setup(self, mesh, lagrangian: bool = False):
+        """(StrainField or None, ThermalCoupling or None, the form's consistency K(eps, T)/K_ref
+        as a CF, or 1.0): the fields a strain- or temperature-dependent flow stress needs
+        (``fem/strain.py``, ``solvers/thermal_coupling.py``)."""
+        strain = None
+        if self.flow_stress is not None and self.carries_strain:
+            strain = StrainField(mesh, self.entry_strain, profile=self.strain_profile)
+        if self.thermal is not None and lagrangian:     # carried with the moving mesh
+
+            props, bc, _ = self.thermal
+            coupling = LagrangianThermal(mesh, props, bc, K_ref=self.material.K,
+                                         m_ref=self.material.m, eps0=self.material.eps0,
+                                         flow=self.flow_stress, strain=strain,
+                                         entry_strain=self.entry_strain)
+            return strain, coupling, coupling.consistency()
+        if self.thermal is not None:
+            props, bc, refine = self.thermal
+            coupling = ThermalCoupling(mesh, props, bc, refine=refine, K_ref=self.material.K,
+                                       m_ref=self.material.m, eps0=self.material.eps0,
+                                       flow=self.flow_stress, strain=strain,
+                                       entry_strain=self.entry_strain)
+            return strain, coupling, coupling.consistency()
+        if strain is None:
+            return None, None, 1.0
+        ratio = self.flow_stress.consistency(strain.gf, self.temperature) / self.material.K
+        return strain, None, ratio
+
+    @property
+    def reduced_tensions(self) -> tuple[float, float]:
+        """(back, front) tension over K, as the form takes every stress."""
+        return (self.back_tension / self.material.K, self.front_tension / self.material.K)
+
+    @property
+    def h(self) -> float:
+        return self.mesh.h
+
+
+@dataclass
+class Solution:
+    """What a solver's ``run`` returns: its status and one history row per step (transient) or
+    per Newton solve and coupling update (steady); the fields stay on the solver."""
+    step: int = 0
+    time: float = 0.0
+    history: list = field(default_factory=list)
+    status: str = "running"   # running | steady | end_time | max_steps | wall_time | failed
+    failure: str = ""         # why a failed run stopped
+
+
+
+
+class Solver(Protocol):
+    """What the results layer reads from a solved run (``results/run_summary.py``): the problem,
+    the fields on the mesh and the history of ``run``."""
+
+    problem: Problem
+    time_stepping: bool     # the report's scheme (True) or the direct steady solver (False)
+    window: int             # the summary's means: the last ``window`` history rows
+    state: Solution
+    form: object            # fem.rolling_form.RollingForm (velocity, pressure, contact)
+    top: object             # fem.top_boundary.TopBoundary
+    strain: object          # fem.strain.StrainField or None
+    thermal: object         # a temperature coupling (solvers/thermal_*.py) or None
+
+    def run(self, progress: Callable[[dict], None] | None = None) -> Solution: ...
+
+    def head_x(self) -> float: ...

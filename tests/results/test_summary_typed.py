@@ -1,0 +1,70 @@
+"""The typed summary (hotroll/results/summary.py): every key summary.json holds is declared
+once with its unit. The summaries are those the code wrote before the re-cut (commit 88591b2,
+tests/data/before_recut: an isothermal pass, a thermal pass, a schedule pass with a width), an
+independent record of which keys a run writes and with which units."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from hotroll.results.run_dir import RunDir
+from hotroll.results.summary import ABSENT, Summary, summary_keys_markdown
+from hotroll.results.units import UNITS
+
+BEFORE = Path(__file__).resolve().parents[1] / "data" / "before_recut"
+WRITTEN = sorted(BEFORE.rglob("summary.json"))
+pytestmark = pytest.mark.mutation
+
+
+@pytest.mark.parametrize("path", WRITTEN, ids=lambda p: p.parent.name)
+def test_every_written_key_is_declared_with_the_unit_it_was_written_with(path):
+    data = json.loads(path.read_text())
+    s = Summary.from_dict(data)                       # strict: no undeclared, none missing
+    assert s.to_dict() == data                        # the same keys and values back
+    assert {k: u for k, u in Summary.units_map().items() if k in data} == data["units"]
+    assert s.roll_force == data["roll_force"] == s["roll_force"]
+
+
+def test_conditional_keys_are_absent_not_null():
+    """Thermal figures only with [thermal], whole-width ones only with a width."""
+    runs = {p.parent.name: json.loads(p.read_text()) for p in WRITTEN}
+    iso, thermal, width = runs["2"], runs["hot_strip_finishing_thermal"], runs["02_F2"]
+    assert "exit_temperature_mean" not in Summary.from_dict(iso)
+    assert Summary.from_dict(iso).get("exit_temperature_mean", "none") == "none"
+    assert Summary.from_dict(iso).exit_temperature_mean is ABSENT
+    assert Summary.from_dict(thermal)["exit_temperature_mean"] > 273.15
+    assert "roll_force_total" not in Summary.from_dict(iso)
+    s = Summary.from_dict(width)
+    assert s["roll_force_total"] == pytest.approx(s["roll_force"] * s["width"], rel=1e-12)
+
+
+def test_a_typo_or_a_missing_key_is_refused_by_name():
+    data = json.loads(WRITTEN[0].read_text())
+    with pytest.raises(ValueError, match="roll_forc"):
+        Summary.from_dict({**data, "roll_forc": 1.0})
+    del data["roll_torque"]
+    with pytest.raises(ValueError, match="roll_torque"):
+        Summary.from_dict(data)
+
+
+def test_reading_keeps_what_another_version_wrote(tmp_path):
+    data = json.loads(WRITTEN[0].read_text())
+    del data["roll_torque"]
+    data["a_future_key"] = 3.0
+    (tmp_path / "summary.json").write_text(json.dumps(data))
+    s = RunDir(tmp_path).summary()
+    assert s["a_future_key"] == 3.0 and "roll_torque" not in s
+    assert dict(s) == data and isinstance(s, Summary)
+    assert RunDir(tmp_path / "none").summary(strict=False) == {}
+
+
+def test_units_table_and_reference_page_come_from_the_declaration():
+    """One definition: the unit table holds the declared units; docs/reference/summary.md
+    holds the generated table (run ``python scripts/reference_docs.py`` when it is stale)."""
+    assert all(UNITS[k] == u for k, u in Summary.units_map().items())
+    page = (Path(__file__).resolve().parents[2] / "docs" / "reference" / "summary.md").read_text()
+    assert summary_keys_markdown() in page
+    for key in Summary.keys_declared():
+        assert f"| `{key}` |" in page
