@@ -44,7 +44,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from hotroll.model.thermal_properties import SIGMA_SB, ThermalBoundary, ThermalProperties
+from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 
 
 class SolveInfo(NamedTuple):
@@ -129,11 +129,9 @@ class TemperatureField:
             dtop = ds(self.top, intrules={SEGM: IntegrationRule([(0,), (1,)], [0.5, 0.5])})
         else:
             dtop = ds(self.top, bonus_intorder=self._bonus_ds)
-        rad = bc.emissivity * SIGMA_SB
-        a += (chi * bc.htc_contact * u + (1.0 - chi) * (bc.htc_air * u + rad * u ** 4)) * w * dtop
-        f += (chi * bc.htc_contact * bc.roll_temperature
-              + (1.0 - chi) * (bc.htc_air * bc.ambient_temperature
-                               + rad * bc.ambient_temperature ** 4)) * w * dtop
+        # the laws' heat flux out of the strip (model/heat_transfer), in the residual
+        a += (chi * bc.contact.flux(u, bc.roll_temperature)
+              + (1.0 - chi) * bc.surface.flux(u, bc.ambient_temperature)) * w * dtop
         # the friction heat by Gauss (it peaks at the contact's ends)
         f += (chi * bc.friction_heat_to_strip * CF(friction_flux)) * w * ds(
             self.top, bonus_intorder=self._bonus_ds)
@@ -335,15 +333,13 @@ class TemperatureField:
         from ngsolve import CF
 
         bc, T, chi = self.bc, self.gf, CF(contact)
-        rad = bc.emissivity * SIGMA_SB * (T ** 4 - bc.ambient_temperature ** 4)
         return dict(
             plastic_heat=bc.taylor_quinney * self._integrate(CF(heat_density)),
             friction_heat_to_strip=bc.friction_heat_to_strip
             * self._integrate(chi * CF(friction_flux), self.top),
-            heat_to_roll=self._integrate(chi * bc.htc_contact * (T - bc.roll_temperature),
-                                         self.top),
-            heat_to_air=self._integrate((1.0 - chi) * (bc.htc_air * (T - bc.ambient_temperature)
-                                                       + rad), self.top))
+            heat_to_roll=self._integrate(chi * bc.contact.flux(T, bc.roll_temperature), self.top),
+            heat_to_air=self._integrate((1.0 - chi) * bc.surface.flux(T, bc.ambient_temperature),
+                                        self.top))
 
     def _inlet_reaction(self, velocity, heat_density, friction_flux, contact) -> float:
         """Sum of the steady residual over the inlet (Dirichlet) dofs, W/m: the heat the

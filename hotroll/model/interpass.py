@@ -28,7 +28,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import solve_banded
 
-from hotroll.model.thermal_properties import SIGMA_SB, ThermalInputError, ThermalProperties, finite_number
+from hotroll.model.heat_transfer import ConvectionRadiation, HeatTransferLaw
+from hotroll.model.thermal_properties import ThermalInputError, ThermalProperties, finite_number
 
 
 @dataclass(frozen=True)
@@ -69,16 +70,21 @@ def enthalpy_mean(props: ThermalProperties, T: np.ndarray, weights: np.ndarray) 
 
 
 def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
-         props: ThermalProperties, htc: float, emissivity: float, ambient: float,
-         intervals: int = 40, steps: int | None = None) -> TransportResult:
+         props: ThermalProperties, htc: float | None, emissivity: float | None, ambient: float,
+         intervals: int = 40, steps: int | None = None,
+         surface: HeatTransferLaw | None = None) -> TransportResult:
     """The temperature profile ``T`` (K) at ``y`` (from the mid-plane, 0, to the surface, the
     last value; rescaled onto ``half_thickness``, so a logical coordinate in [0, 1] serves too)
     after ``duration`` seconds in air (module docstring); one value is a uniform profile.
-    ``steps`` implicit steps (default: at least 100, and dt at most a tenth of H^2 / alpha)."""
+    ``steps`` implicit steps (default: at least 100, and dt at most a tenth of H^2 / alpha).
+    The surface loses q(T) of the free surfaces' law ``surface`` (``model/heat_transfer``;
+    default: convection ``htc`` and radiation ``emissivity``)."""
     H = finite_number("half_thickness", half_thickness, 0.0, True, None, "m")
     t_end = finite_number("duration", duration, 0.0, False, None, "s")
-    h = finite_number("htc_air", htc, 0.0, False, None, "W/(m^2 K)")
-    eps = finite_number("emissivity", emissivity, 0.0, False, 1.0, "")
+    if surface is None:            # htc and emissivity ignored when a law is given
+        surface = ConvectionRadiation(finite_number("htc_air", htc, 0.0, False, None, "W/(m^2 K)"),
+                                      finite_number("emissivity", emissivity, 0.0, False, 1.0, ""))
+    law = surface
     T_amb = finite_number("ambient_temperature", ambient, 0.0, True, None, "K")
     y, T = np.asarray(y, dtype=float), np.asarray(T, dtype=float)
     if y.ndim != 1 or y.shape != T.shape or y.size < 1 or not np.all(np.isfinite(T)) \
@@ -100,7 +106,6 @@ def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
         alpha = float(np.max(props.k_values(temp) / props.rho_c_values(temp)))
         steps = max(100, math.ceil(t_end / (0.1 * H * H / alpha)))
     dt = t_end / int(steps)
-    rad = eps * SIGMA_SB
     lost = 0.0
     for _ in range(int(steps)):
         old_H = props.enthalpy_values(temp)
@@ -108,7 +113,7 @@ def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
         for _ in range(50):                  # Newton on the step's residual
             k = props.k_values(new)
             kf = 0.5 * (k[1:] + k[:-1]) / dy          # face conductances, W/(m^2 K)
-            q_s = h * (new[-1] - T_amb) + rad * (new[-1] ** 4 - T_amb ** 4)
+            q_s = law.flux(new[-1], T_amb)
             flux = kf * (new[1:] - new[:-1])          # into node i from node i+1
             res = w * (props.enthalpy_values(new) - old_H) / dt
             res[:-1] -= flux
@@ -118,7 +123,7 @@ def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
             diag = w * props.rho_c_values(new) / dt
             diag[:-1] += kf
             diag[1:] += kf
-            diag[-1] += h + 4.0 * rad * new[-1] ** 3
+            diag[-1] += law.dflux(new[-1], T_amb)
             band = np.zeros((3, n + 1))
             band[0, 1:] = -kf
             band[1] = diag
@@ -128,7 +133,7 @@ def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
             if np.max(np.abs(d)) <= 1e-11 * np.max(new):
                 break
         temp = new
-        lost += dt * (h * (temp[-1] - T_amb) + rad * (temp[-1] ** 4 - T_amb ** 4))
+        lost += dt * law.flux(temp[-1], T_amb)
     change = H0 - float(w @ props.enthalpy_values(temp))
     err = abs(change - lost) / max(abs(lost), 1e-300)
     return TransportResult(nodes, temp, enthalpy_mean(props, temp, w), float(temp[-1]), lost,

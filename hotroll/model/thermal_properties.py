@@ -6,9 +6,10 @@ has no temperature). SI units: K, kg/m^3, J/(kg K), W/(m K), W/(m^2 K).
   heat capacity rho c(T), k(T) and the enthalpy per volume H(T) = int_ref^T rho c dT (exact: on
   each interval between the merged breakpoints rho and c are linear, rho c quadratic, H cubic)
   as NGSolve CoefficientFunctions of a temperature CF, and in numpy for tests.
-- :class:`ThermalBoundary`: entry, roll and ambient temperatures, the heat-transfer coefficients
-  of the roll contact and of the air, the emissivity, the share of the friction heat that goes
-  into the strip and the Taylor-Quinney factor.
+- :class:`ThermalBoundary`: entry, roll and ambient temperatures, the heat-transfer laws of the
+  roll contact and of the free surfaces (``model/heat_transfer``; by default a constant
+  coefficient and convection with radiation), the share of the friction heat that goes into
+  the strip and the Taylor-Quinney factor.
 
 Bad input raises :class:`ThermalInputError` naming the field and the allowed range.
 """
@@ -20,7 +21,7 @@ from typing import Union
 
 import numpy as np
 
-SIGMA_SB = 5.670374419e-8   # Stefan-Boltzmann constant, W/(m^2 K^4)
+from hotroll.model.heat_transfer import ConstantConductance, ConvectionRadiation, HeatTransferLaw
 
 Table = tuple  # ((T0, v0), (T1, v1), ...), T in K strictly increasing
 Value = Union[float, Table]
@@ -194,6 +195,10 @@ class ThermalBoundary:
     taylor_quinney: float = 0.9           # share of the plastic power turned into heat
     entry_profile: object = None          # a ThicknessProfile of the inlet's T(eta), K, or
                                           # None: entry_temperature everywhere on the inlet
+    contact: HeatTransferLaw | None = None  # the contact's law (model/heat_transfer; None:
+                                            # constant, htc_contact)
+    surface: HeatTransferLaw | None = None  # the free tops' law (None: convection_radiation,
+                                            # htc_air and emissivity)
 
     def __post_init__(self):
         rules = {"entry_temperature": (0.0, True, None, "K"),
@@ -207,3 +212,12 @@ class ThermalBoundary:
         for name, (low, low_open, high, unit) in rules.items():
             object.__setattr__(self, name,
                                finite_number(name, getattr(self, name), low, low_open, high, unit))
+        if self.contact is None:
+            object.__setattr__(self, "contact", ConstantConductance(self.htc_contact))
+        if self.surface is None:
+            object.__setattr__(self, "surface", ConvectionRadiation(self.htc_air, self.emissivity))
+        for name, kind in (("contact", "contact"), ("surface", "surface")):
+            law = getattr(self, name)
+            if not isinstance(law, HeatTransferLaw) or law.kind != kind:
+                raise ThermalInputError(f"thermal.{name}_law: a {kind} law of "
+                                        f"model/heat_transfer, got {law!r}")

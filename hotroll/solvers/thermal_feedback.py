@@ -71,6 +71,6 @@ class FlowStressFeedback:
 
     def contact_columns(self) -> dict[str, np.ndarray]:
         """Vertex fields for the contact and top profiles: the temperature (K) and, on the
-        contact, the heat flux to the roll htc_contact (T - T_roll) (W/m^2)."""
+        contact, the heat flux to the roll, the contact law's q(T, T_roll) (W/m^2)."""
         T, bc = self.vertex_temperature(), self.bc
-        return {"temperature": T, "heat_flux_to_roll": bc.htc_contact * (T - bc.roll_temperature)}
+        return {"temperature": T, "heat_flux_to_roll": bc.contact.flux(T, bc.roll_temperature)}

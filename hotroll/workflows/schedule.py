@@ -87,10 +87,8 @@ def transport(sch: Schedule, k: int, state: StripState, exit_velocity: float):
     duration = tr.duration if tr.duration is not None else tr.distance / exit_velocity
     T = state.temperature
     res = cool(np.asarray(T.eta), np.asarray(T.values), 0.5 * state.thickness, duration,
-               sch.material.thermal_properties(),
-               th.htc_air if tr.htc_air is None else tr.htc_air,
-               th.emissivity if tr.emissivity is None else tr.emissivity,
-               th.ambient_temperature)
+               sch.material.thermal_properties(), None, None, th.ambient_temperature,
+               surface=th.law("surface", htc_air=tr.htc_air, emissivity=tr.emissivity))
     eta = res.y / res.y[-1]
     new = StripState(state.thickness, ThicknessProfile(tuple(eta), tuple(res.temperature)),
                      state.strain.scaled(tr.strain_retained))

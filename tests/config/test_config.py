@@ -182,7 +182,7 @@ def fake_runner(monkeypatch):
     def run_case(case, out, *, resume=True, progress=None, sweep=None):
         calls.append((case, out, resume))
         progress and progress({"step": 1, "time": 0.1, "message": "started"})
-        return {"roll_force": 1.25, "converged": True, "steps": 3}
+        return {"roll_force": 1.25, "converged": True, "steps": 3, "exit_code": 0}
 
     monkeypatch.setattr(passes, "run_case", run_case)      # where the command line calls it
     return calls

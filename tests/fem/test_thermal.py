@@ -14,7 +14,8 @@ import re
 import numpy as np
 import pytest
 
-from hotroll.fem.thermal_field import SIGMA_SB, TemperatureField
+from hotroll.fem.thermal_field import TemperatureField
+from hotroll.model.heat_transfer import SIGMA_SB
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalInputError, ThermalProperties
 
 ngsolve = pytest.importorskip("ngsolve")

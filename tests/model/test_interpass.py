@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from hotroll.fem.thermal_field import SIGMA_SB
+from hotroll.model.heat_transfer import SIGMA_SB
 from hotroll.model.interpass import cool, enthalpy_mean
 from hotroll.model.thermal_properties import ThermalInputError, ThermalProperties
 
