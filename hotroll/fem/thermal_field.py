@@ -38,12 +38,14 @@ radiation), direct solves (UMFPACK).
 """
 from __future__ import annotations
 
+import math
 import re
 from functools import cached_property
 from typing import NamedTuple
 
 import numpy as np
 
+from hotroll.fem.nonlinear import newton
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 
 
@@ -76,7 +78,7 @@ class TemperatureField:
         self._tau_gf = GridFunction(L2(mesh, order=0))   # SUPG tau, one value per element
         self._tau_cf = None
         self._steady = None          # (inputs, forms, tau) of the last steady solve: reused
-        self._kept_inverse = None    # (form, free dofs, UMFPACK inverse) of the last solve
+        self._system = None          # the HeatSystem of the last solve (its kept factors)
         # quadrature: T^4 w on the top and the piecewise (IfPos) properties in the volume;
         # ``volume_bonus = 0`` where the volume terms are polynomials the default rule
         # integrates exactly (P1, constant properties, P1 sources: the strip mesh; 1.8x faster)
@@ -181,42 +183,14 @@ class TemperatureField:
             self._tau_gf.Set(self._tau_cf)
 
     def _newton(self, a, f, free, tol, max_iter, chord: bool = False) -> SolveInfo:
-        """Newton's method on a(T; w) = f(w) from the current T; ``chord``: the Jacobian's
-        factors of the last solve of the same form instead of new ones (Newton-chord)."""
-        vec = self.gf.vec
-        res, du = vec.CreateVector(), vec.CreateVector()
-        change = float("inf")
-        kept = self._kept_inverse
-        chord = chord and kept is not None and kept[0] is a and kept[1] is free
-        for it in range(1, max_iter + 1):
-            # tau depends on T only through the properties: with constants, once per solve,
-            # and f with it
-            fresh = it == 1 or not self.props.is_constant()
-            self._refresh(tau=fresh)
-            if fresh:
-                f.Assemble()
-            if not chord:
-                a.AssembleLinearization(vec)
-            a.Apply(vec, res)
-            res.data -= f.vec
-            du.data = (kept[2] if chord else self._inverse(a, free)) * res
-            vec.data -= du
-            step = float(np.max(np.abs(du.FV().NumPy())))
-            change = step / max(float(np.max(np.abs(self.values))), 1e-300)
-            if change < tol:
-                break
-        return SolveInfo(it, change)
-
-    def _inverse(self, a, free):
-        """UMFPACK's factors of ``a``'s matrix: kept for the same form and refactorised
-        (``Update``: the sparsity and the ordering stay) when it comes back."""
-        kept = self._kept_inverse
-        if kept is not None and kept[0] is a and kept[1] is free:
-            kept[2].Update()
-            return kept[2]
-        inv = a.mat.Inverse(free, inverse="umfpack")
-        self._kept_inverse = (a, free, inv)
-        return inv
+        """The one Newton (``fem/nonlinear.py``) on a(T; w) = f(w) from the current T, full
+        steps; ``chord``: the Jacobian's factors of the last solve of the same form instead of
+        new ones (Newton-chord)."""
+        system = self._system
+        if system is None or system.a is not a or system.freedofs is not free:
+            system = self._system = HeatSystem(self, a, f, free)
+        stats = newton(system, tol, max_iter, min_step=1.0, chord=chord)
+        return SolveInfo(stats.iterations, stats.update)
 
     # --- solves --------------------------------------------------------------------------------
     def solve_steady(self, velocity, heat_density, friction_flux, contact, tol: float = 1e-8,
@@ -368,3 +342,51 @@ class TemperatureField:
         ycoord.Set(y, dual=True)                  # nodal values: the current (deformed) y
         best = max(verts, key=lambda v: ycoord.vec[v])
         return float(self.values[self.space.GetDofNrs(NodeId(VERTEX, best))[0]])
+
+
+class HeatSystem:
+    """The heat equation's residual a(T; w) - f(w) as a system of the one Newton
+    (``fem/nonlinear.py: NonlinearSystem``): an update is measured by max |dT| / max |T|; the
+    SUPG parameter (and f, with it) is frozen at the iterate in ``prepare`` (every iteration
+    for temperature-dependent properties, the first only for constant ones); UMFPACK, as SUPG
+    makes the matrix non-symmetric; its factors are kept while the same form comes back."""
+
+    a_jacobian = None
+    pressure_row_scale = 1.0
+    multiplier_tol = math.inf
+    linear_solvers = ("umfpack",)
+
+    def __init__(self, field: TemperatureField, a, f, free):
+        self.field, self.a, self.f, self.freedofs = field, a, f, free
+        self.gf = field.gf
+        self.a_newton = self           # the residual form: Apply, AssembleLinearization, mat
+        self.inverses: dict = {}
+        self.free_mask = np.array(list(free), dtype=bool)
+
+    def prepare(self, iteration: int) -> bool:
+        fresh = iteration == 1 or not self.field.props.is_constant()
+        self.field._refresh(tau=fresh)
+        if fresh:
+            self.f.Assemble()
+        return fresh
+
+    def Apply(self, vec, out) -> None:            # noqa: N802 - NGSolve's form interface
+        self.a.Apply(vec, out)
+        out.data -= self.f.vec
+
+    def AssembleLinearization(self, vec) -> None:  # noqa: N802
+        self.a.AssembleLinearization(vec)
+
+    @property
+    def mat(self):
+        return self.a.mat
+
+    @property
+    def velocity_scale(self) -> float:
+        return max(float(np.max(np.abs(self.field.values))), 1e-300)
+
+    def max_nodal_velocity(self, vec) -> float:
+        return float(np.max(np.abs(vec.FV().NumPy())))
+
+    def max_multiplier(self, vec) -> float:
+        return 0.0

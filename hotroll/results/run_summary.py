@@ -213,7 +213,7 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "contact_loss": loss, "contact_loss_detected": bool(loss), **contact_figures,
         "exit_thickness": last.get("exit_thickness_measured", math.nan),
         # exact contact: what the pressure still moved in the last Newton step (Pa; sticking
-        # zones, solvers/nonlinear.py)
+        # zones, fem/nonlinear.py)
         "pressure_last_update": (run.result.stats[-1].multiplier_update * rp.u_roll
                                  * run.form.lam_scale * run.problem.material.K)
         if steady_solver and exact else None,

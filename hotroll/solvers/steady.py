@@ -32,12 +32,12 @@ from hotroll.fem import quantities as Q
 from hotroll.fem.contact_set import ActiveSet
 from hotroll.fem.free_surface import StripMap, StripShape, kinematic_update
 from hotroll.fem.mesh import build_steady_mesh
+from hotroll.fem.nonlinear import LinearSolveError, SolveStats, newton
 from hotroll.fem.rolling_form import PenaltyTable, RollingForm
 from hotroll.fem.top_boundary import TopBoundary
 from hotroll.model.friction_estimate import estimate_a_f
 from hotroll.model.material import NortonHoff
 from hotroll.solvers import couplings as C
-from hotroll.solvers.nonlinear import LinearSolveError, SolveStats, newton
 from hotroll.solvers.problem import Problem, Solution
 from hotroll.solvers.steady_settings import (
     SteadyResult,

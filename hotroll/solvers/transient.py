@@ -21,13 +21,13 @@ import numpy as np
 
 from hotroll.fem import quantities as Q
 from hotroll.fem.mesh import build_plate_mesh
+from hotroll.fem.nonlinear import LinearSolveError, SolveStats, picard, solve
 from hotroll.fem.rolling_form import PenaltyTable, RollingForm
 from hotroll.fem.top_boundary import TopBoundary
 from hotroll.files import atomic
 from hotroll.model.friction_estimate import estimate_a_f
 from hotroll.model.material import NortonHoff
 from hotroll.solvers import couplings as C
-from hotroll.solvers.nonlinear import LinearSolveError, SolveStats, picard, solve
 from hotroll.solvers.problem import Problem, Solution
 from hotroll.solvers.settling import steady_reached, summary_windows, transit_time
 from hotroll.solvers.threads import solver_threads

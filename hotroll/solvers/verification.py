@@ -22,9 +22,9 @@ from __future__ import annotations
 import numpy as np
 
 from hotroll.fem.forms import NonlinearProblem, norton_hoff_volume, strain_rate
+from hotroll.fem.nonlinear import SolveStats, newton, picard
 from hotroll.fem.spaces import taylor_hood
 from hotroll.model.material import NortonHoff, edot_squared
-from hotroll.solvers.nonlinear import SolveStats, newton, picard
 
 
 def rectangle(width: float, height: float, nx: int, ny: int, names: tuple[str, str, str, str]):

@@ -703,7 +703,7 @@ def test_a_failing_linear_solve_ends_a_steady_run_with_its_reason(monkeypatch):
     traceback; now the continuation in m is tried, and if that fails too the run ends with
     exit code 3 and the reason."""
     import hotroll.solvers.steady as S
-    from hotroll.solvers.nonlinear import LinearSolveError
+    from hotroll.fem.nonlinear import LinearSolveError
 
     real, calls = S.newton, {"n": 0, "fail": {1}}
 

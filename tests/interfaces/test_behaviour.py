@@ -236,7 +236,7 @@ def test_cli_exit_codes_of_real_runs(tmp_path, monkeypatch):
     assert s["outlet_penalty_power"] < -0.05 * s["plastic_power"]
 
     import hotroll.solvers.transient as T
-    from hotroll.solvers.nonlinear import LinearSolveError
+    from hotroll.fem.nonlinear import LinearSolveError
 
     real, calls = T.solve, {"n": 0}
 

@@ -178,7 +178,7 @@ def test_linear_solver_failure_keeps_finished_steps(tmp_path, monkeypatch):
     """A step whose linear systems cannot be solved ends the run as 'failed' with the reason;
     the finished steps' history, fields and summary are written, not lost."""
     import hotroll.solvers.transient as T
-    from hotroll.solvers.nonlinear import LinearSolveError
+    from hotroll.fem.nonlinear import LinearSolveError
 
     real, calls = T.solve, {"n": 0}
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from test_rolling import _case
 
-from hotroll.solvers.nonlinear import newton
+from hotroll.fem.nonlinear import newton
 from hotroll.solvers.steady import SteadyRun
 from hotroll.workflows.runner import build_model, run_case, steady_settings
 

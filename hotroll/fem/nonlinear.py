@@ -1,28 +1,48 @@
-"""Nonlinear solvers for one configuration: Picard (3.8) and Newton with a line search.
+"""The one Newton (and Picard) of hotroll: the flow (3.6) and the heat equation both solve with
+it. Picard (3.8) and Newton with a line search.
 
-Both stop when the largest velocity update at a velocity node (P2: vertices and edge
-midpoints) is below ``tol * problem.velocity_scale`` (the report's ||U^i - U^{i+1}|| <= 1e-5 of
-(3.8c), made unit-free), or after ``max_it`` iterations.
+A system is what ``newton`` needs to know (``NonlinearSystem``): the unknown ``gf``, the form
+whose ``Apply`` is the residual and whose linearisation is the Jacobian (``a_newton``, or a
+separate ``a_jacobian``), the free DOFs, the direct solvers to try and the factorisations kept
+between calls, the size of an update (the flow: the largest velocity update at a velocity node
+over ``velocity_scale``, the report's ||U^i - U^{i+1}|| <= 1e-5 of (3.8c) made unit-free; the
+heat: the largest temperature change over the largest temperature) and, optionally, a
+``prepare(iteration)`` hook (the heat equation's SUPG parameter frozen at the iterate). The flow
+is ``fem/forms.py: NonlinearProblem``, the heat ``fem/thermal_field.py: HeatSystem``.
+Newton stops when the update is below ``tol``, or after ``max_it`` iterations.
 """
 from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import Callable
+from typing import Callable, Protocol
 
 import numpy as np
 
 from hotroll.fem.forms import NonlinearProblem
 
-# The Newton and Picard matrices are symmetric (every term derives from a convex potential), so
-# NGSolve's sparse LDL^T ("sparsecholesky", no pivoting) factorises the saddle-point system;
-# measured 16x faster than UMFPACK here, whose pivoting slows down on the wide viscosity range,
-# and faster than MKL PARDISO (present only with ``pip install mkl``; 25k DOFs, 2 threads:
-# refactorisation 0.13 s vs 0.18 s, UMFPACK 0.8 s). The next solver is the fallback when one
-# is missing, fails, or its solution is inaccurate. The factorisation is kept between
-# iterations and steps: the sparsity pattern never changes, so ``Update()`` refactorises the
-# new values with the old ordering.
-LINEAR_SOLVERS = ("sparsecholesky", "pardiso", "umfpack")
+
+class NonlinearSystem(Protocol):
+    """What ``newton`` and ``picard`` read (``NonlinearProblem`` is one)."""
+
+    gf: object                      # the unknown (an NGSolve GridFunction)
+    a_newton: object                # Apply = the residual; AssembleLinearization = Jacobian
+    a_jacobian: object              # the Jacobian as a form of its own, or None
+    inverses: dict                  # kept factorisations, by id of the form they factorise
+    linear_solvers: tuple           # the direct solvers to try, in this order
+    pressure_row_scale: float       # weight of the pressure rows in the residual's norm
+    multiplier_tol: float           # a contact multiplier's own stopping test
+
+    @property
+    def freedofs(self): ...
+    @property
+    def free_mask(self) -> np.ndarray: ...
+    @property
+    def velocity_scale(self) -> float: ...           # what an update is measured against
+    def max_nodal_velocity(self, vec) -> float: ...  # the size of an update
+    def max_multiplier(self, vec) -> float: ...
+    def pressure_range(self) -> slice: ...
+
 #: Newton steps a contact multiplier may take after the velocity has converged (``newton``).
 MULTIPLIER_EXTRA = 5
 
@@ -75,16 +95,22 @@ class LinearSolveError(RuntimeError):
 
 
 def _linear_step(form, problem, ws, stats, residual_ready: bool = False,
-                 jacobian=None) -> None:
+                 jacobian=None, chord: bool = False) -> None:
     """Assemble the (Picard or Newton) matrix at gf and compute du = J^{-1} r.
 
     ``r`` is evaluated by ``form`` unless the caller left the residual at gf in ``ws.r``. The
     matrix is ``form``'s linearisation at gf, or ``jacobian`` (a form linear in the trial
-    functions, coefficients at gf) assembled as it stands.
+    functions, coefficients at gf) assembled as it stands. ``chord``: the kept factorisation of
+    the same form as it is, nothing assembled (Newton-chord), where there is one.
     """
     t0 = time.perf_counter()
     if not residual_ready:
         form.Apply(problem.gf.vec, ws.r)
+    kept = problem.inverses.get(id(jacobian if jacobian is not None else form))
+    if chord and kept is not None:
+        ws.du.data = kept * ws.r
+        stats.time_linear += time.perf_counter() - t0
+        return
     if jacobian is None:
         form.AssembleLinearization(problem.gf.vec)
         jacobian = form
@@ -94,7 +120,7 @@ def _linear_step(form, problem, ws, stats, residual_ready: bool = False,
     rnorm = max(ws.norm(ws.r), 1e-300)
     cached = problem.inverses.get(id(jacobian))
     if not (cached is not None and _update_and_solve(cached, jacobian, ws, rnorm)):
-        for name in LINEAR_SOLVERS:
+        for name in problem.linear_solvers:
             try:
                 inv = jacobian.mat.Inverse(problem.freedofs, inverse=name)
             except Exception:  # noqa: BLE001 - NGSolve raises plain exceptions (zero pivot, no MKL)
@@ -103,7 +129,7 @@ def _linear_step(form, problem, ws, stats, residual_ready: bool = False,
                 problem.inverses[id(jacobian)] = inv
                 break
         else:
-            raise LinearSolveError(f"no direct solver in {LINEAR_SOLVERS} solved the system "
+            raise LinearSolveError(f"no direct solver in {problem.linear_solvers} solved the system "
                                    f"to 1e-6 relative residual")
     stats.time_assembly += t1 - t0
     stats.time_linear += time.perf_counter() - t1
@@ -125,7 +151,7 @@ def _update_and_solve(inv, form, ws, rnorm: float) -> bool:
     return _accurate(inv, form, ws, rnorm)
 
 
-def picard(problem: NonlinearProblem, tol: float = 1e-5, max_it: int = 20) -> SolveStats:
+def picard(problem: NonlinearSystem, tol: float = 1e-5, max_it: int = 20) -> SolveStats:
     """Picard iteration (3.8b): J(U^i) U^{i+1} = b(U^i), coefficients frozen at U^i."""
     ws, stats = _Workspace(problem), SolveStats()
     scale = problem.velocity_scale
@@ -143,26 +169,34 @@ def picard(problem: NonlinearProblem, tol: float = 1e-5, max_it: int = 20) -> So
 
 
 def newton(
-    problem: NonlinearProblem,
+    problem: NonlinearSystem,
     tol: float = 1e-5,
     max_it: int = 20,
     min_step: float = 1.0 / 64,
     couple: Callable[[], bool] | None = None,
     couple_below: float = 1e-3,
     full_step: bool = False,
+    chord: bool = False,
 ) -> SolveStats:
-    """Newton's method on the residual form with a backtracking line search on ||r||.
+    """Newton's method on the residual form with a backtracking line search on ||r||
+    (``min_step = 1``: no search, the full step).
 
     ``couple`` (optional) updates data the form depends on (a_f, the free surface) once the
     velocity update is below ``couple_below``; it returns True while that data still moves,
     and the iteration only stops when it returns False and the update is below ``tol``.
+    ``chord``: the Jacobian's kept factors instead of new ones (Newton-chord). The system's
+    ``prepare(iteration)``, where it has one, runs first in every iteration and returns True
+    when it changed the form (its residual is then evaluated again).
     """
     ws, stats = _Workspace(problem), SolveStats()
-    scale = problem.velocity_scale
     form = problem.a_newton
+    prepare = getattr(problem, "prepare", None)
     residual_ready, extra = False, 0
     for it in range(1, max_it + 1):
-        _linear_step(form, problem, ws, stats, residual_ready, problem.a_jacobian)
+        if prepare is not None and prepare(it):
+            residual_ready = False
+        scale = problem.velocity_scale
+        _linear_step(form, problem, ws, stats, residual_ready, problem.a_jacobian, chord)
         r0 = ws.norm(ws.r)
         ws.backup.data = problem.gf.vec
         # the Newton direction, not the damped step: a step cut by the line search is small
