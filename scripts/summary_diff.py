@@ -1,13 +1,15 @@
 """Every bundled example's, schedule's and study's summary before and after a change.
 
     python scripts/summary_diff.py run OUT [--only NAME,...]     # solve them all into OUT
-    python scripts/summary_diff.py compare BEFORE AFTER [--rtol 1e-9] [--solver-rtol 1e-5]
+    python scripts/summary_diff.py compare BEFORE AFTER [--rtol 1e-9] [--residuals-atol A]
 
 ``run`` calls the command line (``hotroll example|schedule|study``), so the same script runs
 on any commit. ``compare`` walks every summary.json, schedule.json, study.json and the
 study/schedule CSV tables under BEFORE and compares the same files under AFTER: the keys and
-the units must be identical; numbers equal to ``--rtol`` (an unchanged arithmetic) or, with
-``--solver-rtol``, to the solver's tolerance (a step that changes the iteration path); wall
+the units must be identical; numbers equal to ``--rtol`` (1e-9: an unchanged arithmetic; the
+solver's tolerance, e.g. 1e-5, where a step changes the iteration path). ``--residuals-atol``:
+the figures that measure a residual (a key with "error" or "residual": zero up to the solver's
+tolerance, so their relative change says nothing) compared absolutely to A instead; wall
 times, paths and dates are skipped. Exit code 1 and the differences listed when they differ.
 """
 from __future__ import annotations
@@ -87,8 +89,12 @@ def unit_scales(summary: dict) -> dict[str, float]:
     return {k: (1.0 if u in ("-", "") else biggest.get(u, 0.0)) for k, u in units.items()}
 
 
+#: Keys of figures that measure a residual (zero up to the solver's tolerance).
+RESIDUALS = ("error", "residual")
+
+
 def diff(a, b, rtol: float, where: str, out: list[str], scale: float = 0.0,
-         scales: dict | None = None) -> None:
+         scales: dict | None = None, atol: float | None = None) -> None:
     """Differences of two JSON-like values (keys, then numbers to rtol of themselves or of
     their unit's scale, then text)."""
     if isinstance(a, dict) and isinstance(b, dict):
@@ -99,18 +105,23 @@ def diff(a, b, rtol: float, where: str, out: list[str], scale: float = 0.0,
             scales = unit_scales(a)
         for k in sorted(set(a) & set(b)):
             if not _volatile(k):
-                diff(a[k], b[k], rtol, f"{where}.{k}", out, (scales or {}).get(k, scale), scales)
+                diff(a[k], b[k], rtol, f"{where}.{k}", out, (scales or {}).get(k, scale), scales,
+                     atol)
         return
     if isinstance(a, list) and isinstance(b, list):
         if len(a) != len(b):
             out.append(f"{where}: length {len(a)} -> {len(b)}")
             return
         for i, (x, y) in enumerate(zip(a, b)):
-            diff(x, y, rtol, f"{where}[{i}]", out, scale, scales)
+            diff(x, y, rtol, f"{where}[{i}]", out, scale, scales, atol)
         return
     x, y = _number(a), _number(b)
     if x is not None and y is not None:
-        if not _close(x, y, rtol) and not abs(x - y) <= rtol * scale:
+        key = where.rsplit(".", 1)[-1]
+        if atol is not None and any(r in key for r in RESIDUALS):
+            if not (abs(x - y) <= atol or (math.isnan(x) and math.isnan(y))):
+                out.append(f"{where}: {a!r} -> {b!r} (abs {abs(x - y):.2e})")
+        elif not _close(x, y, rtol) and not abs(x - y) <= rtol * scale:
             out.append(f"{where}: {a!r} -> {b!r} (rel {abs(x - y) / max(abs(x), abs(y)):.2e})")
     elif a != b:
         out.append(f"{where}: {a!r} -> {b!r}")
@@ -123,7 +134,7 @@ def _read(path: Path):
         return list(csv.DictReader(fh))
 
 
-def compare(before: Path, after: Path, rtol: float) -> list[str]:
+def compare(before: Path, after: Path, rtol: float, atol: float | None = None) -> list[str]:
     """Every differing value of the result files under BEFORE against AFTER."""
     out: list[str] = []
     files = sorted(p for pat in ("summary.json", "schedule.json", "study.json", "schedule.csv",
@@ -136,7 +147,7 @@ def compare(before: Path, after: Path, rtol: float) -> list[str]:
         if not q.is_file():
             out.append(f"{rel}: missing after")
             continue
-        diff(_read(p), _read(q), rtol, str(rel), out)
+        diff(_read(p), _read(q), rtol, str(rel), out, atol=atol)
     return out
 
 
@@ -150,10 +161,11 @@ def main() -> None:
     c.add_argument("before", type=Path)
     c.add_argument("after", type=Path)
     c.add_argument("--rtol", type=float, default=1e-9)
+    c.add_argument("--residuals-atol", type=float, default=None)
     args = ap.parse_args()
     if args.cmd == "run":
         sys.exit(1 if run(args.out, [n for n in args.only.split(",") if n]) else 0)
-    problems = compare(args.before, args.after, args.rtol)
+    problems = compare(args.before, args.after, args.rtol, args.residuals_atol)
     print("\n".join(problems) if problems else f"identical to {args.rtol:g}")
     sys.exit(1 if problems else 0)
 
