@@ -18,4 +18,6 @@ fi
 # the layers import one way and no package has an import cycle (docs/architecture.md)
 .venv/bin/lint-imports --no-cache
 .venv/bin/ruff check hotroll tests scripts benchmarks
-.venv/bin/python -m pytest -q -n 2 --dist loadfile "$@"
+# --no-loadscope-reorder: the files in collection order, the longest first (tests/conftest.py),
+# not by their number of tests (xdist's default, which left the mesh-table study for last)
+.venv/bin/python -m pytest -q -n 2 --dist loadfile --no-loadscope-reorder "$@"

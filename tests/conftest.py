@@ -4,6 +4,8 @@ command line, the tutorial as written). Shared case builders are ``casebuild.py`
 is on the import path through this file); shared inputs are in ``data/``."""
 from __future__ import annotations
 
+import json
+import os
 from pathlib import Path
 
 #: The repository's root (docs, scripts) and the tests' shared data.
@@ -23,7 +25,18 @@ LONGEST_FIRST = ("workflows/test_study_mesh_table.py", "config/test_case_propert
 
 
 def pytest_collection_modifyitems(config, items):
-    """The longest files first (the order of the rest, and within a file, unchanged)."""
+    """Under pytest-xdist: the longest files first (the order of the rest, and within a file,
+    unchanged). Under mutmut (``MUTANT_UNDER_TEST``, scripts/mutation.sh): the fastest tests
+    first, by mutmut's own measured durations, so that a mutant the tests kill dies early
+    (mutmut runs them with ``-x``)."""
+    if os.environ.get("MUTANT_UNDER_TEST"):
+        stats = Path("mutmut-stats.json")        # mutmut runs the tests from mutants/
+        if stats.is_file():
+            duration = json.loads(stats.read_text()).get("duration_by_test", {})
+            items.sort(key=lambda item: duration.get(item.nodeid, 0.0))
+        return
+    if not hasattr(config, "workerinput"):     # not an xdist worker: collection order
+        return
     here = Path(__file__).resolve().parent
     rank = {name: i for i, name in enumerate(LONGEST_FIRST)}
 
