@@ -1,21 +1,20 @@
 #!/usr/bin/env bash
-# Mutation testing (mutmut 3) of the physics (hotroll/physics), the post-processed quantities
-# (hotroll/fem/quantities.py, engineering.py) and hotroll/solvers/settling.py (the steady-state
-# test and the summary windows); [tool.mutmut] in pyproject.toml says what is mutated and which
-# tests may run. mutmut changes one thing in one function at a time (a < for a <=, 2.0 for 3.0, a
-# dropped argument, ...) and runs the cheap tests that call that function: a mutant the tests
-# still pass ("survived") is a behaviour no test pins down. The FE rolling runs (4-20 s each) are
-# not in the selection, so a function only they check shows survivors or "no tests"; re-check one
-# mutant against any test by hand (below). mutmut learns which tests call which function in a
+# Mutation testing (mutmut 3) of the whole package (the drawing code of the figures aside);
+# [tool.mutmut] in pyproject.toml says what is mutated and which tests may run (the default
+# suite without its slowest tests, which re-check the survivors: scripts/mutation_recheck.py).
+# mutmut changes one thing in one function at a time (a < for a <=, 2.0 for 3.0, a dropped
+# argument, ...) and runs the tests that call that function, fastest first (tests/conftest.py),
+# stopping at the first failure: a mutant the tests still pass ("survived") is a behaviour no
+# selected test pins down; re-check one mutant against any test by hand (below). mutmut learns which tests call which function in a
 # "stats" run; a shared (module) fixture is built inside one test only, so the fixtures that
 # several tests read use tests/casebuild.shared_scope, function-scoped in that run:
 #   cd mutants && MUTANT_UNDER_TEST=<name> ../.venv/bin/python -m pytest tests/solvers/test_rolling.py -x
 #
-# NOT part of CI (it takes long): run it by hand, in the background, after changing the physics or
-# its tests. About 35 minutes on 2 workers for the ~3100 mutants (~460 of them in code no selected
-# test calls: "no tests", at no cost; 32 min on 2026-11-23 with the other core partly busy):
-# ~20 s to generate them, ~20 s of test statistics, then 0.5-3 mutants/s. It prints progress;
-# Ctrl-C or a kill of `mutmut run` stops it, `--keep` goes on from there.
+# NOT part of CI (it takes hours): run it by hand, in the background, after changing the code or
+# its tests. The run of 2026-11-23 (the model layer and the figures, ~3100 mutants) took 35
+# minutes on 2 workers; the whole package has several times as many, and a mutant of the
+# solvers costs an FE solve or more. It prints progress; Ctrl-C or a kill of `mutmut run` stops
+# it, `--keep` goes on from there (each mutant's result is saved as it comes).
 #
 #   nohup nice bash scripts/mutation.sh > mutation.log 2>&1 &
 #
@@ -57,28 +56,30 @@ done
 export NGS_NUM_THREADS=1 OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 
 if ((report_only == 0)); then
-    # Each name in the -k selection of [tool.mutmut] should still match a test (a renamed test would
-    # silently drop out of the selection): a warning, not an error.
+    # Each test the selection deselects should still exist (a renamed test would silently come
+    # back into the selection): a warning, not an error.
     selection_warnings=$(.venv/bin/python - 2>/dev/null <<'PY' | tail -n 1 || echo "(selection check failed)"
-import re, tomllib
+import tomllib
 import pytest
-from _pytest.mark import KeywordMatcher
 
 args = tomllib.load(open("pyproject.toml", "rb"))["tool"]["mutmut"]["pytest_add_cli_args_test_selection"]
-terms = re.split(r"\s+or\s+", args[args.index("-k") + 1].strip())
+gone = [args[i + 1] for i, a in enumerate(args) if a == "--deselect"]
 
 
 class Items:
+    ids: list = []
+
     def pytest_collection_modifyitems(self, items):
-        self.matchers = [KeywordMatcher.from_item(item) for item in items]
+        self.ids = [item.nodeid for item in items]
 
 
 items = Items()
 pytest.main(["--collect-only", "-qq", "-p", "no:cacheprovider", "tests"], plugins=[items])
-print(" ".join(t for t in terms if t != "mutation" and not any(m(t) for m in items.matchers)))
+print(" ".join(g for g in gone if not any(i == g or i.startswith(g + "::") or i.startswith(g + "[")
+                                          for i in items.ids)))
 PY
     )
-    [[ -z $selection_warnings ]] || echo "WARNING: no test matches these names of the selection: $selection_warnings"
+    [[ -z $selection_warnings ]] || echo "WARNING: the selection deselects tests that do not exist: $selection_warnings"
     export MUTATION_SELECTION_WARNINGS=$selection_warnings
 
     [[ $keep == 1 ]] || rm -rf mutants
@@ -163,7 +164,7 @@ lines = [
     f"test selection: {len(stats['duration_by_test'])} tests, "
     f"{sum(stats['duration_by_test'].values()):.1f} s in all ([tool.mutmut] in pyproject.toml)",
     f"mutants: {', '.join(globs) if globs else 'all configured'}",
-    *([f"WARNING: no test matches these names of the selection: {os.environ['MUTATION_SELECTION_WARNINGS']}"]
+    *([f"WARNING: the selection deselects tests that do not exist: {os.environ['MUTATION_SELECTION_WARNINGS']}"]
       if os.environ.get("MUTATION_SELECTION_WARNINGS") else []),
     "",
     "caught = killed + timeout + segfault (the mutant crashed the tests: NGSolve given None, ...)",
