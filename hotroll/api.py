@@ -28,6 +28,7 @@ from hotroll.config.study import load_study
 from hotroll.examples import EXAMPLES, example_path, find_study, schedule_path
 from hotroll.results.figures import plot_all
 from hotroll.results.run_dir import RunDir
+from hotroll.results.summary import Summary
 from hotroll.workflows.runner import run_case
 from hotroll.workflows.schedule import run_schedule
 from hotroll.workflows.study import run_study
@@ -90,7 +91,7 @@ class Result:
     """One run's results (read from its directory ``out``)."""
 
     out: Path
-    summary: dict[str, Any] = field(repr=False)
+    summary: Summary = field(repr=False)                 # typed, each key with its unit
     contact: dict[str, np.ndarray] = field(repr=False)   # along the arc: x, y, angle, stresses
     top: dict[str, np.ndarray] = field(repr=False)       # along the top boundary
     _tmp: Any = field(default=None, repr=False)

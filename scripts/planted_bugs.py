@@ -279,6 +279,23 @@ BUGS: dict[str, tuple[str, str, str, str]] = {
                          "f += bc.taylor_quinney * CF(heat_density) * w * dvol",
                          "f += 1.1 * bc.taylor_quinney * CF(heat_density) * w * dvol",
                          "the Lagrangian step's plastic heat x 1.1"),
+    # --- issue 31: the heat-transfer laws, the one Newton, the typed summary ---
+    "surface_law": ("hotroll/model/heat_transfer/convection_radiation.py",
+                    "return self.htc * (T - T_env) + self.emissivity",
+                    "return 1.1 * self.htc * (T - T_env) + self.emissivity",
+                    "the free surfaces' convection x 1.1"),
+    "contact_law": ("hotroll/model/heat_transfer/constant_conductance.py",
+                    "        return self.htc * (T - T_env)\n",
+                    "        return 1.1 * self.htc * (T - T_env)\n",
+                    "the contact's heat flux x 1.1"),
+    "heat_newton_scale": ("hotroll/fem/thermal_field.py",
+                          "return max(float(np.max(np.abs(self.field.values))), 1e-300)",
+                          "return 1e4 * max(float(np.max(np.abs(self.field.values))), 1e-300)",
+                          "the heat Newton stops 1e4 x too early"),
+    "summary_unit": ("hotroll/results/summary.py",
+                     'roll_torque: float = _f("N m/m"',
+                     'roll_torque: float = _f("N m"',
+                     "the roll torque's unit in summary.json"),
 }
 
 
