@@ -60,6 +60,12 @@ def example1_coarse(name: str, **sections) -> dict:
     return base
 
 
+#: The solved case several test files read (``solved_example1`` of tests/conftest.py): Example
+#: 1's pass on a coarse mesh (h = 0.02 m), viscoplastic a_f = 5, a 4 m plate, steady (0.6 s).
+EXAMPLE1_COARSE = example1_coarse("example1_coarse", plate={"length": 4.0},
+                                  friction={"law": "viscoplastic", "a_f": 5.0})
+
+
 def shared_scope(fixture_name, config) -> str:
     """Scope of a fixture whose result several tests read: "module", except in mutmut's stats
     run (MUTANT_UNDER_TEST=stats), where it is "function". mutmut records which tests call each

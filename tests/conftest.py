@@ -8,9 +8,28 @@ import json
 import os
 from pathlib import Path
 
+import pytest
+from casebuild import EXAMPLE1_COARSE, build_case, shared_scope
+
+from hotroll.workflows.runner import run_case
+
 #: The repository's root (docs, scripts) and the tests' shared data.
 ROOT = Path(__file__).resolve().parents[1]
 DATA = Path(__file__).resolve().parent / "data"
+
+
+def _session_unless_stats(fixture_name, config) -> str:
+    """"session", except in mutmut's stats run ("function": casebuild.shared_scope)."""
+    return "function" if shared_scope(fixture_name, config) == "function" else "session"
+
+
+@pytest.fixture(scope=_session_unless_stats)
+def solved_example1(tmp_path_factory) -> Path:
+    """The output directory of ``EXAMPLE1_COARSE`` solved once per test process (a cached
+    solved case: read it, do not write into it)."""
+    out = tmp_path_factory.mktemp("solved_example1")
+    run_case(build_case(EXAMPLE1_COARSE), out)
+    return out
 
 #: The files that take longest (``pytest --durations=0``, 2026-11-25: the mesh-table study
 #: 55 s, the property tests 42 s, the studies 40 s, contact and rolling 28 s each, ...),

@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 import pytest
-from casebuild import build_case, example1_coarse, gap_means_from_fields, shared_scope
+from casebuild import EXAMPLE1_COARSE, build_case, gap_means_from_fields, shared_scope
 
 from hotroll.config.case import case_from_dict
 from hotroll.workflows.runner import run_case
@@ -31,8 +31,7 @@ pytestmark = pytest.mark.mutation
 
 OMEGA = math.pi / 3
 R = 0.6
-BASE = example1_coarse("example1_coarse", plate={"length": 4.0},
-                       friction={"law": "viscoplastic", "a_f": 5.0})
+BASE = EXAMPLE1_COARSE       # tests/conftest.py: the suite's cached solved case
 # issue 14's mesh study, traced tops, a_f = 5 (docs/studies/mesh_convergence_example1.md)
 FORCE_EXTRAPOLATED = 0.52147     # N/m (K = 1), Richardson from the three finest meshes
 TORQUE_FINEST = 0.085128         # N m/m, h = 1.5 mm (band 0.085 % over h <= 3.7 mm)
@@ -48,11 +47,10 @@ def _run(tmp_path_factory, name, **over):
 
 
 @pytest.fixture(scope=shared_scope)
-def coarse_dir(tmp_path_factory):
-    """The output directory of the coarse steady run."""
-    out = tmp_path_factory.mktemp("example1_h002")
-    run_case(build_case(BASE), out)
-    return out
+def coarse_dir(solved_example1):
+    """The output directory of the coarse steady run (BASE: the suite's cached solved case,
+    tests/conftest.py)."""
+    return solved_example1
 
 
 @pytest.fixture(scope=shared_scope)
@@ -114,13 +112,12 @@ def test_velocities_and_forward_slip_from_the_written_field(coarse):
     assert s["mass_flux_error"] < 0.01
 
 
-def test_top_profile_is_the_written_field_on_the_top(tmp_path_factory, coarse):
+def test_top_profile_is_the_written_field_on_the_top(coarse_dir, coarse):
     """top.csv: the top boundary's nodes from entry to exit with their velocity; its ends are
     the strip's entry and exit heights (h0/2 = 0.25, the traced exit top 0.2 % above h1/2) and
     velocities (the written field's rigid end values), and its free part never enters the roll."""
     s, _, f = coarse
-    out = [p for p in tmp_path_factory.getbasetemp().glob("example1_h002*")][0]
-    top = np.genfromtxt(out / "top.csv", delimiter=",", names=True)
+    top = np.genfromtxt(coarse_dir / "top.csv", delimiter=",", names=True)
     assert np.all(np.diff(top["x"]) > 0)
     # the whole top, from the inlet face to the exit face (not only the contact)
     assert top["x"][0] == pytest.approx(float(f["points"][:, 0].min()), abs=1e-9)

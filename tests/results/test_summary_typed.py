@@ -68,3 +68,12 @@ def test_units_table_and_reference_page_come_from_the_declaration():
     assert summary_keys_markdown() in page
     for key in Summary.keys_declared():
         assert f"| `{key}` |" in page
+
+
+def test_a_run_writes_exactly_the_declared_keys(solved_example1):
+    """The summary a run writes now (the suite's cached solved case) reads back strictly: no
+    undeclared key, none missing, the units map that of the declaration."""
+    data = json.loads((solved_example1 / "summary.json").read_text())
+    s = Summary.from_dict(data)
+    assert data["units"] == {k: u for k, u in Summary.units_map().items() if k in data}
+    assert s.method == "steady" and s.exit_code == 0
