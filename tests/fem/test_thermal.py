@@ -236,6 +236,29 @@ def test_heat_balance_closes_with_robin_radiation_and_sources():
     assert abs(b["advected_out"] - b["advected_in"] - net) / scale < 1e-9
 
 
+def test_newton_reports_the_update_it_took():
+    """The one Newton on the heat equation (fem/nonlinear.py, HeatSystem) measures an update as
+    the largest temperature change over the largest temperature before it: one iteration from
+    the entry field, measured here on the values before and after, is the change it reports
+    (a wrong scale would stop it early or never). Converged, it stops by that test."""
+    from ngsolve import IfPos, x, y
+
+    mesh = wedge(48, 12)
+    v = sink_flow(0.01)
+    contact = IfPos(x - 0.035, 1.0, 0.0)
+    q, qf = 3e8 * contact * (1.0 + 10.0 * y), 2e6 * contact
+    bc = boundary(1400.0, 350.0, 300.0, htc_contact=2e4, htc_air=50.0, emissivity=0.8)
+    field = TemperatureField(mesh, TABLES, bc, top="top")
+    field.values[:] = 1400.0
+    before = field.values.copy()
+    first = field.solve_steady(v, q, qf, contact, tol=0.0, max_iter=1)
+    measured = np.max(np.abs(field.values - before)) / np.max(np.abs(before))
+    assert first.iterations == 1 and measured > 1e-3                 # a real first step
+    assert first.change == pytest.approx(measured, rel=1e-9)
+    info = field.solve_steady(v, q, qf, contact, tol=1e-10)
+    assert info.change < 1e-10 and info.iterations < 30
+
+
 # =================================================================================================
 # 4. The moving-mesh step: implicit Euler
 # =================================================================================================
