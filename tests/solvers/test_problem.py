@@ -1,0 +1,34 @@
+"""The typed stages (hotroll/solvers/problem.py): both solvers implement the ``Solver``
+interface that the results layer reads, and their ``run`` returns a ``Solution``. Plumbing: a
+guard that the two stay interchangeable for ``results/run_summary.py``."""
+from __future__ import annotations
+
+import typing
+
+import pytest
+from casebuild import EXAMPLE1_COARSE, build_case
+
+from hotroll.solvers.problem import Problem, Solution, Solver
+from hotroll.solvers.steady import SteadyRun
+from hotroll.solvers.transient import TransientRun
+from hotroll.workflows.runner import build_model, steady_settings
+
+MEMBERS = [n for n in typing.get_type_hints(Solver) if not n.startswith("_")] + ["run", "head_x"]
+
+
+@pytest.mark.parametrize("method", ["steady", "transient"])
+def test_both_solvers_implement_the_solver_interface(method, tmp_path):
+    case = build_case(EXAMPLE1_COARSE, **{"solver.method": method, "solver.end_time": 0.05})
+    problem, settings = build_model(case)
+    assert isinstance(problem, Problem)
+    if method == "steady":
+        run = SteadyRun(problem, steady_settings(case), case.plate.length)
+    else:
+        run = TransientRun(problem, settings, checkpoint_dir=tmp_path / "ckpt")
+    assert run.time_stepping is (method == "transient")
+    solution = run.run()
+    assert isinstance(solution, Solution) and solution is run.state
+    assert solution.history and solution.status in ("steady", "unsettled", "end_time")
+    missing = [m for m in MEMBERS if not hasattr(run, m)]
+    assert not missing, f"{type(run).__name__} lacks {missing}"
+    assert run.problem is problem
