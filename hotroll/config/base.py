@@ -116,9 +116,9 @@ def problem_lines(err) -> list[str]:
             msg = "unknown key"
         elif e["type"] == "missing":
             msg = "missing required key"
+        elif e["type"] == "value_error" and exc is not None:
+            msg = str(exc)            # a validator's own words, which name the value given
         else:
-            ctx = e.get("ctx") or {}
-            msg = f"{msg[0].lower()}{msg[1:]}, got {e.get('input')!r}" if ctx or "input" in e \
-                else msg
+            msg = f"{msg[0].lower()}{msg[1:]}, got {e.get('input')!r}"
         out.append(f"{'.'.join(loc)}: {msg}")
     return out
