@@ -112,3 +112,25 @@ def test_a_misaka_pass_is_the_equivalent_hensel_spittel_pass(tmp_path):
         tmp_path / "top")
     assert floor["roll_force"] < misaka["roll_force"] < top["roll_force"]
     assert np.isfinite(misaka["exit_strain"])
+
+
+def test_the_registry_refuses_a_second_name_or_a_parameter_that_means_two_things():
+    """A name once; a parameter name shared by two laws must have the same unit and limits."""
+    from dataclasses import replace
+
+    from hotroll.model.flow_stress.registry import register
+    from hotroll.model.parameters import Parameter
+
+    spec = LAWS["misaka"]
+    with pytest.raises(ValueError, match="flow-stress law 'misaka' registered twice"):
+        register(spec)
+    carbon = next(p for p in spec.parameters if p.name == "carbon")
+    clash = replace(spec, name="misaka2", parameters=(replace(carbon, unit="ppm"),))
+    with pytest.raises(ValueError, match="parameter 'carbon' of 'misaka2' differs from 'misaka'"):
+        register(clash)
+    same = replace(spec, name="misaka3", parameters=(carbon, Parameter("x3", "", "", "")))
+    try:
+        assert register(same) is same and LAWS["misaka3"] is same   # shared and equal: fine
+    finally:
+        LAWS.pop("misaka3", None)
+    assert "misaka2" not in LAWS

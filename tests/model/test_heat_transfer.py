@@ -79,3 +79,15 @@ def test_interpass_cooling_takes_the_surface_law():
     assert by_law.mean == by_numbers.mean
     stronger = cool(*args, None, None, 300.0, surface=ConvectionRadiation(200.0, 0.8))
     assert stronger.mean < by_law.mean - 1.0
+
+
+def test_registering_a_name_twice_or_an_unknown_kind_is_refused():
+    from hotroll.model.heat_transfer import HeatTransferSpec, register
+
+    spec = HEAT_TRANSFER_LAWS["constant"]
+    with pytest.raises(ValueError, match="heat-transfer law 'constant' registered twice"):
+        register(spec)
+    odd = HeatTransferSpec("odd", "roll_core", "", "", (), lambda v: None)
+    with pytest.raises(ValueError, match=r"'odd': kind must be one of \('contact', 'surface'\)"):
+        register(odd)
+    assert "odd" not in HEAT_TRANSFER_LAWS and HEAT_TRANSFER_LAWS["constant"] is spec

@@ -77,3 +77,30 @@ def test_a_run_writes_exactly_the_declared_keys(solved_example1):
     s = Summary.from_dict(data)
     assert data["units"] == {k: u for k, u in Summary.units_map().items() if k in data}
     assert s.method == "steady" and s.exit_code == 0
+
+
+def test_the_declaration_helpers_at_call_time():
+    """What the class body and the page's module build at import, called again here (the
+    mutation run cannot switch a mutant on before an import): a field's metadata and default,
+    the labels and the page's groups by hand."""
+    from hotroll.results.summary import _f
+
+    f = _f("N", "a label", "a meaning", group="Pass", when="width")
+    assert f.default is ABSENT
+    assert dict(f.metadata) == {"unit": "N", "label": "a label", "meaning": "a meaning",
+                                "group": "Pass", "when": "width"}
+    labels = Summary.labels()
+    assert labels["roll_force"] == "roll force, one roll" and labels["K"] == "consistency K"
+    assert len(labels) == len(Summary.keys_declared())
+    groups = Summary.groups()
+    assert list(groups) == ["Pass", "Temperature and heat", "Checks", "Solver"]
+    assert groups["Solver"] == ("h_contact", "dofs", "steps", "time", "dt", "newton_solves",
+                                "coupling_updates", "nonlinear_iterations",
+                                "iterations_per_step", "averaged_over_steps", "wall_time_s")
+    assert groups["Pass"][:3] == ("roll_force", "roll_force_total", "roll_torque")
+    rows = {r[0]: r for r in Summary.reference_rows()}
+    assert rows["roll_force_total"] == ("roll_force_total", "N", "roll force, whole width",
+                                        "one roll's force over the whole width; with "
+                                        "`[pass] width`")
+    assert rows["case_name"] == ("case_name", "", "case", "the case's name")
+    assert "_other" not in rows
