@@ -74,11 +74,13 @@ def test_picard_matches_newton_and_contracts():
 @pytest.mark.parametrize("method", ["newton", "picard"])
 def test_compression_exact(m, method):
     """The P2 space holds v = r (x, -y): exact to round-off (measured 1e-15 velocity, 3e-13
-    force and pressure; the eps0 = 1e-6 regularisation changes the stress by ~1e-13)."""
-    res = compression(1 / 4, m, r=0.7, a=1.5, b=1.0, method=method)
+    force and pressure; the eps0 = 1e-6 regularisation changes the stress by ~1e-13). No
+    parameter is 1 (K, r, a, b), so that a product and a quotient differ."""
+    res = compression(1 / 4, m, K=3.0, r=0.7, a=1.5, b=0.75, method=method)
     assert res["converged"]
     assert res["u_error"] < 1e-6
-    assert res["force_exact"] == pytest.approx(-2.0 * (2 * 0.7) ** m * 1.5)
+    assert res["force_exact"] == pytest.approx(-2.0 * 3.0 * (2 * 0.7) ** m * 1.5)
+    assert res["pressure_exact"] == pytest.approx(3.0 * (2 * 0.7) ** m)
     assert abs(res["force"] / res["force_exact"] - 1.0) < 1e-6
     assert abs(res["pressure"] / res["pressure_exact"] - 1.0) < 1e-6
 

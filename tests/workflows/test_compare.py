@@ -215,8 +215,59 @@ def test_compare_command_refuses_an_ambiguous_or_unknown_example(tmp_path):
     from typer.testing import CliRunner
 
     from hotroll.cli import app
+    from hotroll.examples import EXAMPLES
 
     r = CliRunner().invoke(app, ["compare", "3", "--out", str(tmp_path)])
     assert r.exit_code == 2 and "several cases" in r.output
+    assert f"several cases ({', '.join(EXAMPLES['3'])})" in " ".join(r.output.split())
     r = CliRunner().invoke(app, ["compare", "no_such_pass", "--out", str(tmp_path)])
     assert r.exit_code == 2 and "hot_strip_finishing" in r.output
+
+
+def test_compare_command_prints_the_table_it_was_given(tmp_path, monkeypatch):
+    """The command line's side of ``hotroll compare`` (the comparison itself faked): the
+    case it hands over (figures off, the steady solver unless --method, the mesh option), the
+    table's head and rows as given (the quantity without its unit, numbers to 4 digits, "-"
+    where a theory has none; words left, numbers right), the slab error and the files' paths."""
+    from typer.testing import CliRunner
+
+    from hotroll.cli import app, passes
+
+    seen = {}
+    rows = [{"quantity": "roll torque [one roll] per unit width [N m/m]", "unit": "N m/m",
+             "FE": 1234567.0, "slab (Orowan)": 1111111.0, "Sims": 325000.0,
+             "Ford-Alexander": None, "FE/slab": 1.1111},
+            {"quantity": "x [-]", "unit": "-", "FE": 1.0, "slab (Orowan)": 2.0, "Sims": 3.0,
+             "Ford-Alexander": 4.0, "FE/slab": 0.5}]
+
+    def fake_compare(case, out, progress=None):
+        seen.update(case=case, out=out, progress=progress)
+        return {"rows": rows, "slab_error": "NoNeutralPointError: too little friction"}
+
+    monkeypatch.setattr(passes, "run_compare", fake_compare)
+    monkeypatch.setenv("COLUMNS", "300")               # rich: no line wrapped
+    r = CliRunner().invoke(app, ["compare", "hot_strip_finishing", "--out", str(tmp_path),
+                                 "--mesh", "0.0004"])
+    assert r.exit_code == 0, r.output
+    case = seen["case"]
+    assert case.output.figures is False and case.solver.method == "steady"
+    assert case.mesh.h == 0.0004 and seen["out"] == tmp_path and seen["progress"] is not None
+    lines = r.output.splitlines()
+    assert f"comparing {case.name} -> {tmp_path}" in r.output
+    assert f"{case.name}: FE and slab theory" in r.output
+    head = next(line for line in lines if "quantity" in line)
+    assert [c.strip() for c in head.strip("┃ ").split("┃")] == [
+        "quantity", "unit", "FE", "slab (Orowan)", "Sims", "Ford-Alexander", "FE/slab"]
+    first = next(line for line in lines if "roll torque" in line).strip("│").split("│")
+    assert [c.strip() for c in first] == ["roll torque [one roll] per unit width", "N m/m",
+                                          "1.235e+06", "1.111e+06", "3.25e+05", "-", "1.111"]
+    second = next(line for line in lines if "│ x " in line).strip("│").split("│")
+    assert [c.strip() for c in second] == ["x", "-", "1", "2", "3", "4", "0.5"]
+    assert second[0].startswith(" x ") and second[1].startswith(" - ")        # words left
+    assert all(c.endswith(f"{v} ") and c.startswith("  ")                     # numbers right
+               for c, v in zip(second[2:], ("1", "2", "3", "4", "0.5")))
+    assert "slab theory: NoNeutralPointError: too little friction" in r.output
+    assert f"table: {tmp_path / 'compare.md'}, figure: {tmp_path / 'compare.png'}" in r.output
+    r = CliRunner().invoke(app, ["compare", "hot_strip_finishing", "--out", str(tmp_path),
+                                 "--method", "transient"])
+    assert r.exit_code == 0 and seen["case"].solver.method == "transient"
