@@ -245,7 +245,7 @@ def test_compare_command_prints_the_table_it_was_given(tmp_path, monkeypatch):
         return {"rows": rows, "slab_error": "NoNeutralPointError: too little friction"}
 
     monkeypatch.setattr(passes, "run_compare", fake_compare)
-    monkeypatch.setenv("COLUMNS", "300")               # rich: no line wrapped
+    monkeypatch.setattr(passes.console, "width", 300)     # rich: no line wrapped
     r = CliRunner().invoke(app, ["compare", "hot_strip_finishing", "--out", str(tmp_path),
                                  "--mesh", "0.0004"])
     assert r.exit_code == 0, r.output
