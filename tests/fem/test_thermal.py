@@ -13,6 +13,7 @@ import re
 
 import numpy as np
 import pytest
+from casebuild import shared_scope
 
 from hotroll.fem.thermal_field import TemperatureField
 from hotroll.model.heat_transfer import SIGMA_SB
@@ -424,7 +425,7 @@ def test_face_mean_and_surface_value_follow_the_moved_mesh():
 # =================================================================================================
 # 5. Property tables, enthalpy by hand, bad input
 # =================================================================================================
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def point():
     from netgen.geom2d import unit_square
 

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from casebuild import build_case, example1_coarse
+from casebuild import build_case, example1_coarse, shared_scope
 from typer.testing import CliRunner
 
 from hotroll.cli import app
@@ -195,7 +195,7 @@ def _write_case(tmp_path, name="case", **over):
     return path
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def cli_run(tmp_path_factory):
     """A real ``hotroll run`` of a coarse steady case, with figures and the VTU file."""
     tmp = tmp_path_factory.mktemp("cli")

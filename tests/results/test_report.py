@@ -17,7 +17,7 @@ from html.parser import HTMLParser
 from pathlib import Path
 
 import pytest
-from casebuild import EX1_COARSE_TOML, example1_coarse
+from casebuild import EX1_COARSE_TOML, example1_coarse, shared_scope
 from typer.testing import CliRunner
 
 #: A shown unit -> its SI factor (written here, not taken from hotroll.results.report*).
@@ -46,7 +46,7 @@ def _cli(*args: str):
     return CliRunner().invoke(app, list(args))
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def compared(tmp_path_factory):
     """A coarse Example 1 pass, 1.2 m wide, run by ``compare`` (FE in fe/, slab theory beside),
     then ``hotroll report`` on it."""
@@ -63,7 +63,7 @@ def compared(tmp_path_factory):
     return d
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def studied(tmp_path_factory):
     """``hotroll study --serial`` (it writes report.html at its end): exit 64 + 2 failed."""
     d = tmp_path_factory.mktemp("report_study")
@@ -224,7 +224,7 @@ def test_bad_directories_are_refused(tmp_path):
 
 
 # ------------------------------------------------------------------------- in the browser
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def browser():
     """Debian's chromium driven by playwright (never ``playwright install``)."""
     if os.environ.get("HOTROLL_SKIP_BROWSER") == "1":

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from casebuild import example1_coarse
+from casebuild import example1_coarse, shared_scope
 
 from hotroll.config.case import case_from_dict
 from hotroll.workflows.runner import run_case
@@ -68,7 +68,7 @@ def _scaled(law: str, factor: float, minutes: bool = False) -> dict:
     return d
 
 
-@pytest.fixture(scope="module", params=sorted(LAWS))
+@pytest.fixture(scope=shared_scope, params=sorted(LAWS))
 def speed_runs(request):
     law = request.param
     return law, {f: solve(_scaled(law, f))[0] for f in (0.01, 1.0, 100.0)}, \
@@ -160,7 +160,7 @@ FINISHING = {   # a finishing-type pass (5 -> 3.6 mm, R = 0.35 m, 0.4 m/s, Coulo
 }
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def finishing_runs():
     from hotroll.model.geometry import auto_contact_size
 
@@ -204,7 +204,7 @@ def test_exact_contact_has_no_leak_and_no_penalty_on_the_roll(finishing_runs):
 
 
 # --- unilateral contact ------------------------------------------------------------------------
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def example1_unilateral():
     return solve(with_(example1_coarse("unilateral"), **{"contact.unilateral": True}))
 

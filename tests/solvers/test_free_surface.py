@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 import pytest
+from casebuild import shared_scope
 from test_rolling import _case
 
 from hotroll.fem.free_surface import StripShape, kinematic_update, roll_height, roll_slope
@@ -38,7 +39,7 @@ def _rms_normal_velocity(run: SteadyRun) -> float:
     return math.sqrt(vn2 / length) / run.problem.rp.u_roll
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def traced():
     run = _steady()
     run.run()

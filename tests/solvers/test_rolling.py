@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 import pytest
+from casebuild import shared_scope
 
 from hotroll.config.case import case_from_dict
 from hotroll.workflows.runner import run_case
@@ -43,19 +44,19 @@ def _run(tmp_path_factory, name, **over):
     return summary, contact, out
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def slipping(tmp_path_factory):
     """Fixed a_f = 3: a real backward-slip zone and a forward-slip zone near the exit."""
     return _run(tmp_path_factory, "af3", **{"friction.a_f": 3.0})
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def estimated(tmp_path_factory):
     """a_f from (3.15) at every step, as in the report."""
     return _run(tmp_path_factory, "estimate")
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def settled(tmp_path_factory):
     """The report's scheme with a_f = 3 run to its automatic steady state (traced tops;
     measured: 165 steps, 23 s on one thread)."""
@@ -63,33 +64,33 @@ def settled(tmp_path_factory):
                                                          "solver.end_time": 3.0})
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def settled_constrained(tmp_path_factory):
     return _run(tmp_path_factory, "af3_constrained", **{"friction.a_f": 3.0,
                                                         "solver.end_time": 3.0,
                                                         "plate.free_surface": "constrained"})
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def steady_constrained(tmp_path_factory):
     return _run(tmp_path_factory, "steady_constrained", **{
         "solver.method": "steady", "friction.a_f": 3.0, "plate.free_surface": "constrained"})
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def steady_slipping(tmp_path_factory):
     return _run(tmp_path_factory, "steady_af3", **{"solver.method": "steady",
                                                      "friction.a_f": 3.0})
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def steady_slipping_penalty(tmp_path_factory):
     """The steady solver with the report's penalty contact (``[contact] method``)."""
     return _run(tmp_path_factory, "steady_af3_penalty", **{
         "solver.method": "steady", "friction.a_f": 3.0, "contact.method": "penalty"})
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def steady_estimated(tmp_path_factory):
     return _run(tmp_path_factory, "steady_estimate", **{"solver.method": "steady"})
 

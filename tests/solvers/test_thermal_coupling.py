@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from casebuild import shared_scope
 
 from hotroll.config.case import load_case
 from hotroll.examples import example_path
@@ -22,7 +23,7 @@ HARD_COULOMB = {"material.A": 1.5e9, "friction.law": "coulomb", "friction.mu": 0
                 "friction.a_f": None}
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def adiabatic(tmp_path_factory):
     """No heat transfer to the roll or the air, Coulomb mu = 0.3 (friction heat too), A ten
     times the case's (about 100 MPa at 1100 degC, a steel's: a 5.5 K rise, not 0.5 K)."""
@@ -47,14 +48,14 @@ def test_adiabatic_exit_temperature_rise(adiabatic):
     assert s["heat_to_roll"] == 0.0 and s["heat_to_air"] == 0.0
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def chilled(tmp_path_factory):
     """The case as written: cold roll (20 kW/(m^2 K), 350 K), air and radiation."""
     out = tmp_path_factory.mktemp("chill")
     return run_case(load_case(CASE), out), out
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def isothermal(tmp_path_factory):
     """The same pass without [thermal], at the entry temperature."""
     return run_case(load_case(CASE).with_overrides(thermal=None), tmp_path_factory.mktemp("iso"))

@@ -4,7 +4,7 @@ Example 1 geometry (h = 0.04 m), against the energy balance of the material that
 from __future__ import annotations
 
 import pytest
-from casebuild import build_case, example1_coarse
+from casebuild import build_case, example1_coarse, shared_scope
 
 from hotroll.workflows.runner import run_case
 
@@ -21,7 +21,7 @@ BASE = example1_coarse(
              "emissivity": 0.0})
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def adiabatic(tmp_path_factory):
     return run_case(build_case(BASE), tmp_path_factory.mktemp("transient_adiabatic"))
 

@@ -14,6 +14,7 @@ import shutil
 
 import numpy as np
 import pytest
+from casebuild import shared_scope
 
 from hotroll.config.case import case_from_dict
 from hotroll.theory import Coulomb, NoNeutralPointError, Sticking, ford_alexander, sims, solve_pass
@@ -72,7 +73,7 @@ def _contact(path):
     return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def compared(tmp_path_factory):
     from hotroll.workflows.compare import run_compare
 

@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 import pytest
+from casebuild import shared_scope
 
 pr = pytest.importorskip("pyroll.core", reason="the [pyroll] extra (scripts/setup.sh installs it)")
 
@@ -29,7 +30,7 @@ def _flat(label: str, gap: float, speed: float):
                                     rotational_frequency=speed / (2.0 * math.pi * R)))
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def sequence():
     hp.Config.MESH = {"h_contact": 0.008}
     hp.Config.SOLVER = {"threads": 1}

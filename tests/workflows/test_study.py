@@ -9,7 +9,7 @@ import csv
 from pathlib import Path
 
 import pytest
-from casebuild import EX1_COARSE_TOML, assert_same_table
+from casebuild import EX1_COARSE_TOML, assert_same_table, shared_scope
 
 from hotroll.config.case import CaseError
 from hotroll.config.study import expand, load_study
@@ -26,7 +26,7 @@ file = "base.toml"
 """
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def files(tmp_path_factory):
     d = tmp_path_factory.mktemp("study")
     (d / "base.toml").write_text(BASE)
@@ -34,7 +34,7 @@ def files(tmp_path_factory):
     return d
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def serial(files):
     study, base = load_study(files / "study.toml")
     return run_study(study, base, files / "serial", serial=True, workers=2)

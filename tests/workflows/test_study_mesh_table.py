@@ -11,13 +11,14 @@ import json
 import math
 
 import pytest
+from casebuild import shared_scope
 
 from hotroll.config.study import load_study
 from hotroll.examples import study_path
 from hotroll.workflows.study import run_study
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope=shared_scope)
 def tables(tmp_path_factory):
     out = tmp_path_factory.mktemp("mesh_table")
     study, base = load_study(study_path("mesh_table"))
