@@ -1,0 +1,56 @@
+"""The law sections' fields built from a registry (hotroll/config/law_section.py:
+parameter_fields), called at test time: the sections are built at import, which the mutation
+run cannot see. Each field's type, text, unit, allowed range and limits written out by hand."""
+from __future__ import annotations
+
+import typing
+
+import pytest
+from pydantic import TypeAdapter, ValidationError
+
+from hotroll.config.law_section import parameter_fields
+from hotroll.model.friction import FRICTION_LAWS
+from hotroll.model.heat_transfer import HEAT_TRANSFER_LAWS
+
+pytestmark = pytest.mark.mutation
+
+
+def test_friction_fields_by_hand():
+    f = parameter_fields(FRICTION_LAWS)
+    assert list(f) == ["a_f", "mu", "factor"]
+    kind, info = f["mu"]
+    assert kind == float | None and info.default is None
+    assert info.description == ('Coulomb friction coefficient; law = "coulomb" only [-]; '
+                                'allowed: in (0, 2]')
+    assert info.json_schema_extra == {"allowed": "in (0, 2]"}
+    mu = TypeAdapter(typing.Annotated[kind, info])
+    assert mu.validate_python(2.0) == 2.0 and mu.validate_python(None) is None
+    for bad in (0.0, 2.0001):
+        with pytest.raises(ValidationError):
+            mu.validate_python(bad)
+    kind, info = f["a_f"]                         # words besides numbers: "estimate"
+    a_f = TypeAdapter(typing.Annotated[kind, info])
+    assert a_f.validate_python("estimate") == "estimate" and a_f.validate_python(3.0) == 3.0
+    for bad in ("guess", 0.0, -1.0):
+        with pytest.raises(ValidationError):
+            a_f.validate_python(bad)
+    assert info.description.endswith('law = "viscoplastic" only [m^-m]; allowed: "estimate" '
+                                     'or a number > 0')
+    assert info.json_schema_extra == {"allowed": '"estimate" or a number > 0 [m^-m]'}
+
+
+def test_a_parameter_of_two_laws_is_one_field_naming_both():
+    """htc_air belongs to one surface law; a parameter shared by two laws is declared once and
+    says both (checked on a registry of two laws sharing a parameter)."""
+    from dataclasses import replace
+
+    spec = HEAT_TRANSFER_LAWS["convection_radiation"]
+    twin = replace(spec, name="twin")
+    f = parameter_fields({"convection_radiation": spec, "twin": twin})
+    assert list(f) == ["htc_air", "emissivity"]
+    assert 'law = "convection_radiation" or "twin" only' in f["htc_air"][1].description
+    kind, info = f["emissivity"]
+    e = TypeAdapter(typing.Annotated[kind, info])
+    assert e.validate_python(1.0) == 1.0 and e.validate_python(0.0) == 0.0
+    with pytest.raises(ValidationError):
+        e.validate_python(1.01)
