@@ -54,3 +54,35 @@ def test_a_parameter_of_two_laws_is_one_field_naming_both():
     assert e.validate_python(1.0) == 1.0 and e.validate_python(0.0) == 0.0
     with pytest.raises(ValidationError):
         e.validate_python(1.01)
+
+
+def test_a_field_carries_its_unit_and_range():
+    """config/base.py: field, called at test time (the schema's classes call it at import)."""
+    from hotroll.config.base import field
+
+    f = field(0.5, "share of something", "W/m", "in [0, 1]", ge=0, le=1)
+    assert f.default == 0.5
+    assert f.description == "share of something [W/m]; allowed: in [0, 1]"
+    assert f.json_schema_extra == {"allowed": "in [0, 1] [W/m]"}
+    g = TypeAdapter(typing.Annotated[float, f])
+    assert g.validate_python(1.0) == 1.0
+    with pytest.raises(ValidationError):
+        g.validate_python(1.5)
+    bare = field(None, "a count", "", "an integer")
+    assert bare.description == "a count [-]; allowed: an integer"
+    assert bare.json_schema_extra == {"allowed": "an integer"}
+
+
+def test_the_heat_transfer_law_choice():
+    """config/thermal.py: _law_choice, the [thermal] contact_law/surface_law field."""
+    from hotroll.config.thermal import _law_choice
+
+    kind, info = _law_choice("surface")
+    assert typing.get_args(kind) == ("convection_radiation",)
+    assert info.default == "convection_radiation"
+    assert info.description == (
+        "heat-transfer law of the surface: convection_radiation (q = htc_air (T - T_ambient) "
+        '+ emissivity sigma (T^4 - T_ambient^4)) [-]; allowed: "convection_radiation"')
+    kind, info = _law_choice("contact")
+    assert typing.get_args(kind) == ("constant",) and info.default == "constant"
+    assert info.json_schema_extra == {"allowed": '"constant"'}
