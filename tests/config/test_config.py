@@ -171,8 +171,20 @@ def test_cli_validate_bad(tmp_path):
 
 
 def test_cli_meshes():
+    """The report's Table 2 as the command prints it, row by row (h and h/6 by hand)."""
     result = runner.invoke(app, ["meshes"])
-    assert result.exit_code == 0 and "C2" in result.output and "0.0042" in result.output
+    assert result.exit_code == 0 and "Table 2: contact mesh sizes" in result.output
+    lines = result.output.splitlines()
+    head = next(line for line in lines if "name" in line)
+    assert [c.strip() for c in head.strip("┃ ").split("┃")] == ["name", "h_contact [m]",
+                                                              "dt = h/6 [s]"]
+    rows = [[c.strip() for c in line.strip("│ ").split("│")] for line in lines
+            if line.startswith("│")]
+    assert rows == [["C1", "0.00502", "0.0008367"], ["C2 (default)", "0.0042", "0.0007"],
+                    ["M1", "0.0037", "0.0006167"], ["M2", "0.00301", "0.0005017"],
+                    ["F1", "0.0027", "0.00045"], ["F2", "0.00202", "0.0003367"]]
+    c1 = next(line for line in lines if line.startswith("│ C1"))
+    assert c1.split("│")[2].endswith("0.00502 ")            # numbers right-aligned
 
 
 @pytest.fixture
@@ -312,3 +324,36 @@ def test_the_case_reference_page_is_the_schema():
     assert "| `carbon` | none | wt % | in [0, 1.2] |" in block
     assert all(f"| `{key}` |" in block for key in fields_of(MaterialConfig))
     assert len(fields_of(Case)) == 10
+
+
+def test_cli_example_options_reach_the_case(tmp_path, monkeypatch):
+    """``hotroll example``: each option lands in the case handed to the runner, the worst
+    run's exit code ends the command, an unknown name lists the examples."""
+    seen = []
+
+    def run_case(case, out, *, resume=True, progress=None, sweep=None):
+        seen.append((case, out, resume, sweep))
+        return {"roll_force": 1.0, "exit_code": 5 if case.material.m == 0.2 else 0}
+
+    monkeypatch.setattr(passes, "run_case", run_case)
+    monkeypatch.setattr(passes, "plot_compare", lambda runs, png: png)
+    r = runner.invoke(app, ["example", "1", "--out", str(tmp_path), "--mesh", "C1",
+                            "--end-time", "0.1", "--nonlinear", "picard", "--method",
+                            "transient", "--force", "--no-resume"])
+    assert r.exit_code == 5, r.output
+    (case, out, resume, sweep), = seen
+    assert (case.mesh.h, case.solver.end_time, case.solver.nonlinear) == (0.00502, 0.1, "picard")
+    assert case.solver.method == "transient" and case.solver.force is True
+    assert out == tmp_path and resume is False and sweep is None
+    seen.clear()
+    r = runner.invoke(app, ["example", "3", "--out", str(tmp_path)])
+    assert r.exit_code == 5                                  # m = 0.2's run: the worst
+    assert [c.solver.method for c, *_ in seen] == ["steady"] * 3
+    assert all(c.solver.force is False for c, *_ in seen)
+    assert [o for _, o, _, _ in seen] == [tmp_path / c.name for c, *_ in seen]
+    assert len({id(s) for *_, s in seen}) == 1 and seen[0][3] is not None   # one shared sweep
+    assert f"comparison plot: {tmp_path / 'compare.png'}" in " ".join(r.output.split())
+    r = runner.invoke(app, ["example", "nope", "--out", str(tmp_path)])
+    assert r.exit_code == 2
+    assert f"example: unknown example 'nope' (allowed: {', '.join(EXAMPLES)})" in " ".join(
+        r.output.split())
