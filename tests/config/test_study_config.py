@@ -341,3 +341,38 @@ def test_groups_are_cut_for_the_workers_a_scheduler_has():
     with LocalCluster(n_workers=3, threads_per_worker=1, processes=False,
                       dashboard_address=None) as cluster:
         assert _scheduler_workers(cluster.scheduler_address) == 3
+
+
+@pytest.mark.parametrize("csv_text, message", [
+    (None, "cases_file: cannot read {p}: No such file or directory"),
+    ("material.m,material.K\n", "cases_file: {p} has no rows under its header"),
+    ("material.m,K\n0.2,1\n", "cases_file: header ['K']: dotted case keys (section.key)"),
+    ("material.m,material.K\n0.2,1\n0.3,1,9\n", "cases_file: {p} line 3 has more cells than "
+                                                "the header"),
+])
+def test_a_bad_cases_file_is_named_exactly(tmp_path, csv_text, message):
+    p = tmp_path / "c.csv"
+    if csv_text is not None:
+        p.write_text(csv_text)
+    with pytest.raises(CaseError) as e:
+        _study(tmp_path, "", top='cases_file = "c.csv"\n')
+    assert e.value.problems == [message.format(p=p)]
+    assert e.value.source == str(tmp_path / "s.toml")
+
+
+def test_a_cell_reads_as_toml_would():
+    """parse_value: numbers, booleans in any case, lists and quoted text as TOML reads them;
+    anything else is the text itself, stripped. Empty cells of a cases file are left out."""
+    from hotroll.config.study import parse_value
+
+    assert parse_value(" 3 ") == 3 and isinstance(parse_value("3"), int)
+    assert parse_value("1e3") == 1000.0 and parse_value("-0.5") == -0.5
+    assert parse_value("TRUE") is True and parse_value("False") is False
+    assert parse_value("[1, 2.5]") == [1, 2.5] and parse_value('"C2"') == "C2"
+    assert parse_value(" coulomb ") == "coulomb" and parse_value("a b") == "a b"
+
+
+def test_empty_cells_of_a_cases_file_are_left_to_the_base(tmp_path):
+    (tmp_path / "c.csv").write_text("material.m,material.K\n0.25,\n,3.5\n")
+    st, _ = _study(tmp_path, "", top='cases_file = "c.csv"\n')
+    assert st.combinations() == [{"material.m": 0.25}, {"material.K": 3.5}]
