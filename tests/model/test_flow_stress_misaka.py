@@ -134,3 +134,38 @@ def test_the_registry_refuses_a_second_name_or_a_parameter_that_means_two_things
     finally:
         LAWS.pop("misaka3", None)
     assert "misaka2" not in LAWS
+
+
+def test_the_law_describes_itself_and_refuses_bad_numbers():
+    """describe() as the compare files write it, the repr, and each refused argument with its
+    rule (carbon's range at both ends, eps0 and strain_min > 0)."""
+    law = Misaka(0.18, strain_min=0.02)
+    d = law.describe()
+    assert d["law"] == "Misaka" and d["name"] == "Misaka"
+    assert d["parameters"] == {"carbon": 0.18} and d["parameter_units"] == {"carbon": "wt %"}
+    assert d["strain_min"] == 0.02 and d["eps0_1_per_s"] == law.eps0
+    assert d["units"] == {"sigma": "Pa", "strain_rate": "1/s", "temperature": "K"}
+    assert d["formula"].startswith("sigma = 9.80665e6 exp(0.126 - 1.75 C")
+    assert d["validity"] == law.validity.as_dict()
+    assert repr(law) == "Misaka(carbon=0.18, strain_min=0.02)"
+    assert Misaka(0.1, name="S235").describe()["name"] == "S235"
+    assert Misaka(0.0).carbon == 0.0 and Misaka(1.2).carbon == 1.2         # the range's ends
+    for bad, msg in (({"carbon": -0.01}, r"carbon must be in \[0, 1.2\] weight percent, "
+                                         r"got -0.01"),
+                     ({"carbon": 1.21}, r"carbon must be in \[0, 1.2\] weight percent"),
+                     ({"carbon": 0.2, "eps0": 0.0}, r"eps0 must be > 0 \(1/s\), got 0.0"),
+                     ({"carbon": 0.2, "strain_min": 0.0}, r"strain_min must be > 0, got 0.0")):
+        c = bad.pop("carbon")
+        with pytest.raises(ValueError, match=msg):
+            Misaka(c, **bad)
+
+
+def test_no_rate_no_stress_and_the_rate_exponent_everywhere():
+    """edot = 0 gives sigma = 0 (no warning); the rate exponent is 0.13 at any temperature."""
+    import warnings
+
+    law = Misaka(0.2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert float(law.sigma(0.2, 0.0, 1273.15)) == 0.0
+    assert law.rate_exponent(900.0) == law.rate_exponent(1400.0) == law.rate_exponent() == 0.13
