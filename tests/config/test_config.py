@@ -357,3 +357,16 @@ def test_cli_example_options_reach_the_case(tmp_path, monkeypatch):
     assert r.exit_code == 2
     assert f"example: unknown example 'nope' (allowed: {', '.join(EXAMPLES)})" in " ".join(
         r.output.split())
+
+
+def test_fail_prints_on_stderr_and_gives_the_exit(capsys):
+    """cli/common.py: fail, every refusal's way out: the message on stderr, unwrapped, the exit
+    code 2 (bad input) unless told."""
+    from hotroll.cli.common import fail
+
+    long = "x" * 300
+    e = fail(long)
+    assert e.exit_code == 2 and fail("short", code=8).exit_code == 8
+    out = capsys.readouterr()
+    assert out.out == "" and long in out.err.replace("\n", "") and "short" in out.err
+    assert out.err.splitlines()[0] == long                        # soft wrap: one line
