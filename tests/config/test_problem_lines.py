@@ -70,3 +70,21 @@ def test_a_pass_that_is_not_a_table():
     (line,) = _problems(edit)
     assert line.startswith("pass[2]: input should be a valid dictionary") and line.endswith(
         "got 5")
+
+
+def test_a_passes_case_problems_say_which_pass():
+    """A pass's own case refused (config/schedule.py: _pass_problem): its pass.* keys under
+    pass[k], the mesh rules (which depend on the pass's size) with "(in pass[k])"."""
+    def thin_roll(d):
+        d["pass"][1]["roll_radius"] = 0.001
+    assert _problems(thin_roll) == [
+        "pass[2].roll_radius: must exceed the draft per side (entry - exit)/2 = 0.0075 m, "
+        "otherwise the roll cannot bite the plate; allowed: roll_radius > 0.0075 m, got 0.001 m"]
+
+    def coarse(d):
+        d["mesh"]["h_contact"] = 0.05
+    lines = _problems(coarse)
+    assert [line.endswith("(in pass[1])") for line in lines] == [True, True, False, False]
+    assert [line.endswith("(in pass[2])") for line in lines] == [False, False, True, True]
+    assert lines[0] == ("mesh.h_contact: must be < contact_length/4 = 0.0192029 m, got 0.05 m "
+                        "(in pass[1])")
