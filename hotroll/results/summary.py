@@ -243,10 +243,6 @@ class Summary(Mapping):
         obj._other = {k: data[k] for k in unknown}
         return obj
 
-    def replace(self, **changes) -> Summary:
-        """A copy with ``changes`` (declared keys)."""
-        return Summary.from_dict({**self.to_dict(), **changes}, strict=False)
-
     # --- the mapping --------------------------------------------------------------------------
     def __getitem__(self, key: str):
         if key in self._other:
