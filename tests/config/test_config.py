@@ -335,8 +335,12 @@ def test_cli_example_options_reach_the_case(tmp_path, monkeypatch):
         seen.append((case, out, resume, sweep))
         return {"roll_force": 1.0, "exit_code": 5 if case.material.m == 0.2 else 0}
 
+    from hotroll.cli import common
+
     monkeypatch.setattr(passes, "run_case", run_case)
     monkeypatch.setattr(passes, "plot_compare", lambda runs, png: png)
+    monkeypatch.setattr(common.console, "width", 400)      # long paths: no line wrapped
+    monkeypatch.setattr(common.err_console, "width", 400)
     r = runner.invoke(app, ["example", "1", "--out", str(tmp_path), "--mesh", "C1",
                             "--end-time", "0.1", "--nonlinear", "picard", "--method",
                             "transient", "--force", "--no-resume"])
@@ -352,11 +356,10 @@ def test_cli_example_options_reach_the_case(tmp_path, monkeypatch):
     assert all(c.solver.force is False for c, *_ in seen)
     assert [o for _, o, _, _ in seen] == [tmp_path / c.name for c, *_ in seen]
     assert len({id(s) for *_, s in seen}) == 1 and seen[0][3] is not None   # one shared sweep
-    assert f"comparison plot: {tmp_path / 'compare.png'}" in " ".join(r.output.split())
+    assert f"comparison plot: {tmp_path / 'compare.png'}" in r.output
     r = runner.invoke(app, ["example", "nope", "--out", str(tmp_path)])
     assert r.exit_code == 2
-    assert f"example: unknown example 'nope' (allowed: {', '.join(EXAMPLES)})" in " ".join(
-        r.output.split())
+    assert f"example: unknown example 'nope' (allowed: {', '.join(EXAMPLES)})" in r.output
 
 
 def test_fail_prints_on_stderr_and_gives_the_exit(capsys):
