@@ -8,6 +8,11 @@ default, with ``-x``. It runs two at a time and writes the verdicts to
 the repository root:
 
     .venv/bin/python scripts/mutation_recheck.py [--tests tests/solvers/test_rolling.py ...] [NAME ...]
+    .venv/bin/python scripts/mutation_recheck.py --status survived --status no-tests   # both
+
+(``--status no-tests``: the mutants of functions no selected test calls, e.g. the command
+line's subprocess paths, which the slow tests reach. Not while ``mutmut run`` is going: the
+current ``tests/`` are copied over the ones it runs.)
 
 (one --tests per file; a pytest error other than failing tests is reported as "error")
 
@@ -30,12 +35,18 @@ ROOT = Path(__file__).resolve().parent.parent
 MUTANTS = ROOT / "mutants"
 
 
-def survivors() -> list[str]:
-    """Names of the mutants mutmut recorded as survived (exit code 0 of the selection)."""
+#: mutmut's exit codes of the mutants this script re-checks: survived (0), no test (33).
+STATUS_CODES = {"survived": 0, "no-tests": 33}
+
+
+def survivors(statuses: tuple[str, ...] = ("survived",)) -> list[str]:
+    """Names of the mutants mutmut recorded with these statuses ("survived": exit code 0 of
+    the selection; "no-tests": no selected test calls the function)."""
+    codes = {STATUS_CODES[s] for s in statuses}
     names = []
     for meta in sorted(MUTANTS.glob("hotroll/**/*.meta")):
         data = json.loads(meta.read_text())
-        names += [k for k, v in data["exit_code_by_key"].items() if v == 0]
+        names += [k for k, v in data["exit_code_by_key"].items() if v in codes]
     return names
 
 
@@ -64,12 +75,14 @@ def main() -> None:
                     help="a test file, directory or node id (repeat the option; default: tests)")
     ap.add_argument("--timeout", type=float, default=900.0, help="per mutant, s")
     ap.add_argument("-j", type=int, default=2)
+    ap.add_argument("--status", action="append", choices=sorted(STATUS_CODES), default=None,
+                    help="which mutants when no names are given (repeat; default: survived)")
     args = ap.parse_args()
     if not MUTANTS.is_dir():
         sys.exit("no mutants/ directory: run scripts/mutation.sh first")
     shutil.copytree(ROOT / "tests", MUTANTS / "tests", dirs_exist_ok=True)
     args.tests = args.tests or ["tests"]
-    names = args.names or survivors()
+    names = args.names or survivors(tuple(args.status or ["survived"]))
     print(f"{len(names)} mutants against {' '.join(args.tests)}", flush=True)
     out = ROOT / "docs" / "mutation" / f"recheck-{dt.date.today().isoformat()}.txt"
     lines = [f"Survivors of the selection re-checked against {' '.join(args.tests)} (-x), "
