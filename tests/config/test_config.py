@@ -373,3 +373,42 @@ def test_fail_prints_on_stderr_and_gives_the_exit(capsys):
     out = capsys.readouterr()
     assert out.out == "" and long in out.err.replace("\n", "") and "short" in out.err
     assert out.err.splitlines()[0] == long                        # soft wrap: one line
+
+
+def test_cli_sweep_table_names_and_warm_starts(tmp_path, monkeypatch):
+    """hotroll sweep: each value's case named after it, one Sweep shared by the runs unless
+    --cold, the table's columns and rows as the runs gave them, the worst exit code, and the
+    refusal of an empty --values."""
+    from hotroll.cli import common
+
+    seen = []
+
+    def run_case(case, out, *, resume=True, progress=None, sweep=None):
+        seen.append((case, out, sweep))
+        return {"status": "steady", "exit_code": 0 if len(seen) == 1 else 7,
+                "roll_force": 1.5 * len(seen), "a_f": None, "warm_start_from": "x"}
+
+    monkeypatch.setattr(passes, "run_case", run_case)
+    monkeypatch.setattr(common.console, "width", 400)
+    r = runner.invoke(app, ["sweep", str(example_path("example1")), "--param", "friction.a_f",
+                            "--values", "5, estimate", "--out", str(tmp_path)])
+    assert r.exit_code == 7, r.output
+    assert [c.name for c, *_ in seen] == ["example1 friction.a_f=5", "example1 friction.a_f=estimate"]
+    assert [o for _, o, _ in seen] == [tmp_path / "friction.a_f=5",
+                                       tmp_path / "friction.a_f=estimate"]
+    assert seen[0][2] is not None and seen[0][2] is seen[1][2]          # one Sweep, warm
+    assert f"sweep table: {tmp_path / 'sweep.csv'}" in r.output
+    head, first, second = (tmp_path / "sweep.csv").read_text().splitlines()
+    assert head == ("param,value,status,exit_code,converged,neutral_angle,roll_force,"
+                    "roll_torque,roll_power,forward_slip,a_f,nonlinear_iterations,wall_time_s,"
+                    "warm_start_from,warm_start_failed")
+    assert first == "friction.a_f,5.0,steady,0,,,1.5,,,,,,,x,"
+    assert second.startswith("friction.a_f,estimate,steady,7,,,3.0,")
+    seen.clear()
+    r = runner.invoke(app, ["sweep", str(example_path("example1")), "--param", "material.m",
+                            "--values", "0.2", "--out", str(tmp_path / "c"), "--cold",
+                            "--mesh", "C1"])
+    assert r.exit_code == 0 and seen[0][2] is None and seen[0][0].mesh.h == 0.00502
+    r = runner.invoke(app, ["sweep", str(example_path("example1")), "--param", "material.m",
+                            "--values", " , ", "--out", str(tmp_path / "e")])
+    assert r.exit_code == 2 and "sweep: --values is empty" in r.output
