@@ -86,3 +86,14 @@ def test_the_heat_transfer_law_choice():
     kind, info = _law_choice("contact")
     assert typing.get_args(kind) == ("constant",) and info.default == "constant"
     assert info.json_schema_extra == {"allowed": '"constant"'}
+
+
+def test_with_generated_replaces_only_between_the_marks():
+    """config/reference.py: the text between the first BEGIN and the first END after it is
+    the new body; what is before and after (another END in the tail too) stays."""
+    from hotroll.config.reference import BEGIN, END, with_generated
+
+    page = f"head\n{BEGIN}\nold\n{END}\ntail {END} more"
+    assert with_generated(page, "BODY") == f"head\n{BEGIN}\n\nBODY\n{END}\ntail {END} more"
+    again = with_generated(with_generated(page, "BODY"), "NEW")
+    assert again == f"head\n{BEGIN}\n\nNEW\n{END}\ntail {END} more"
