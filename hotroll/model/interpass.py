@@ -84,7 +84,6 @@ def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
     if surface is None:            # htc and emissivity ignored when a law is given
         surface = ConvectionRadiation(finite_number("htc_air", htc, 0.0, False, None, "W/(m^2 K)"),
                                       finite_number("emissivity", emissivity, 0.0, False, 1.0, ""))
-    law = surface
     T_amb = finite_number("ambient_temperature", ambient, 0.0, True, None, "K")
     y, T = np.asarray(y, dtype=float), np.asarray(T, dtype=float)
     if y.ndim != 1 or y.shape != T.shape or y.size < 1 or not np.all(np.isfinite(T)) \
@@ -113,7 +112,7 @@ def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
         for _ in range(50):                  # Newton on the step's residual
             k = props.k_values(new)
             kf = 0.5 * (k[1:] + k[:-1]) / dy          # face conductances, W/(m^2 K)
-            q_s = law.flux(new[-1], T_amb)
+            q_s = surface.flux(new[-1], T_amb)
             flux = kf * (new[1:] - new[:-1])          # into node i from node i+1
             res = w * (props.enthalpy_values(new) - old_H) / dt
             res[:-1] -= flux
@@ -123,7 +122,7 @@ def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
             diag = w * props.rho_c_values(new) / dt
             diag[:-1] += kf
             diag[1:] += kf
-            diag[-1] += law.dflux(new[-1], T_amb)
+            diag[-1] += surface.dflux(new[-1], T_amb)
             band = np.zeros((3, n + 1))
             band[0, 1:] = -kf
             band[1] = diag
@@ -133,7 +132,7 @@ def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
             if np.max(np.abs(d)) <= 1e-11 * np.max(new):
                 break
         temp = new
-        lost += dt * law.flux(temp[-1], T_amb)
+        lost += dt * surface.flux(temp[-1], T_amb)
     change = H0 - float(w @ props.enthalpy_values(temp))
     err = abs(change - lost) / max(abs(lost), 1e-300)
     return TransportResult(nodes, temp, enthalpy_mean(props, temp, w), float(temp[-1]), lost,

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import hashlib
 import time
+from dataclasses import replace
 from pathlib import Path
 from typing import Callable
 
@@ -139,8 +140,6 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
              "estimated_seconds": est.seconds}
     shift = 0.0
     if case.solver.method == "steady":
-        from dataclasses import replace
-
         # solved in the roll's frame (axis at x = 0), written where the case puts the axis:
         # the numbers do not depend on roll_axis_x (issue 30)
         shift = model.rp.axis_x
