@@ -18,8 +18,11 @@
 #
 #   nohup nice bash scripts/mutation.sh > mutation.log 2>&1 &
 #
-#   scripts/mutation.sh [-j N] [--keep] [--report] [MUTANT_GLOB ...]
+#   scripts/mutation.sh [-j N] [--keep] [--report] [--sample N [--seed S]] [MUTANT_GLOB ...]
 #     -j N        mutmut workers (default 2, or $MUTATION_JOBS)
+#     --sample N  a seeded uniform random sample of N of all the package's mutants
+#                 (scripts/mutation_sample.py: the full run takes ten hours or more); the
+#                 report gives the sample's score with its 95 % Wilson interval. --seed S: 2026.
 #     --keep      reuse mutants/ of the last run: mutmut re-tests only changed functions and
 #                 mutants without a result. A survivor is NOT re-tested when only a test changed,
 #                 so run without it (the default: mutants/ is deleted) for a score to record.
@@ -41,12 +44,16 @@ cd "$(dirname "$0")/.."
 jobs=${MUTATION_JOBS:-2}
 keep=0
 report_only=0
+sample=0
+seed=2026
 names=()
 while (($#)); do
     case $1 in
         -j) jobs=$2; shift 2 ;;
         --keep) keep=1; shift ;;
         --report) report_only=1; shift ;;
+        --sample) sample=$2; shift 2 ;;
+        --seed) seed=$2; shift 2 ;;
         -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d'; exit 0 ;;
         *) names+=("$1"); shift ;;
     esac
@@ -84,6 +91,11 @@ PY
 
     [[ $keep == 1 ]] || rm -rf mutants
     start=$(date +%s)
+    if ((sample > 0)); then
+        echo "mutation.sh: $(date -Is), generating the mutants and mutmut's stats for a sample"
+        .venv/bin/python scripts/mutation_sample.py prepare
+        mapfile -t names < <(.venv/bin/python scripts/mutation_sample.py pick "$sample" --seed "$seed")
+    fi
     commit=$(git rev-parse --short HEAD)$([[ -z $(git status --porcelain --untracked-files=no) ]] ||
                                            echo " (with uncommitted changes)")
     echo "mutation.sh: $(date -Is), $jobs workers, ${names[*]:-all mutants}"
@@ -110,7 +122,13 @@ else
 fi
 
 mkdir -p docs/mutation
-((${#names[@]} == 0)) || suffix+=-partial
+if [[ -f mutants/sample.txt ]] && { ((sample > 0)) || { ((report_only == 1)) && ((${#names[@]} == 0)); }; }; then
+    mapfile -t names < <(grep -v '^#' mutants/sample.txt)
+    export MUTATION_SAMPLE="$(head -n 1 mutants/sample.txt | sed 's/^# //')"
+    suffix+=-sample
+elif ((${#names[@]} > 0)); then
+    suffix+=-partial
+fi
 MUTATION_RUN=$run .venv/bin/python - "$suffix" "${names[@]}" <<'EOF'
 """Summary of mutants/*.meta (mutmut's results) -> docs/mutation/."""
 import collections
@@ -132,7 +150,9 @@ no_tests = collections.Counter()
 for meta in sorted(Path("mutants").rglob("*.py.meta")):
     path = str(meta.relative_to("mutants"))[: -len(".meta")]
     codes = json.loads(meta.read_text())["exit_code_by_key"]
-    codes = {k: v for k, v in codes.items() if not globs or any(fnmatch.fnmatch(k, g) for g in globs)}
+    exact = set(globs)
+    codes = {k: v for k, v in codes.items()
+             if not globs or k in exact or any(fnmatch.fnmatch(k, g) for g in globs if "*" in g)}
     if not codes:
         continue
     count = collections.Counter()
@@ -156,6 +176,19 @@ def score(c):
             f"{100 * caught / sum(c.values()):5.1f} %" if c else "    -  ")
 
 
+def wilson(c, z=1.96):
+    """The sample's score (caught / tested) with its 95 % Wilson interval."""
+    caught = c["killed"] + c["timeout"] + c["segfault"]
+    n = caught + c["survived"] + c["suspicious"]
+    if not n:
+        return "sample score: no mutant tested"
+    p = caught / n
+    mid = (p + z * z / (2 * n)) / (1 + z * z / n)
+    half = z * (p * (1 - p) / n + z * z / (4 * n * n)) ** 0.5 / (1 + z * z / n)
+    return (f"sample score {100 * p:.1f} % of {n} tested mutants, 95 % Wilson interval "
+            f"{100 * (mid - half):.1f} .. {100 * (mid + half):.1f} %")
+
+
 stats = json.loads(Path("mutants/mutmut-stats.json").read_text())
 cols = ("killed", "survived", "timeout", "no tests", "suspicious", "segfault", "not checked")
 lines = [
@@ -163,7 +196,10 @@ lines = [
     os.environ["MUTATION_RUN"],
     f"test selection: {len(stats['duration_by_test'])} tests, "
     f"{sum(stats['duration_by_test'].values()):.1f} s in all ([tool.mutmut] in pyproject.toml)",
-    f"mutants: {', '.join(globs) if globs else 'all configured'}",
+    (f"mutants: a uniform random sample, {os.environ['MUTATION_SAMPLE']} (mutants/sample.txt)"
+     if os.environ.get("MUTATION_SAMPLE") else
+     f"mutants: {', '.join(globs) if globs else 'all configured'}"),
+    *([wilson(total)] if os.environ.get("MUTATION_SAMPLE") else []),
     *([f"WARNING: the selection deselects tests that do not exist: {os.environ['MUTATION_SELECTION_WARNINGS']}"]
       if os.environ.get("MUTATION_SELECTION_WARNINGS") else []),
     "",
