@@ -289,6 +289,19 @@ def test_step_insulated_block_heats_by_q_dt_over_rho_c(props):
     mesh.UnsetDeformation()
 
 
+@pytest.mark.parametrize("dt", [0.0, -0.1, float("nan")])
+def test_a_step_needs_a_positive_time(dt):
+    """An implicit-Euler step of no time (or of negative or no number of seconds) is refused
+    before anything is computed, naming dt and its unit; the field keeps its values."""
+    from ngsolve import CF
+
+    field = TemperatureField(rectangle(0.02, 0.01, 2, 1), STEEL, boundary(1000.0), top="top")
+    before = field.values.copy()
+    with pytest.raises(ValueError, match=r"dt = .*must be > 0 \(s\)"):
+        field.step(CF((1.0, 0.0)), 5e8, 0.0, 0.0, dt)
+    assert np.array_equal(field.values, before)
+
+
 @pytest.mark.parametrize("lumped", [False, True])
 @pytest.mark.parametrize("stretch", [1.0, 2.0])
 def test_step_cosine_mode_decays_by_the_implicit_euler_factor(stretch, lumped):

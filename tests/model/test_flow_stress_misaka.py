@@ -154,7 +154,10 @@ def test_the_law_describes_itself_and_refuses_bad_numbers():
                                          r"got -0.01"),
                      ({"carbon": 1.21}, r"carbon must be in \[0, 1.2\] weight percent"),
                      ({"carbon": 0.2, "eps0": 0.0}, r"eps0 must be > 0 \(1/s\), got 0.0"),
-                     ({"carbon": 0.2, "strain_min": 0.0}, r"strain_min must be > 0, got 0.0")):
+                     ({"carbon": 0.2, "strain_min": 0.0}, r"strain_min must be > 0, got 0.0"),
+                     ({"carbon": float("nan")}, r"^carbon must be finite, got nan$"),
+                     ({"carbon": 0.2, "eps0": float("inf")}, r"^eps0 must be finite, got inf$"),
+                     ({"carbon": 0.2, "strain_min": "x"}, r"^strain_min must be a real number")):
         c = bad.pop("carbon")
         with pytest.raises(ValueError, match=msg):
             Misaka(c, **bad)

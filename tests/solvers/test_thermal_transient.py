@@ -71,3 +71,33 @@ def test_checkpoint_carries_the_temperature(tmp_path):
     assert np.array_equal(again.thermal.values, run.thermal.values)
     other = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint="B")
     assert other.thermal.values == pytest.approx(T0, rel=1e-12)
+
+
+def test_the_carried_temperature_gives_the_laws_flow_stress():
+    """The transient scheme's temperature feeds the flow stress: at a uniform carried 1200 K
+    and the entry strain 0.2 (no strain field), the form's consistency ratio is the law's
+    K(0.2, 1200 K) / K_ref and its rate-exponent offset m(1200 K) - m_ref, by the law's
+    own formula (Hensel-Spittel with m8 != 0)."""
+    from netgen.occ import OCCGeometry, WorkPlane, X, Y
+    from ngsolve import Integrate, Mesh
+
+    from hotroll.model.flow_stress.hensel_spittel import HenselSpittel
+    from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
+    from hotroll.solvers.thermal_lagrangian import LagrangianThermal
+
+    law = HenselSpittel(1.5e9, m1=-0.0025, m2=0.2, m3=0.05, m4=-0.05, m8=1e-4)
+    K_ref, m_ref = 8e7, 0.15
+    face = WorkPlane().Rectangle(0.02, 0.01).Face()
+    for edges, name in ((face.edges.Min(Y), "sym"), (face.edges.Max(Y), "top"),
+                        (face.edges.Min(X), "in"), (face.edges.Max(X), "out")):
+        edges.name = name
+    mesh = Mesh(OCCGeometry(face, dim=2).GenerateMesh(maxh=0.005))
+    thermal = LagrangianThermal(mesh, ThermalProperties(RHO, C, 30.0),
+                                ThermalBoundary(1200.0, 300.0, 300.0, 0.0, 0.0, 0.0),
+                                K_ref, m_ref, 1e-3, flow=law, entry_strain=0.2)
+    assert thermal.values == pytest.approx(1200.0)
+    area = Integrate(1.0, mesh)
+    ratio = Integrate(thermal.consistency(), mesh) / area
+    assert ratio == pytest.approx(float(law.consistency(0.2, 1200.0)) / K_ref, rel=1e-12)
+    offset = Integrate(thermal.rate_offset(), mesh) / area
+    assert offset == pytest.approx(float(law.rate_exponent(1200.0)) - m_ref, rel=1e-12)
