@@ -334,3 +334,9 @@ def test_describe():
     assert d["validity"]["temperature_C"] == (250.0, 550.0)
     assert d["units"]["temperature"] == "K" and "strain_min" in d
     assert NortonHoffStress(1e7, 0.2).describe()["m"] == 0.2
+
+
+def test_repr_names_the_coefficients_given():
+    """repr: A and every non-zero coefficient (zeros left out), the strain floor and the name."""
+    law = HenselSpittel(1.5e9, m1=-0.0025, m3=0.1, strain_min=0.05, name="lab")
+    assert repr(law) == "HenselSpittel(A=1500000000.0, m1=-0.0025, m3=0.1, strain_min=0.05, name='lab')"

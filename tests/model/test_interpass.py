@@ -104,5 +104,16 @@ def test_bad_input_names_the_field(kw, field):
     args.update(kw)
     with pytest.raises(ThermalInputError, match=field):
         cool([0.0], [1273.15], props=STEEL, **args)
-    with pytest.raises(ThermalInputError, match="profile"):
+    with pytest.raises(ThermalInputError, match=r"transport profile: y \(m\) and T \(K\) must be "
+                                                r"equal-length arrays"):
         cool([0.0, 1.0], [1273.15], 0.004, 1.0, STEEL, 20.0, 0.8, 293.15)
+
+
+def test_no_time_no_change():
+    """A transport of 0 s hands the profile on (interpolated onto the nodes): the surface is
+    its last value, the mean its enthalpy mean, nothing lost."""
+    y = np.linspace(0.0, 0.01, 6)
+    T = np.array([1300.0, 1290.0, 1270.0, 1240.0, 1200.0, 1150.0])
+    r = cool(y, T, 0.01, 0.0, STEEL, 50.0, 0.8, 300.0)
+    assert r.surface == 1150.0 and r.heat_lost == 0.0
+    assert np.allclose(r.temperature, np.interp(r.y, y, T), rtol=0, atol=1e-12)
