@@ -503,6 +503,19 @@ def test_smoothed_single_edge_by_hand():
                                                                        rel=1e-13)
 
 
+def test_smoothed_keeps_the_resultant_on_uneven_edges():
+    """Two edges whose midpoints are not halfway (the report's scheme moves the nodes): an
+    edge's length is the sum of its two halves, and the projection keeps the resultant along
+    the arc, sum L (ya + 4 ym + yb) / 6 (Simpson on each edge), exactly."""
+    x = np.array([0.0, 0.3, 1.0, 1.9, 2.5])            # halves 0.3 + 0.7 and 0.9 + 0.6
+    prof = {"x": x, "y": np.zeros(5), "vertex": [1, 0, 1, 0, 1]}
+    y = np.array([1.0, 3.0, 2.0, 5.0, 0.5])
+    out = smoothed(prof, y)
+    L = np.array([1.0, 1.5])
+    simpson = np.sum(L * (y[0:-1:2] + 4 * y[1::2] + y[2::2]) / 6.0)
+    assert np.sum(L * 0.5 * (out[0:-1:2] + out[2::2])) == pytest.approx(simpson, rel=1e-13)
+
+
 def test_smoothed_falls_back_to_the_raw_values():
     zig = np.array([0.0, 1.0, 0.0, 1.0, 0.0])
     t = np.arange(5.0)
@@ -708,3 +721,27 @@ def test_transit_time_by_hand():
     rp = SimpleNamespace(contact_length=0.1, u_roll=0.5, half_entry=0.25, half_exit=0.2)
     assert transit_time(rp, False) == pytest.approx(0.2, rel=1e-14)
     assert transit_time(rp, True) == pytest.approx(0.2 * 1.2 * 0.25 / 0.2, rel=1e-14)
+
+
+def test_the_soft_zone_anywhere_along_x():
+    """Table 1's penalties at points: 10/h inside the zone I = (lo, hi), 25/h outside and on its
+    ends, wherever the roll axis puts the zone (left of x = 0 here, as the steady solver's roll
+    frame does)."""
+    from hotroll.fem.rolling_form import PenaltyTable
+
+    pen = PenaltyTable(h=0.1)
+    x = np.array([-0.5, -0.3, -0.25, -0.2, -0.1, 0.1, 0.25])
+    assert np.array_equal(pen.at_nodes(x, (-0.3, -0.2)),
+                          np.array([25.0, 25.0, 10.0, 25.0, 25.0, 25.0, 25.0]) / 0.1)
+    assert np.array_equal(pen.at_nodes(x, (0.2, 0.3)),
+                          np.array([25.0, 25.0, 25.0, 25.0, 25.0, 25.0, 10.0]) / 0.1)
+
+
+def test_the_contact_files_vertex_column_is_integer(solved_example1):
+    """contact.csv's "vertex" column (1 at a mesh vertex, 0 at an edge midpoint) is written as
+    the integers 0 and 1, as its header says (a flag, not a measurement)."""
+    import csv
+
+    with open(solved_example1 / "contact.csv", newline="") as fh:
+        column = [row["vertex"] for row in csv.DictReader(fh)]
+    assert set(column) == {"0", "1"}
