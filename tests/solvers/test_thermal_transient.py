@@ -22,8 +22,14 @@ BASE = example1_coarse(
 
 
 @pytest.fixture(scope=shared_scope)
-def adiabatic(tmp_path_factory):
-    return run_case(build_case(BASE), tmp_path_factory.mktemp("transient_adiabatic"))
+def adiabatic_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("transient_adiabatic")
+    return run_case(build_case(BASE), out), out
+
+
+@pytest.fixture(scope=shared_scope)
+def adiabatic(adiabatic_run):
+    return adiabatic_run[0]
 
 
 def test_adiabatic_transient_exit_rise(adiabatic):
@@ -47,6 +53,19 @@ def test_adiabatic_transient_exit_rise(adiabatic):
     # the surface at the gap: heated by friction and shear, a nodal value of the field, so
     # between the entry and the largest temperature
     assert T0 < s["exit_temperature_surface"] <= s["max_temperature"] + 1e-9
+
+
+def test_the_plate_temperature_file_is_the_carried_field(adiabatic_run):
+    """thermal.npz of the report's scheme: the plate's vertices, its triangles (indices into
+    them) and one temperature per vertex (K), between the entry's and the largest."""
+    import numpy as np
+
+    s, out = adiabatic_run
+    with np.load(out / "thermal.npz") as f:
+        assert set(f.files) == {"points", "triangles", "temperature"}
+        pts, tri, T = f["points"], f["triangles"], f["temperature"]
+    assert pts.shape == (len(T), 2) and tri.shape[1] == 3 and tri.max() == len(T) - 1
+    assert T.min() >= T0 - 1e-6 and T.max() == pytest.approx(s["max_temperature"])
 
 
 def test_checkpoint_carries_the_temperature(tmp_path):
