@@ -73,6 +73,16 @@ def test_strain_transport_is_exact_for_plane_strain_compression():
     lo, hi = 1.9, 2.0
     mean = (math.log(hi) ** 2 - math.log(lo) ** 2) / 2 / math.log(hi / lo)
     assert field.mean_between(lo, hi) == pytest.approx(0.1 + 2 / math.sqrt(3) * mean, rel=2e-3)
+    # the report's scheme's exit strain: the mean over the elements whose vertices are all
+    # marked; a linear field's mean over the marked elements is its value at their centroid
+    # of area, and marking every vertex gives the mean over the mesh
+    field.values[:] = 0.1 + 0.5 * np.asarray(mesh.ngmesh.Coordinates())[: mesh.nv, 0]
+    area = Integrate(1.0, mesh)
+    assert field.mean_where(np.ones(mesh.nv, dtype=bool)) == pytest.approx(
+        0.1 + 0.5 * Integrate(x, mesh) / area, rel=1e-12)
+    right = np.asarray(mesh.ngmesh.Coordinates())[: mesh.nv, 0] > 1.5
+    assert 0.1 + 0.5 * 1.5 < field.mean_where(right) < 0.1 + 0.5 * 2.0
+    assert math.isnan(field.mean_where(np.zeros(mesh.nv, dtype=bool)))
 
 
 @pytest.fixture(scope=shared_scope)
