@@ -23,6 +23,8 @@
 #     --sample N  a seeded uniform random sample of N of all the package's mutants
 #                 (scripts/mutation_sample.py: the full run takes ten hours or more); the
 #                 report gives the sample's score with its 95 % Wilson interval. --seed S: 2026.
+#     --resume-sample  go on with the sample of the last --sample run: only its mutants
+#                 without a result are run (after a session's end or a kill).
 #     --keep      reuse mutants/ of the last run: mutmut re-tests only changed functions and
 #                 mutants without a result. A survivor is NOT re-tested when only a test changed,
 #                 so run without it (the default: mutants/ is deleted) for a score to record.
@@ -45,6 +47,7 @@ jobs=${MUTATION_JOBS:-2}
 keep=0
 report_only=0
 sample=0
+resume=0
 seed=2026
 names=()
 while (($#)); do
@@ -54,6 +57,7 @@ while (($#)); do
         --report) report_only=1; shift ;;
         --sample) sample=$2; shift 2 ;;
         --seed) seed=$2; shift 2 ;;
+        --resume-sample) resume=1; keep=1; shift ;;
         -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d'; exit 0 ;;
         *) names+=("$1"); shift ;;
     esac
@@ -91,6 +95,11 @@ PY
 
     [[ $keep == 1 ]] || rm -rf mutants
     start=$(date +%s)
+    if ((resume == 1)); then
+        mapfile -t names < <(.venv/bin/python scripts/mutation_sample.py pending)
+        echo "mutation.sh: $(date -Is), resuming the sample: ${#names[@]} mutants without a result"
+        ((${#names[@]} > 0)) || { echo "nothing left to run: scripts/mutation.sh --report"; exit 0; }
+    fi
     if ((sample > 0)); then
         echo "mutation.sh: $(date -Is), generating the mutants and mutmut's stats for a sample"
         .venv/bin/python scripts/mutation_sample.py prepare
@@ -122,7 +131,8 @@ else
 fi
 
 mkdir -p docs/mutation
-if [[ -f mutants/sample.txt ]] && { ((sample > 0)) || { ((report_only == 1)) && ((${#names[@]} == 0)); }; }; then
+if [[ -f mutants/sample.txt ]] && { ((sample > 0)) || ((resume == 1)) ||
+                                     { ((report_only == 1)) && ((${#names[@]} == 0)); }; }; then
     mapfile -t names < <(grep -v '^#' mutants/sample.txt)
     export MUTATION_SAMPLE="$(head -n 1 mutants/sample.txt | sed 's/^# //')"
     suffix+=-sample

@@ -9,6 +9,10 @@ cost of mutation analysis (Wong & Mathur 1995; Zhang et al., ICSE 2010).
 
     .venv/bin/python scripts/mutation_sample.py prepare       # mutants/ and mutmut's stats at HEAD
     .venv/bin/python scripts/mutation_sample.py pick N [--seed S]   # -> mutants/sample.txt
+    .venv/bin/python scripts/mutation_sample.py pending     # the sample's mutants not yet run
+
+A run stopped part-way (a session's end, a kill) goes on with ``scripts/mutation.sh
+--resume-sample``: only the sample's mutants without a result are run.
 """
 from __future__ import annotations
 
@@ -65,16 +69,29 @@ def pick(n: int, seed: int) -> list[str]:
     return sample
 
 
+def pending() -> list[str]:
+    """The sample's mutants that mutmut has no result for yet."""
+    sample = [line.strip() for line in (ROOT / "mutants" / "sample.txt").read_text().splitlines()
+              if line.strip() and not line.startswith("#")]
+    codes = {}
+    for meta in (ROOT / "mutants").glob("hotroll/**/*.py.meta"):
+        codes.update(json.loads(meta.read_text())["exit_code_by_key"])
+    return [name for name in sample if codes.get(name) is None]
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     sub = p.add_subparsers(dest="command", required=True)
     sub.add_parser("prepare")
+    sub.add_parser("pending")
     q = sub.add_parser("pick")
     q.add_argument("n", type=int)
     q.add_argument("--seed", type=int, default=2026)
     a = p.parse_args()
     if a.command == "prepare":
         prepare()
+    elif a.command == "pending":
+        print("\n".join(pending()))
     else:
         print("\n".join(pick(a.n, a.seed)))
 
