@@ -289,6 +289,36 @@ def test_step_insulated_block_heats_by_q_dt_over_rho_c(props):
     mesh.UnsetDeformation()
 
 
+def test_the_streamline_length_is_the_elements_chord_along_the_flow():
+    """SUPG's element length h_v = 2 |v| / sum |v.grad N_i| of a P1 triangle is its longest
+    chord parallel to v (Tezduyar's h_UGN), computed here from the vertices by hand for a
+    skewed mesh and an oblique flow."""
+    from ngsolve import CF, GridFunction, VectorH1, y
+
+    mesh = rectangle(0.03, 0.01, 3, 2)
+    disp = GridFunction(VectorH1(mesh, order=1))
+    disp.Set(CF((0.4 * y, 0.0)))                                   # shear the mesh
+    mesh.SetDeformation(disp)
+    field = TemperatureField(mesh, STEEL, boundary(1000.0), top="top")
+    v = np.array([0.8, 0.35])
+    h = field._h_flow(CF(tuple(v)))
+    vhat = v / np.linalg.norm(v)
+    pts = np.array([mesh.vertices[i].point for i in range(mesh.nv)])
+    pts = pts + disp.vec.FV().NumPy().reshape(2, -1).T[: mesh.nv]
+    for el in mesh.Elements():
+        P = pts[[vert.nr for vert in el.vertices]]
+        chords = []
+        for i in range(3):                          # from vertex i along +-v to the opposite side
+            a, b = P[(i + 1) % 3], P[(i + 2) % 3]
+            M = np.column_stack([vhat, a - b])
+            t, s = np.linalg.solve(M, a - P[i])
+            if -1e-12 <= s <= 1 + 1e-12:
+                chords.append(abs(t))
+        centre = P.mean(axis=0)
+        assert h(mesh(*centre)) == pytest.approx(max(chords), rel=1e-10)
+    mesh.UnsetDeformation()
+
+
 @pytest.mark.parametrize("dt", [0.0, -0.1, float("nan")])
 def test_a_step_needs_a_positive_time(dt):
     """An implicit-Euler step of no time (or of negative or no number of seconds) is refused

@@ -128,6 +128,23 @@ def test_grading_rules_by_hand():
         top_rows(0.1, 0.05)
 
 
+def test_the_strip_is_fine_over_the_contact_and_a_quarter_of_it_either_side():
+    """The temperature's columns: at most the fine size from a quarter contact length before
+    the touching point to a quarter after the gap (both nodes), growing outside."""
+    H, lc = 0.01, 0.04
+    strip = plug_strip(H, 12.0 * H, 1.0, lc, 1.0)
+    rp, X = strip.rp, strip.X
+    lo, hi = rp.x_touch - 0.25 * lc, rp.axis_x + 0.25 * lc
+    fine = np.max(np.diff(X)[(X[:-1] >= lo - 1e-12) & (X[1:] <= hi + 1e-12)])
+    for edge in (lo, hi):
+        assert np.min(np.abs(X - edge)) < 1e-12
+    after = X[X > hi + 1e-12]
+    before = X[X < lo - 1e-12]
+    # outside, the first column is fine and the next ones grow (by 1.3)
+    assert after[0] - hi == pytest.approx(fine) and after[1] - after[0] > 1.2 * fine
+    assert lo - before[-1] == pytest.approx(fine) and before[-1] - before[-2] > 1.2 * fine
+
+
 def test_layer_thickness_and_first_row_by_hand():
     """delta = sqrt(alpha l_c / U); the strip's top row is delta / 8 thick (in units of the
     exit half-thickness, for a flat strip exactly)."""
