@@ -67,6 +67,8 @@ def test_a_strain_profile_is_carried_along_the_streamlines():
     uniform = build_case(BASE, **{"plate.entry_strain": 0.15})
     a, b = exit_profiles(_solve(linear)), exit_profiles(_solve(uniform))
     eta = np.asarray(a["eta"])
+    # no thermal strip mesh: the isothermal grid of 21 rows, eta = 0, 0.05, ..., 1
+    assert a["eta"] == b["eta"] == pytest.approx([k / 20 for k in range(21)], abs=1e-15)
     diff = np.asarray(a["strain"]) - np.asarray(b["strain"])
     assert np.max(np.abs(diff - (0.3 * eta - 0.15))) < 0.01
     inc = 2.0 / math.sqrt(3.0) * math.log(0.1 / 0.08)

@@ -41,9 +41,12 @@ def test_conditional_keys_are_absent_not_null():
 
 
 def test_a_typo_or_a_missing_key_is_refused_by_name():
+    """The message names the key and where keys are declared (written out here)."""
     data = json.loads(WRITTEN[0].read_text())
-    with pytest.raises(ValueError, match="roll_forc"):
+    with pytest.raises(ValueError, match="roll_forc") as typo:
         Summary.from_dict({**data, "roll_forc": 1.0})
+    assert str(typo.value) == ("summary: undeclared keys ['roll_forc'], missing keys [] "
+                               "(hotroll/results/summary.py declares each key)")
     del data["roll_torque"]
     with pytest.raises(ValueError, match="roll_torque"):
         Summary.from_dict(data)
