@@ -159,6 +159,13 @@ def test_cli_validate_ok():
     result = runner.invoke(app, ["validate", str(example_path("example2"))])
     assert result.exit_code == 0, result.output
     assert case_from_toml(result.output).pass_.roll_angular_velocity == pytest.approx(math.pi / 6)
+    # Example 2 (R 0.6 m, 0.5 -> 0.4 m, omega pi/6, C2): draft 0.05 m a roll, so the bite
+    # angle is acos(11/12), the projected contact R sin(alpha) = 0.05 sqrt(23) m, U = 0.1 pi
+    # m/s, h = 4.2 mm and dt = h/6 = 0.7 ms (by hand)
+    assert result.output.splitlines()[-1] == (
+        f"# derived: contact_length = {0.05 * math.sqrt(23):.6g} m, bite_angle = "
+        f"{math.acos(11 / 12):.6g} rad, roll_surface_speed = {0.1 * math.pi:.6g} m/s, "
+        f"h_contact = 0.0042 m, dt = 0.0007 s")
 
 
 def test_cli_validate_bad(tmp_path):
@@ -209,6 +216,27 @@ def test_cli_run_overrides(tmp_path, fake_runner):
     assert (case.mesh.h, case.solver.end_time, case.solver.nonlinear) == (2.7e-3, 0.2, "picard")
     assert case.output.figures is False and resume is False and out == tmp_path
     assert "roll_force" in result.output and "1.25" in result.output
+    assert "example1: summary" in result.output                 # the table's title
+
+
+def test_cli_progress_is_throttled_but_messages_always_show(monkeypatch):
+    """cli/passes._Progress: within ``every`` seconds of the last line a plain update is
+    dropped and one with a message is printed (its keys in PROGRESS_KEYS order, units from
+    results/units.py); after ``every`` seconds a plain update is printed too."""
+    import time
+
+    progress = passes._Progress(every=3600.0)
+    progress.last = time.monotonic()                          # a line was just printed
+    with passes.console.capture() as cap:
+        progress({"step": 2, "roll_force": 1.5})
+    assert cap.get() == ""
+    with passes.console.capture() as cap:
+        progress({"message": "mesh refined", "step": 3})
+    assert cap.get().split() == ["step=3", "message=mesh", "refined"]
+    progress.last = time.monotonic() - 3601.0
+    with passes.console.capture() as cap:
+        progress({"step": 4})
+    assert cap.get().split() == ["step=4"]
 
 
 def test_cli_bad_option_before_run(tmp_path, fake_runner):
@@ -221,12 +249,15 @@ def test_cli_example3(tmp_path, fake_runner, monkeypatch):
     compared = {}
     fake_plots = types.SimpleNamespace(plot_compare=lambda runs, png: compared.update(runs=runs, png=png))
     monkeypatch.setattr(passes, "plot_compare", fake_plots.plot_compare)
+    monkeypatch.setattr(passes.console, "width", 400)      # long paths: no line wrapped
     result = runner.invoke(app, ["example", "3", "--out", str(tmp_path), "--end-time", "0.1"])
     assert result.exit_code == 0, result.output
     assert [c.material.m for c, _, _ in fake_runner] == [0.15, 0.2, 0.25]
     assert list(compared["runs"]) == ["m = 0.15", "m = 0.2", "m = 0.25"]
     assert compared["runs"]["m = 0.2"] == tmp_path / "example1"
     assert compared["png"] == tmp_path / "compare.png"
+    # the figure code returned no path (here: None): the path it was given is named
+    assert f"comparison plot: {tmp_path / 'compare.png'}" in result.output
 
 
 def test_cli_sweep(tmp_path, fake_runner):
@@ -349,6 +380,8 @@ def test_cli_example_options_reach_the_case(tmp_path, monkeypatch):
     assert (case.mesh.h, case.solver.end_time, case.solver.nonlinear) == (0.00502, 0.1, "picard")
     assert case.solver.method == "transient" and case.solver.force is True
     assert out == tmp_path and resume is False and sweep is None
+    # the run's outcome on stderr: EXIT_CODES[5] = "not settled"; the status (none given)
+    assert "example1: not settled (exit code 5; status None)" in r.output
     seen.clear()
     r = runner.invoke(app, ["example", "3", "--out", str(tmp_path)])
     assert r.exit_code == 5                                  # m = 0.2's run: the worst
@@ -412,3 +445,16 @@ def test_cli_sweep_table_names_and_warm_starts(tmp_path, monkeypatch):
     r = runner.invoke(app, ["sweep", str(example_path("example1")), "--param", "material.m",
                             "--values", " , ", "--out", str(tmp_path / "e")])
     assert r.exit_code == 2 and "sweep: --values is empty" in r.output
+
+
+def test_set_dotted_sets_keys_and_refuses_a_value_as_a_section():
+    """set_dotted: ``section.key`` set in place (``pass_`` read as ``pass``, a missing section
+    made); a dotted key through a value that is not a table is a CaseError naming both."""
+    from hotroll.config.case import set_dotted
+
+    data = {"name": "x", "pass": {"roll_radius": 0.6}}
+    assert set_dotted(data, {"pass_.roll_radius": 0.5, "thermal.htc_air": 20.0}) is data
+    assert data == {"name": "x", "pass": {"roll_radius": 0.5}, "thermal": {"htc_air": 20.0}}
+    with pytest.raises(CaseError) as e:
+        set_dotted(data, {"name.first": "y"})
+    assert e.value.problems == ["name.first: 'name' is not a section"]

@@ -83,6 +83,22 @@ def test_compression_exact(m, method):
     assert res["pressure_exact"] == pytest.approx(3.0 * (2 * 0.7) ** m)
     assert abs(res["force"] / res["force_exact"] - 1.0) < 1e-6
     assert abs(res["pressure"] / res["pressure_exact"] - 1.0) < 1e-6
+    # the mesh: round(a/h) x round(b/h) = 6 x 3 cells, two triangles each: 28 vertices and
+    # 63 edges; P2 velocity (2 x (28 + 63)) and P1 pressure (28): 210 DOFs (counted by hand)
+    assert res["dofs"] == 210
+
+
+def test_compression_with_a_large_regularisation():
+    """eps0 as large as the strain rate r: v = r (x, -y) is still the solution (a uniform
+    field balances any law), the stress that of the regularised law (2.21): edot^2 = 2/3 eps:eps
+    = 4 r^2 / 3, so p = K (2r)^m (1 + 3 eps0^2 / (4 r^2))^((m - 1)/2) = (7/4)^(-0.4) K (2r)^m
+    (hand-derived; eps0 -> 0 gives test_compression_exact's K (2r)^m)."""
+    r, m = 0.01, 0.2
+    res = compression(1 / 4, m, r=r, eps0=r)
+    assert res["converged"] and res["u_error"] < 1e-6
+    factor = (7 / 4) ** ((m - 1) / 2)
+    assert res["pressure"] == pytest.approx(factor * (2 * r) ** m, rel=1e-6)
+    assert res["force"] == pytest.approx(-2 * factor * (2 * r) ** m, rel=1e-6)
 
 
 # --- unit independence -------------------------------------------------------------------------
@@ -99,6 +115,11 @@ def test_poiseuille_unit_independent(m):
 @pytest.mark.parametrize("m", [0.2, 1.0])
 def test_compression_unit_independent(m):
     ref, big = compression(1 / 4, m), compression(1 / 4, m, K=1e8)
+    # the defaults are the unit problem (K = r = a = b = 1: p = 2^m, F = -2^(m+1), a 4 x 4
+    # mesh of 25 vertices and 56 edges: 2 x 81 + 25 = 187 DOFs)
+    assert ref["pressure"] == pytest.approx(2.0 ** m, rel=1e-6)
+    assert ref["force"] == pytest.approx(-2.0 ** (m + 1), rel=1e-6)
+    assert ref["dofs"] == 187
     assert big["u_error"] < 1e-6
     assert big["force"] / (1e8 * ref["force"]) == pytest.approx(1.0, abs=1e-10)
     assert big["pressure"] / (1e8 * ref["pressure"]) == pytest.approx(1.0, abs=1e-10)
@@ -138,3 +159,18 @@ def test_nodal_update_measure_reads_p2_nodes():
     assert problem.max_nodal_velocity(problem.gf.vec) == pytest.approx(abs(at_mid[0]),
                                                                         rel=1e-12)
     assert abs(at_mid[0]) < 0.2
+
+
+def test_solve_runs_the_method_it_is_given(monkeypatch):
+    """``solver.nonlinear`` picks the iteration: "picard" runs Picard's, "newton" Newton's
+    (stand-ins record which one ran); anything else is refused naming the field."""
+    import hotroll.fem.nonlinear as N
+
+    ran = []
+    monkeypatch.setattr(N, "picard", lambda problem, tol, max_it: ran.append(("picard", tol, max_it)))
+    monkeypatch.setattr(N, "newton", lambda problem, tol, max_it: ran.append(("newton", tol, max_it)))
+    N.solve(None, "picard", 1e-8, 7)
+    N.solve(None, "newton", 1e-9, 5)
+    assert ran == [("picard", 1e-8, 7), ("newton", 1e-9, 5)]
+    with pytest.raises(ValueError, match="solver.nonlinear must be 'newton' or 'picard', got 'x'"):
+        N.solve(None, "x", 1e-8, 7)

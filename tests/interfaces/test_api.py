@@ -64,3 +64,25 @@ def test_a_result_read_back(solved_example1):
         res.no_such_figure
     with pytest.raises(KeyError, match="'velocity': a scalar field is one of "):
         res.plot_field("velocity")
+
+
+def test_plot_field_covers_the_strip(solved_example1):
+    """Result.plot_field draws the field over the strip's own points: the filled contours'
+    data span the points' x and y ranges (fields.npz), the colour bar is labelled by the
+    field's name."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    res = api.open_result(solved_example1)
+    p = res.fields["points"]
+    ax = res.plot_field("sigma_ef")
+    try:
+        lim = ax.dataLim
+        assert (lim.x0, lim.x1) == pytest.approx((np.min(p[:, 0]), np.max(p[:, 0])), rel=1e-12)
+        assert (lim.y0, lim.y1) == pytest.approx((np.min(p[:, 1]), np.max(p[:, 1])), rel=1e-12)
+        assert ax.figure.axes[-1].get_ylabel() == "sigma_ef"
+    finally:
+        plt.close(ax.figure)

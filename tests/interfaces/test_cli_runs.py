@@ -120,3 +120,32 @@ def test_a_bad_set_option_is_named(tmp_path, item):
     r = CliRunner().invoke(app, ["study", "af_study", "--out", str(tmp_path), "--set", item])
     assert r.exit_code == 2
     assert f"--set {item!r}: expected section.key=value" in " ".join(r.output.split())
+
+
+def test_a_full_disk_and_a_refused_mesh_end_with_their_messages(monkeypatch, capsys):
+    """``hotroll``'s entry point: a full disk ends with exit code 9 and the error's own text
+    (which names the file and the free space), a mesh over the memory limit with 8 and
+    "refused: ..." on stderr, never a traceback."""
+    import errno
+
+    import hotroll.cli as cli
+    from hotroll.files import DiskFullError
+    from hotroll.workflows.estimate import ResourceError
+
+    def full():
+        raise DiskFullError(errno.ENOSPC, "disk full: no space left writing out/x.csv (0.0 MB free)")
+
+    monkeypatch.setattr(cli, "app", full)
+    with pytest.raises(SystemExit) as e:
+        cli.main()
+    assert e.value.code == 9
+    assert "disk full: no space left writing out/x.csv (0.0 MB free)" in capsys.readouterr().err
+
+    def big():
+        raise ResourceError("the mesh needs 40 GB")
+
+    monkeypatch.setattr(cli, "app", big)
+    with pytest.raises(SystemExit) as e:
+        cli.main()
+    assert e.value.code == 8
+    assert "refused: the mesh needs 40 GB" in capsys.readouterr().err

@@ -78,3 +78,17 @@ def test_friction_acts_on_the_active_contact_only(unilateral):
     chi = run.form.chi.vec.FV().NumPy()[run.top.edge]
     assert np.array_equal(chi == 1.0, expected)
     assert (run.arc & ~expected).any()
+
+
+def test_the_steady_solution_has_no_time_and_records_its_solves(unilateral):
+    """The steady solver's Solution: no time (NaN, not the report's scheme's seconds), one
+    history row per solve with its Newton iterations and final residual (below the solver's
+    tolerance for the last, converged one)."""
+    import math
+
+    state, stats = unilateral.state, unilateral.last_stats
+    assert math.isnan(state.time) and state.step == len(state.history) - 1
+    last = state.history[-1]
+    assert math.isnan(last["time"])
+    assert last["iterations"] == stats.iterations and last["residual"] == stats.residual
+    assert last["solver_converged"] and last["residual"] <= unilateral.s.tol

@@ -419,3 +419,23 @@ def test_rate_independent_results_unchanged_by_end_rate(name, args, kw, expected
            float(r.pressure[0]), float(r.pressure[-1]), float(r.plane_strain_flow_stress[0]),
            float(r.plane_strain_flow_stress[-1]))
     assert got == pytest.approx(expected, rel=1e-6)
+
+
+def test_ford_alexander_hand_computed_pass():
+    """R 0.5 m, 20 -> 15 mm: L = sqrt(0.5 * 0.005) = 0.05 m, h_mean = 17.5 mm, so
+    L / h_mean = 20/7 and p_mean / 2k = pi/4 + 5/7; with sigma_f = sqrt(3) 100 MPa, 2k = 200 MPa
+    and F = p_mean L = (pi/4 + 5/7) 1e7 N/m (hand-derived)."""
+    fa = ford_alexander(0.5, 0.020, 0.015, SQ3 * 100e6)
+    q = math.pi / 4 + 5 / 7
+    assert fa.contact_length == pytest.approx(0.05, rel=1e-12)
+    assert fa.l_over_h == pytest.approx(20 / 7, rel=1e-12)
+    assert fa.pressure_factor == pytest.approx(q, rel=1e-12)
+    assert fa.mean_pressure == pytest.approx(q * 200e6, rel=1e-12)
+    assert fa.force == pytest.approx(q * 1e7, rel=1e-12)
+
+
+@pytest.mark.parametrize("bad", [0.0, -1e6, float("nan")])
+def test_constant_flow_stress_rejects_a_non_positive_sigma_by_name(bad):
+    """The constant law's sigma must be in (0, inf); the message names the argument 'sigma'."""
+    with pytest.raises(ValueError, match=r"\bsigma\b"):
+        constant_flow_stress(bad)

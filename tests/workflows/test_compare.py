@@ -106,6 +106,12 @@ def test_files_rows_and_units(compared):
         assert mn[col] == pytest.approx(n[col] / 1e6, rel=1e-12)
     assert "one roll's separating force" in md and "per roll" in md    # definitions stated
     assert on_disk["slab_error"] is None
+    # compare.json names the files written (module docstring: DIR/fe, compare.csv/.md/.json/
+    # .png) and the FE peak's source (the run wrote the smoothed pressure)
+    assert on_disk["files"] == {"fe": "fe/", "csv": "compare.csv", "md": "compare.md",
+                                "json": "compare.json", "figure": "compare.png"}
+    assert all((out / name).exists() for name in on_disk["files"].values())
+    assert on_disk["fe_peak_pressure_source"] == "normal_stress_smooth"
 
 
 def test_theory_columns_equal_hand_mapped_theory(compared):
@@ -272,3 +278,114 @@ def test_compare_command_prints_the_table_it_was_given(tmp_path, monkeypatch):
     r = CliRunner().invoke(app, ["compare", "hot_strip_finishing", "--out", str(tmp_path),
                                  "--method", "transient"])
     assert r.exit_code == 0 and seen["case"].solver.method == "transient"
+
+
+def test_map_case_flow_stress_is_the_cases_law_at_the_given_temperature():
+    """The slab's flow stress is the case's law at (strain, rate, T): a Hensel-Spittel law
+    (m4..m9 = 0) written out by hand, A exp(m1 T_C) eps^m2 edot^m3, at two temperatures; the
+    plate's temperature and entry strain are handed over as given."""
+    from hotroll.workflows.compare import map_case
+
+    d = json.loads(json.dumps(CASE))
+    d["material"] = {"law": "hensel-spittel", "A": 1.5e8, "m1": -0.0025, "m2": 0.1, "m3": 0.15}
+    d["plate"].update(temperature=1300.0, entry_strain=0.1)
+    s = map_case(case_from_dict(d))
+    assert (s.temperature, s.entry_strain) == (1300.0, 0.1)
+    hand = lambda e, r, T: 1.5e8 * math.exp(-0.0025 * (T - 273.15)) * e ** 0.1 * r ** 0.15  # noqa
+    for T in (1300.0, 1400.0):
+        assert s.flow_stress(0.2, 2.0, T) == pytest.approx(hand(0.2, 2.0, T), rel=1e-12)
+
+
+SUMMARY = {"roll_force": 2.2e6, "roll_torque": 5.5e4, "roll_power": 1.1e5,
+           "neutral_angle": 0.06, "forward_slip": 0.05, "contact_length": 0.11}
+
+
+def test_fe_quantities_of_a_hand_made_contact_table():
+    """fe_quantities on a five-node contact table (x every 10 mm along y = 0, h = 10 mm): the
+    peaks are the maxima of -normal_stress (raw) and -normal_stress_smooth (8 and 10 MPa by
+    construction), the interior peak the smoothed maximum from 2 h = 20 mm of arc on (7 MPa),
+    the projected length the x extent, the start angle the largest angle; without the smoothed
+    column the raw one stands in; without a table every figure is NaN."""
+    from hotroll.workflows.compare import fe_quantities
+
+    contact = {"x": np.array([0.0, 0.01, 0.02, 0.03, 0.04]), "y": np.zeros(5),
+               "angle": np.array([0.0, 0.03, 0.06, 0.09, 0.12]),
+               "normal_stress": -np.array([5.0, 10.0, 6.0, 4.0, 3.0]) * 1e6,
+               "normal_stress_smooth": -np.array([3.0, 8.0, 7.0, 5.0, 2.0]) * 1e6}
+    q = fe_quantities(SUMMARY, contact, 0.01)
+    assert q["roll_force"] == 2.2e6 and q["contact_arc_length"] == 0.11
+    assert (q["peak_raw"], q["peak_smooth"], q["peak_interior"]) == (10e6, 8e6, 7e6)
+    assert q["peak_source"] == "normal_stress_smooth"
+    assert q["projected_length"] == pytest.approx(0.04, rel=1e-14)
+    assert q["contact_start_angle"] == 0.12
+    del contact["normal_stress_smooth"]
+    q = fe_quantities(SUMMARY, contact, 0.01)
+    assert (q["peak_raw"], q["peak_smooth"], q["peak_interior"]) == (10e6, 10e6, 6e6)
+    assert q["peak_source"] == "normal_stress (raw)"
+    q = fe_quantities(SUMMARY, None, 0.01)
+    assert q["peak_source"] == "none" and q["roll_torque"] == 5.5e4
+    for k in ("peak_smooth", "peak_raw", "peak_interior", "projected_length",
+              "contact_start_angle"):
+        assert math.isnan(q[k]), k
+
+
+def test_build_table_cells_are_their_inputs():
+    """build_table on made-up FE figures and theory results: every cell is its input in the
+    row's unit, '-' (None) where a theory has no such quantity, the slab power halved (it is
+    both rolls), Sims' power its torque omega, FE/slab the ratio; the geometric rows from R,
+    h0, h1 by hand (R 0.3 m, 100 -> 80 mm); the notes state the definitions."""
+    from types import SimpleNamespace
+
+    from hotroll.workflows.compare import build_table, map_case
+
+    case = _case()
+    slab = SimpleNamespace(force=2e6, torque=5e4, power=2e5, neutral_angle=0.05,
+                           forward_slip=0.04, peak_pressure=3e8, mean_pressure=1.5e8,
+                           plane_strain_flow_stress=np.full(11, 2 / math.sqrt(3) * 100e6),
+                           angle=np.linspace(0.0, 0.2, 11), contact_angle=0.2)
+    si = SimpleNamespace(force=1.8e6, torque=4e4, neutral_angle=0.04, forward_slip=0.03,
+                         mean_pressure=1.4e8)
+    fa = SimpleNamespace(force=1.7e6, mean_pressure=1.3e8)
+    th = {"inputs": map_case(case), "slab": slab, "sims": si, "ford_alexander": fa,
+          "mean_flow_stress": 90e6}
+    fe = {**{k: SUMMARY[k] for k in ("roll_force", "roll_torque", "roll_power",
+                                     "neutral_angle", "forward_slip")},
+          "contact_arc_length": 0.11, "peak_smooth": 3.3e8, "peak_raw": 4e8,
+          "peak_interior": 3.1e8, "projected_length": 0.1, "contact_start_angle": 0.12,
+          "peak_source": "normal_stress_smooth"}
+    alpha = math.acos(1 - 0.02 / 0.6)
+    L_slab, L_small = 0.3 * math.sin(alpha), math.sqrt(0.3 * 0.02)
+    expected = {  # quantity: (FE, slab, Sims, Ford-Alexander)
+        "roll force per unit width [N/m]": (2.2e6, 2e6, 1.8e6, 1.7e6),
+        "roll force per unit width [MN/m]": (2.2, 2.0, 1.8, 1.7),
+        "roll torque per roll [N m/m]": (5.5e4, 5e4, 4e4, None),
+        "roll power per roll [W/m]": (1.1e5, 1e5, 4e4, None),   # Sims: T omega, omega = 1
+        "neutral angle [rad]": (0.06, 0.05, 0.04, None),
+        "forward slip [%]": (5.0, 4.0, 3.0, None),
+        "peak pressure [Pa]": (3.3e8, 3e8, None, None),
+        "peak pressure [MPa]": (330.0, 300.0, None, None),
+        "peak pressure, raw nodal FE [MPa]": (400.0, 300.0, None, None),
+        "peak pressure beyond 2h from the contact start [MPa]": (310.0, 300.0, None, None),
+        "mean pressure over the projected contact length [MPa]": (22.0, 150.0, 140.0, 130.0),
+        "projected contact length L [m]": (0.1, L_slab, L_small, L_small),
+        "contact arc length [m]": (0.11, 0.3 * alpha, None, None),
+        "L/h_mean [-]": (0.1 / 0.09, L_slab / 0.09, L_small / 0.09, L_small / 0.09),
+        "mean uniaxial flow stress along the arc [MPa]": (None, 100.0, 90.0, 90.0),
+    }
+    rows = build_table(case, fe, th)
+    assert [r["quantity"] for r in rows] == list(expected)
+    for r in rows:
+        got = [r[c] for c in ("FE", "slab (Orowan)", "Sims", "Ford-Alexander")]
+        want = expected[r["quantity"]]
+        for g, w in zip(got, want):
+            assert g == (None if w is None else pytest.approx(w, rel=1e-12)), r["quantity"]
+        ratio = None if want[0] is None else pytest.approx(want[0] / want[1], rel=1e-12)
+        assert r["FE/slab"] == ratio, r["quantity"]
+    notes = {r["quantity"]: r["note"] for r in rows}
+    assert notes["roll force per unit width [N/m]"] == (
+        "separating force of one roll (FE: upper roll on the strip)")
+    assert "one roll" in notes["roll torque per roll [N m/m]"]
+    assert "raw nodal" in notes["peak pressure, raw nodal FE [MPa]"]
+    assert "normal_stress_smooth" in notes["peak pressure [Pa]"]
+    assert notes["mean uniaxial flow stress along the arc [MPa]"] == (
+        "slab: its own local sigma_f (column = its angle mean); Sims/FA: the constant used")

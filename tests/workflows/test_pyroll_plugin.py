@@ -104,9 +104,10 @@ def test_the_passes_are_hotrolls_own_runs(sequence, tmp_path):
 
 
 def test_one_fe_solve_per_pass(sequence):
-    """PyRolL asked for the force and torque dozens of times; two FE solves in all."""
+    """PyRolL asked for the force and torque dozens of times; two FE solves in all, the
+    second started from the first (the sequence's sweep)."""
     seq, stats = sequence
-    assert stats["fe_solves"] == 2
+    assert stats["fe_solves"] == 2 and stats["warm_starts"] == 1
     assert stats["cache_hits"] >= 20
     r1 = seq.units[0]
     before = dict(hp.STATS)
@@ -148,8 +149,40 @@ def test_a_flow_stress_function_is_fitted_and_used(sequence, tmp_path):
     ip = pr.Profile.box(height=0.1, width=WIDTH, temperature=1373.15, strain=0.0,
                         flow_stress_function=lambda profile: law.sigma, **PROPS)
     rp = _flat("R1fit", 0.08, 0.3)
+    before = dict(hp.STATS)
     rp.solve(ip)
+    # one more FE solve, counted as a warm start exactly when it started from another pass
+    assert hp.STATS["fe_solves"] == before["fe_solves"] + 1
+    assert hp.STATS["warm_starts"] - before["warm_starts"] == int(
+        rp.hotroll_result.get("warm_start_from") is not None)
     fit = rp.hotroll_result["flow_stress_fit"]
     assert fit["source"] == "in_profile.flow_stress_function"
     assert fit["max_rel_error"] < 0.01
     assert rp.roll_force == pytest.approx(sequence[0].units[0].roll_force, rel=0.01)
+
+
+def test_the_fitting_box_is_the_passs_range():
+    """The box the in profile's flow_stress_function is fitted over, by hand: strains from the
+    entry's to 1.5 x the pass's increment 2/sqrt3 ln(h0/h1) past it, strain rates 0.05 to 4
+    x the mean U/l_c x increment, temperatures from 250 K below the entry (not below 300 K)
+    to 60 K above it."""
+    from types import SimpleNamespace
+
+    from hotroll.model.grades import get_grade
+
+    law = get_grade("S355J2").law()
+
+    class Profile:
+        flow_stress_function = staticmethod(law.sigma)
+
+        def has_value(self, name):
+            return name == "flow_stress_function"
+
+    for T0, T_lo in ((1373.15, 1123.15), (500.0, 300.0)):
+        rp = SimpleNamespace(in_profile=Profile(), label="box")
+        _, info = hp._material(rp, T0, 0.1, 0.01, 0.008, 2.0, 0.02)
+        inc = 2.0 / math.sqrt(3.0) * math.log(0.01 / 0.008)
+        rate = 2.0 / 0.02 * inc
+        assert info["strain"] == pytest.approx((0.1, 0.1 + 1.5 * inc), rel=1e-12)
+        assert info["strain_rate"] == pytest.approx((0.05 * rate, 4.0 * rate), rel=1e-12)
+        assert info["temperature"] == pytest.approx((T_lo, T0 + 60.0), rel=1e-12)

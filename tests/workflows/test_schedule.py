@@ -172,6 +172,7 @@ def test_the_warm_starts_do_not_change_the_answer(rolled, tmp_path):
     cold = run_case(case, tmp_path / "cold", resume=False)
     warm = _summary(out, rows[1])
     assert warm["warm_start_from"] is not None and cold["warm_start_from"] is None
+    assert warm["warm_start_failed"] is False          # the warm start itself converged
     for key in ("roll_force", "roll_torque"):
         assert warm[key] == pytest.approx(cold[key], rel=2.5e-3)
     assert warm["forward_slip"] == pytest.approx(cold["forward_slip"], abs=2e-4)
@@ -189,3 +190,89 @@ def test_the_handed_over_temperature_is_the_runs_exit_temperature(rolled):
         gap = s["exit_temperature_mean"]
         assert gap - 1.0 < r["outlet_temperature_mean"] <= gap + 1e-6
         assert r["exit_temperature_mean"] == gap
+
+
+def test_entry_profiles_are_the_strips_own_pairs():
+    """Schedule.entry_profiles: the strip's [[eta, value], ...] pairs as ThicknessProfiles (the
+    same pairs back, linear between), None for a profile not given."""
+    d = _data()
+    assert schedule_from_dict(d, "schedule.toml").entry_profiles() == (None, None)
+    temps, strains = [[0.0, 1373.15], [0.5, 1360.0], [1.0, 1300.0]], [[0.0, 0.05], [1.0, 0.15]]
+    d["strip"].update(temperature_profile=temps, strain_profile=strains)
+    t, e = schedule_from_dict(d, "schedule.toml").entry_profiles()
+    assert t.pairs() == temps and e.pairs() == strains
+    assert float(t(0.75)) == pytest.approx(1330.0, rel=1e-14)
+    assert float(e(0.5)) == pytest.approx(0.10, rel=1e-14)
+
+
+def test_an_unreadable_schedule_file_is_a_case_error_naming_the_file(tmp_path):
+    """A missing file and a TOML syntax error: CaseError whose source is the path and whose
+    head reads '<path>: invalid schedule (1 problem)' (config/base.py's CaseError format)."""
+    missing, broken = tmp_path / "missing.toml", tmp_path / "broken.toml"
+    broken.write_text("[strip\nthickness = 0.1\n")
+    for path, problem in ((missing, "cannot read schedule file"), (broken, "TOML syntax error")):
+        with pytest.raises(CaseError) as e:
+            load_schedule(path)
+        assert e.value.source == str(path)
+        assert str(e.value).startswith(f"{path}: invalid schedule (1 problem)")
+        assert e.value.problems[0].startswith(problem)
+
+
+def test_mass_flow_speeds_from_the_first_stands_flux(tmp_path, monkeypatch):
+    """mill.speeds = "mass_flow" with the FE runs faked (a made-up steady pass: forward slip
+    4 % in stand 1, 5 % in stand 2, exit speed omega R (1 + f), flux in = flux out = exit
+    speed x h1/2). Stand 2's first speed is Q / ((h1/2)(1 + f_1)) / R with stand 1's flux Q and
+    slip f_1 (module docstring), i.e. omega_1 h1_1 / h1_2 = 16/13 here; its flux then misses Q
+    by 1.05/1.04 - 1 > 1e-3, so it is solved again at omega / (1 + miss) = 16/13 x 1.04/1.05,
+    which passes Q exactly. The transport's row reports the handed-on profile's surface (its
+    last value) and the given duration (20 s)."""
+    import hotroll.workflows.schedule as schedule
+
+    slips, speeds = {"R1": 0.04, "R2": 0.05}, []
+
+    def fake_run_case(case, out, **kw):
+        p, f = case.pass_, slips[case.name.split("_", 1)[1]]
+        speeds.append((case.name, p.roll_angular_velocity))
+        v1 = p.roll_angular_velocity * p.roll_radius * (1.0 + f)
+        q = v1 * 0.5 * p.exit_thickness
+        return {"exit_code": 0, "status": "converged", "mass_flux_in": q, "mass_flux_out": q,
+                "forward_slip": f, "exit_velocity": v1,
+                "entry_velocity": q / (0.5 * p.entry_thickness), "roll_force": 1e6,
+                "roll_torque": 1e4, "roll_power": 1e4, "homogeneous_exit_strain": 0.3,
+                "nonlinear_iterations": 3, "exit_temperature_mean": 1290.0,
+                "roll_force_total": 1.2e6, "roll_torque_total": 1.2e4, "mill_power_total": 4.8e4,
+                "exit_profile": {"eta": [0.0, 1.0], "temperature": [1300.0, 1280.0],
+                                 "strain": [0.3, 0.35]}}
+
+    monkeypatch.setattr(schedule, "run_case", fake_run_case)
+    rows = run_schedule(load_schedule(DATA), tmp_path, resume=False, figure=False)
+    assert [name for name, _ in speeds] == ["01_R1", "02_R2", "02_R2"]
+    assert speeds[0][1] == 1.0
+    assert speeds[1][1] == pytest.approx(16 / 13, rel=1e-12)
+    assert speeds[2][1] == pytest.approx(16 / 13 * 1.04 / 1.05, rel=1e-12)
+    assert [r["fe_solves"] for r in rows] == [1, 2]
+    assert rows[1]["mass_flux"] == pytest.approx(rows[0]["mass_flux"], rel=1e-12)
+    record = json.loads((tmp_path / "schedule.json").read_text())
+    after = record["profiles"][0]["after_transport"]
+    # the strip has a width (1.2 m): each row carries its run's whole-width totals
+    for r in rows:
+        assert (r["roll_force_total"], r["roll_torque_total"], r["mill_power_total"]) == (
+            1.2e6, 1.2e4, 4.8e4)
+    # schedule.json states the SI unit of its columns (results/units.py)
+    assert record["units"]["roll_force"] == "N/m" and record["units"]["transport_duration"] == "s"
+    assert record["units"]["roll_torque_total"] == "N m"
+    assert rows[0]["transport_duration"] == 20.0
+    assert rows[0]["next_entry_temperature_surface"] == after["temperature_profile"][-1][1]
+    assert rows[0]["next_entry_temperature_surface"] < 1280.0     # it cooled in air
+
+
+def test_last_speed_is_the_runs_own_case_file(tmp_path):
+    """_last_speed: the roll_angular_velocity of the case.toml in the pass directory; None
+    without a case file or without that key."""
+    from hotroll.workflows.schedule import _last_speed
+
+    assert _last_speed(tmp_path) is None
+    (tmp_path / "case.toml").write_text("[pass]\nroll_surface_speed = 1.0\n")
+    assert _last_speed(tmp_path) is None
+    (tmp_path / "case.toml").write_text("[pass]\nroll_angular_velocity = 1.25\n")
+    assert _last_speed(tmp_path) == 1.25

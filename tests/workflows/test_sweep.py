@@ -26,3 +26,40 @@ def test_a_kept_run_takes_each_cases_friction_rule(tmp_path):
     assert cold["a_f"] > 1e3
     assert warm["a_f"] == pytest.approx(cold["a_f"], rel=2e-2)
     assert warm["roll_force"] == pytest.approx(cold["roll_force"], rel=1e-3)
+
+
+def test_the_form_key_ignores_what_a_kept_run_may_differ_in():
+    """form_key (module docstring): the same for cases differing only in their name, m, K,
+    a_f, plate length, solver tolerances or outputs; another for another mesh or geometry."""
+    from hotroll.workflows.sweep import form_key
+
+    base = example1_coarse("a")
+    key = form_key(case_from_dict(base))
+    same = [{"name": "b"}, {"material": {"K": 2.0, "m": 0.3}}, {"plate": {"length": 2.0}},
+            {"output": {"figures": True, "vtk": True}},
+            {"solver": {"method": "steady", "threads": 2, "tolerance": 1e-6}}]
+    for change in same:
+        assert form_key(case_from_dict({**base, **change})) == key, change
+    other = [{"mesh": {"h_contact": 0.03}},
+             {"pass": {**base["pass"], "exit_thickness": 0.42}}]
+    for change in other:
+        assert form_key(case_from_dict({**base, **change})) != key, change
+
+
+def test_a_kept_run_is_reused_without_meshing():
+    """Sweep.steady_run: a second case differing only in m is given the same SteadyRun, with
+    that case's settings and plate length and no meshing time (mesh_time 0, it enters the
+    run's wall time); a case on another mesh gets a new run (about 0.5 s of meshing each)."""
+    from hotroll.workflows.runner import build_model, steady_settings
+
+    first = case_from_dict(example1_coarse("a"))
+    second = case_from_dict(example1_coarse("b", material={"K": 1.0, "m": 0.3},
+                                            plate={"length": 2.0}))
+    sweep = Sweep()
+    run = sweep.steady_run(first, build_model(first)[0])
+    assert run.mesh_time > 0.0
+    kept = sweep.steady_run(second, build_model(second)[0])
+    assert kept is run and kept.mesh_time == 0.0
+    assert kept.s == steady_settings(second) and kept.plate_length == 2.0
+    other = case_from_dict(example1_coarse("c", mesh={"h_contact": 0.03}))
+    assert sweep.steady_run(other, build_model(other)[0]) is not run
