@@ -341,6 +341,19 @@ def test_steady_agrees_with_transient(pair, bounds, request):
     assert s["plastic_power"] == pytest.approx(t["plastic_power"], rel=bounds["plastic"])
 
 
+def test_a_given_a_f_is_kept_and_an_estimated_one_follows_the_flow(slipping, estimated):
+    """The report's scheme: friction.a_f = 3 is the a_f of every step; left out, (3.15) is
+    evaluated again before every step's solve (history.csv's a_f column changes from step to
+    step, as the flow does)."""
+    for fixture, given in ((slipping, True), (estimated, False)):
+        _, _, out = fixture
+        a_f = np.genfromtxt(out / "history.csv", delimiter=",", names=True)["a_f"]
+        if given:
+            assert np.all(a_f == 3.0)
+        else:
+            assert len(np.unique(a_f[1:])) > len(a_f[1:]) // 2
+
+
 @pytest.mark.parametrize("fixture", ["steady_slipping", "steady_estimated", "steady_constrained",
                                      "settled", pytest.param("settled_constrained",
                                                              marks=pytest.mark.slow)])
