@@ -742,6 +742,10 @@ def test_the_contact_files_vertex_column_is_integer(solved_example1):
     the integers 0 and 1, as its header says (a flag, not a measurement)."""
     import csv
 
+    import json
+
     with open(solved_example1 / "contact.csv", newline="") as fh:
         column = [row["vertex"] for row in csv.DictReader(fh)]
     assert set(column) == {"0", "1"}
+    # (the bilateral default: the summary says so)
+    assert json.loads((solved_example1 / "summary.json").read_text())["unilateral"] is False

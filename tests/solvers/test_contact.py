@@ -215,6 +215,7 @@ def test_a_thick_strip_leaves_the_roll_before_the_gap(example1_unilateral):
     the contact's end to the gap), the pressure is >= 0 on the arc, the run converges."""
     s, prof = example1_unilateral
     assert s["exit_code"] == 0, s["failure"]
+    assert s["unilateral"] is True
     assert s["contact_end_angle"] > 0.01
     # the arc's ends are the written profile's (plumbing), the loss from its end to the gap
     assert s["contact_end_angle"] == pytest.approx(prof["angle"][-1], abs=1e-12)
