@@ -741,7 +741,6 @@ def test_the_contact_files_vertex_column_is_integer(solved_example1):
     """contact.csv's "vertex" column (1 at a mesh vertex, 0 at an edge midpoint) is written as
     the integers 0 and 1, as its header says (a flag, not a measurement)."""
     import csv
-
     import json
 
     with open(solved_example1 / "contact.csv", newline="") as fh:
