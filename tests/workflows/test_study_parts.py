@@ -184,3 +184,27 @@ def test_study_figures_are_written_where_named(tmp_path, monkeypatch):
     made = study.figures(st, tmp_path, [], {})
     assert made == drawn == [tmp_path / "study.png", tmp_path / "study_profiles.png"]
     assert study.figures(SimpleNamespace(name="s", plot=None), tmp_path, [], {}) == []
+
+
+def test_a_dask_worker_estimates_with_its_own_memory_limit(monkeypatch):
+    """Inside a dask worker (``distributed`` imported), the memory a case may use is the
+    worker's limit (a local cluster splits the machine among its workers); a worker without a
+    limit, or no worker, falls back to the machine's available memory."""
+    import sys
+    from types import SimpleNamespace
+
+    from hotroll.workflows import estimate as E
+
+    machine = E.available_bytes()
+    assert machine > 0
+    worker = SimpleNamespace(memory_manager=SimpleNamespace(memory_limit=123e6))
+    monkeypatch.setitem(sys.modules, "distributed", SimpleNamespace(get_worker=lambda: worker))
+    assert E.available_bytes() == 123e6
+    worker.memory_manager.memory_limit = 0
+    assert E.available_bytes() == pytest.approx(machine, rel=0.5)
+
+    def no_worker():
+        raise ValueError("No worker found")
+
+    monkeypatch.setitem(sys.modules, "distributed", SimpleNamespace(get_worker=no_worker))
+    assert E.available_bytes() == pytest.approx(machine, rel=0.5)
