@@ -208,3 +208,37 @@ def test_a_dask_worker_estimates_with_its_own_memory_limit(monkeypatch):
 
     monkeypatch.setitem(sys.modules, "distributed", SimpleNamespace(get_worker=no_worker))
     assert E.available_bytes() == pytest.approx(machine, rel=0.5)
+
+
+def test_the_triangle_count_of_a_uniform_flat_strip_by_hand():
+    """An equilateral mesh of size h has one triangle per sqrt3/4 h^2: over a flat stretch of the
+    strip upstream of the bite (height = the entry half-thickness), uniform sizes (core factor 1,
+    no grading) give (x1 - x0) h0/2 / (sqrt3/4 h^2) triangles."""
+    import math
+
+    from hotroll.model.geometry import RollPass
+    from hotroll.workflows.estimate import triangles
+
+    rp = RollPass(0.3, 0.01, 0.008, 10.0, axis_x=0.0)
+    h, x0, x1 = 0.002, -0.5, -0.3                      # well before x_touch (-0.077 m)
+    n = triangles(rp, h, h, x0, x1, x0, x1, 1.0, 0.0)
+    assert n == pytest.approx((x1 - x0) * 0.01 / (math.sqrt(3.0) / 4.0 * h * h), rel=1e-12)
+
+
+def test_the_report_schemes_time_is_steps_times_its_cost_per_unknown():
+    """The transient estimate: (end time / dt) steps, each STEP_SECONDS_PER_DOF per unknown."""
+    import tomllib
+
+    from hotroll.config.case import case_from_dict
+    from hotroll.examples import example_path
+    from hotroll.workflows import estimate as E
+
+    with open(example_path("example1"), "rb") as fh:
+        d = tomllib.load(fh)
+    d.setdefault("solver", {}).update(method="transient", end_time=0.5)
+    case = case_from_dict(d)
+    est = E.estimate(case)
+    # (est.dofs is the count rounded down to an integer: 1e-4 relative at most here)
+    assert est.dofs > 1e4
+    assert est.seconds == pytest.approx(0.5 / case.dt * E.STEP_SECONDS_PER_DOF * est.dofs,
+                                        rel=1e-4)
