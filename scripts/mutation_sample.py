@@ -69,14 +69,24 @@ def pick(n: int, seed: int) -> list[str]:
     return sample
 
 
-def pending() -> list[str]:
-    """The sample's mutants that mutmut has no result for yet."""
-    sample = [line.strip() for line in (ROOT / "mutants" / "sample.txt").read_text().splitlines()
-              if line.strip() and not line.startswith("#")]
+def sample_names() -> list[str]:
+    """The sample's mutant names (mutants/sample.txt)."""
+    return [line.strip() for line in (ROOT / "mutants" / "sample.txt").read_text().splitlines()
+            if line.strip() and not line.startswith("#")]
+
+
+def exit_codes() -> dict:
+    """mutmut's exit code of every mutant (None: not run yet)."""
     codes = {}
     for meta in (ROOT / "mutants").glob("hotroll/**/*.py.meta"):
         codes.update(json.loads(meta.read_text())["exit_code_by_key"])
-    return [name for name in sample if codes.get(name) is None]
+    return codes
+
+
+def pending() -> list[str]:
+    """The sample's mutants that mutmut has no result for yet."""
+    codes = exit_codes()
+    return [name for name in sample_names() if codes.get(name) is None]
 
 
 def main() -> None:

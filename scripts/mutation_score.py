@@ -19,11 +19,12 @@ Wilson interval of a binomial proportion.
 from __future__ import annotations
 
 import collections
-import json
 import math
 import re
 import sys
 from pathlib import Path
+
+from mutation_sample import exit_codes, sample_names  # noqa: E402 (scripts/ is on sys.path)
 
 ROOT = Path(__file__).resolve().parent.parent
 ROW = re.compile(r"^\|\s*`?(hotroll\.[^|`\s]+)`?\s*\|\s*([TREDO])\s*\|")
@@ -37,11 +38,7 @@ def wilson(caught: int, n: int, z: float = 1.96) -> tuple[float, float]:
 
 
 def main(pages: list[str]) -> None:
-    sample = [line.strip() for line in (ROOT / "mutants/sample.txt").read_text().splitlines()
-              if line.strip() and not line.startswith("#")]
-    codes = {}
-    for meta in (ROOT / "mutants").rglob("*.py.meta"):
-        codes.update(json.loads(meta.read_text())["exit_code_by_key"])
+    sample, codes = sample_names(), exit_codes()
     verdicts = {}
     for page in pages:
         for line in Path(page).read_text().splitlines():
