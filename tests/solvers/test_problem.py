@@ -32,3 +32,14 @@ def test_both_solvers_implement_the_solver_interface(method, tmp_path):
     missing = [m for m in MEMBERS if not hasattr(run, m)]
     assert not missing, f"{type(run).__name__} lacks {missing}"
     assert run.problem is problem
+
+
+def test_the_case_mesh_reaches_the_problem():
+    """mesh.h_contact, h_far and grading of the case are the problem's mesh spec (h_far given:
+    the far size is the user's, not the automatic one)."""
+    case = build_case(EXAMPLE1_COARSE, **{"mesh.h_far": 0.03, "mesh.grading": 0.4})
+    spec = build_model(case)[0].mesh
+    assert (spec.h, spec.h_far, spec.grading) == (0.02, 0.03, 0.4)
+    assert spec.far(case.pass_.roll_pass()) == 0.03
+    auto = build_model(build_case(EXAMPLE1_COARSE))[0].mesh
+    assert auto.h_far is None and auto.far(case.pass_.roll_pass()) != 0.03
