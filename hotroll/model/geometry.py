@@ -2,13 +2,74 @@
 
 Half model: y = 0 is the symmetry axis, the upper roll has its centre at
 (axis_x, half_exit + R) and turns so that its lowest point moves in +x.
+
+A flattened roll (``[roll] model``, docs/theory.md 1f) keeps its centre: its surface is
+r(theta) = R + w(theta) about it (``RollShape``), w normalised so that the lowest point of the
+surface stays at the gap (the roll's approach goes into the gap, not into w); its rim moves at
+omega R (1 + e_tt(theta)), e_tt the rim's hoop strain. Without a shape the roll is the rigid
+circle and every method below is the circle's formula.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
+
+
+class RollShape:
+    """The flattened roll's surface r(theta) = R + w(theta) and its rim strain, tabled at
+    increasing angles and interpolated by cubic splines (constant beyond the table). Mutable:
+    the roll coupling updates it in place (``set``), and every ``RollPass`` holding it follows."""
+
+    def __init__(self, theta, w, hoop=None):
+        self.set(theta, w, hoop)
+
+    def set(self, theta, w, hoop=None) -> None:
+        from scipy.interpolate import CubicSpline
+
+        theta = np.asarray(theta, dtype=float)
+        w = np.asarray(w, dtype=float)
+        hoop = np.zeros_like(w) if hoop is None else np.asarray(hoop, dtype=float)
+        if theta.ndim != 1 or len(theta) < 4 or w.shape != theta.shape or hoop.shape != theta.shape:
+            raise ValueError("a roll shape needs at least 4 angles and one w and hoop strain each")
+        if np.any(np.diff(theta) <= 0.0):
+            raise ValueError("a roll shape's angles must increase")
+        self.theta, self.w, self.hoop = theta.copy(), w.copy(), hoop.copy()
+        self._w = CubicSpline(theta, w, bc_type="clamped")
+        self._dw = self._w.derivative()
+        self._hoop = CubicSpline(theta, hoop, bc_type="clamped")
+
+    def _clip(self, theta):
+        return np.clip(theta, self.theta[0], self.theta[-1])
+
+    def offset(self, theta):
+        """w(theta), m."""
+        return self._w(self._clip(theta))
+
+    def slope(self, theta):
+        """dw/dtheta, m/rad (0 beyond the table)."""
+        t = np.asarray(theta, dtype=float)
+        inside = (t >= self.theta[0]) & (t <= self.theta[-1])
+        return np.where(inside, self._dw(self._clip(t)), 0.0)
+
+    def strain(self, theta):
+        """The rim's hoop strain e_tt(theta), -."""
+        return self._hoop(self._clip(theta))
+
+    @property
+    def max_offset(self) -> float:
+        return float(np.max(np.abs(self.w)))
+
+    @classmethod
+    def circle(cls, radius: float, flattened: float, theta) -> "RollShape":
+        """Hitchcock's flattened roll: the circle of radius R' >= R through the rigid roll's
+        lowest point, seen from the rigid roll's centre: r = -D cos t + sqrt(R'^2 - D^2 sin^2 t),
+        D = R' - R."""
+        theta = np.asarray(theta, dtype=float)
+        D = flattened - radius
+        r = -D * np.cos(theta) + np.sqrt(flattened**2 - (D * np.sin(theta)) ** 2)
+        return cls(theta, r - radius)
 
 
 @dataclass(frozen=True)
@@ -20,6 +81,7 @@ class RollPass:
     half_exit: float       # roll-gap half-height, m
     omega: float           # roll angular velocity, rad/s
     axis_x: float = 1.0    # x of the roll axis (the report's frame: 1.0)
+    shape: RollShape | None = field(default=None, compare=False)   # a flattened roll
 
     @property
     def centre(self) -> tuple[float, float]:
@@ -38,7 +100,10 @@ class RollPass:
     def x_touch(self) -> float:
         """First touching point of the initial (maximum-contact) configuration."""
         cy = self.centre[1]
-        return self.axis_x - math.sqrt(self.radius**2 - (cy - self.half_entry) ** 2)
+        if self.shape is None:
+            return self.axis_x - math.sqrt(self.radius**2 - (cy - self.half_entry) ** 2)
+        t = self.bite_angle
+        return self.axis_x - float(self.surface_radius(t)) * math.sin(t)
 
     @property
     def contact_length(self) -> float:
@@ -47,7 +112,23 @@ class RollPass:
 
     @property
     def bite_angle(self) -> float:
-        return math.acos(1.0 - self.draft / self.radius)
+        """The angle of the first touching point: the surface's height there is the entry's."""
+        if self.shape is None:
+            return math.acos(1.0 - self.draft / self.radius)
+        from scipy.optimize import brentq
+
+        cy = self.centre[1]
+        rigid = math.acos(1.0 - self.draft / self.radius)
+
+        def above_entry(t):
+            return cy - float(self.surface_radius(t)) * math.cos(t) - self.half_entry
+
+        hi = rigid
+        while above_entry(hi) < 0.0:
+            hi = min(2.0 * hi, 0.5 * math.pi)
+            if hi == 0.5 * math.pi:
+                break
+        return brentq(above_entry, 0.0, hi, xtol=1e-15 * max(1.0, hi))
 
     @property
     def soft_zone(self) -> tuple[float, float]:
@@ -60,17 +141,60 @@ class RollPass:
         return (self.x_touch - 0.0425 * lc, self.x_touch + 0.0617 * lc)
 
     # --- point-wise helpers (numpy, vectorised over rows of xy) ---------------------------
+    def surface_radius(self, theta):
+        """r(theta) = R + w(theta): the surface's distance from the centre (R when rigid)."""
+        if self.shape is None:
+            return self.radius + 0.0 * np.asarray(theta, dtype=float)
+        return self.radius + self.shape.offset(theta)
+
+    def surface_speed(self, xy: np.ndarray) -> np.ndarray:
+        """The rim's speed omega R (1 + e_tt) at the points' angles (omega R when rigid)."""
+        if self.shape is None:
+            return self.u_roll + 0.0 * np.asarray(xy, dtype=float)[..., 0]
+        return self.u_roll * (1.0 + self.shape.strain(self.angle(xy)))
+
+    def height(self, x) -> np.ndarray:
+        """The height of the roll's lower surface at x (its lowest point: the gap)."""
+        cx, cy = self.centre
+        x = np.asarray(x, dtype=float)
+        if self.shape is None:
+            return cy - np.sqrt(np.maximum(self.radius**2 - (x - cx) ** 2, 0.0))
+        t = np.arcsin(np.clip((cx - x) / self.radius, -1.0, 1.0))
+        for _ in range(30):        # Newton on x = cx - r(t) sin t
+            r = self.surface_radius(t)
+            f = cx - r * np.sin(t) - x
+            step = f / (self.shape.slope(t) * np.sin(t) + r * np.cos(t))
+            t = t + step
+            if np.max(np.abs(step), initial=0.0) < 1e-15:
+                break
+        return cy - self.surface_radius(t) * np.cos(t)
+
     def signed_distance(self, xy: np.ndarray) -> np.ndarray:
-        """Distance to the roll surface, negative inside the roll (penetration)."""
+        """Distance to the roll surface, negative inside the roll (penetration); for a
+        flattened roll the radial distance |x - c| - r(theta)."""
         c = np.asarray(self.centre)
-        return np.linalg.norm(np.asarray(xy) - c, axis=-1) - self.radius
+        if self.shape is None:
+            return np.linalg.norm(np.asarray(xy) - c, axis=-1) - self.radius
+        return np.linalg.norm(np.asarray(xy) - c, axis=-1) - self.surface_radius(self.angle(xy))
 
     def project(self, xy: np.ndarray) -> np.ndarray:
-        """Orthogonal projection Pi onto the roll surface, (3.9)."""
+        """Projection Pi onto the roll surface, (3.9): orthogonal onto the circle; radial onto
+        a flattened roll's surface."""
         c = np.asarray(self.centre)
         d = np.asarray(xy, dtype=float) - c
         r = np.linalg.norm(d, axis=-1, keepdims=True)
-        return c + self.radius * d / r
+        if self.shape is None:
+            return c + self.radius * d / r
+        return c + self.surface_radius(self.angle(xy))[..., None] * d / r
+
+    def tilt(self, xy: np.ndarray) -> np.ndarray:
+        """beta = atan(r'/r): the angle between a flattened roll's normal and the radius
+        (0 when rigid); normal = n0 cos beta - t0 sin beta, tangent = n0 sin beta + t0 cos beta
+        with n0, t0 the circle's."""
+        if self.shape is None:
+            return 0.0 * np.asarray(xy, dtype=float)[..., 0]
+        t = self.angle(xy)
+        return np.arctan2(self.shape.slope(t), self.surface_radius(t))
 
     def angle(self, xy: np.ndarray) -> np.ndarray:
         """Angle from the roll's vertical centre line, positive towards the entry."""
@@ -83,13 +207,26 @@ class RollPass:
         xy = np.asarray(xy, dtype=float)
         cx, cy = self.centre
         t = np.stack([-(xy[..., 1] - cy), xy[..., 0] - cx], axis=-1)
-        return t / np.linalg.norm(t, axis=-1, keepdims=True)
+        t = t / np.linalg.norm(t, axis=-1, keepdims=True)
+        if self.shape is None:
+            return t
+        d = np.asarray(self.centre) - xy
+        n = d / np.linalg.norm(d, axis=-1, keepdims=True)
+        b = self.tilt(xy)[..., None]
+        return n * np.sin(b) + t * np.cos(b)
 
     def normal(self, xy: np.ndarray) -> np.ndarray:
         """Unit normal pointing from the plate into the roll (outward for the plate)."""
         xy = np.asarray(xy, dtype=float)
         d = np.asarray(self.centre) - xy
-        return d / np.linalg.norm(d, axis=-1, keepdims=True)
+        n = d / np.linalg.norm(d, axis=-1, keepdims=True)
+        if self.shape is None:
+            return n
+        cx, cy = self.centre
+        t = np.stack([-(xy[..., 1] - cy), xy[..., 0] - cx], axis=-1)
+        t = t / np.linalg.norm(t, axis=-1, keepdims=True)
+        b = self.tilt(xy)[..., None]
+        return n * np.cos(b) - t * np.sin(b)
 
 
 def auto_contact_size(rp: RollPass) -> float:
