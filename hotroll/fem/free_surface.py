@@ -23,7 +23,7 @@ about 10x per update (measured, docs/theory.md 4b).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -55,26 +55,31 @@ class StripShape:
 
 def roll_height(rp: RollPass, x):
     """Height of the roll surface above the axis at x (lower half of the roll)."""
-    cx, cy = rp.centre
-    return cy - np.sqrt(np.maximum(rp.radius**2 - (np.asarray(x, float) - cx) ** 2, 0.0))
+    return rp.height(x)
 
 
 def roll_slope(rp: RollPass, x: float) -> float:
-    cx, _ = rp.centre
-    return float((x - cx) / np.sqrt(max(rp.radius**2 - (x - cx) ** 2, 1e-300)))
+    """d(roll height)/dx at x: the circle's; a flattened roll's by a central difference."""
+    if rp.shape is None:
+        cx, _ = rp.centre
+        return float((x - cx) / np.sqrt(max(rp.radius**2 - (x - cx) ** 2, 1e-300)))
+    dx = 1e-6 * rp.contact_length
+    return float((rp.height(x + dx) - rp.height(x - dx)) / (2.0 * dx))
 
 
 class StripMap:
     """All P2 nodes of the reference strip mesh and their map onto a ``StripShape``."""
 
     def __init__(self, rp: RollPass, mesh, n_scalar: int, d_ref: np.ndarray, x_in: float):
-        self.rp = rp
+        # the reference mesh's roll (a flattened roll's surface moves; the reference does not)
+        self.rp = rp if rp.shape is None else replace(rp, shape=rp.shape.copy())
         self.nodes = P2Nodes(mesh, n_scalar)
         self.P = self.nodes.X0 + self.nodes.values(d_ref).T     # reference positions
         X = self.P[:, 0]
         on_arc = (X > rp.x_touch) & (X < rp.axis_x)
         self.H_ref = np.where(X >= rp.axis_x, rp.half_exit, rp.half_entry)
         self.H_ref[on_arc] = roll_height(rp, X[on_arc])
+        self.roll = rp           # the roll now (its surface, if flattened, moves)
         # the stretch acts between x_a (half a contact length before the bite) and X_roll
         self.x_a = max(rp.x_touch - 0.5 * rp.contact_length, 0.5 * (x_in + rp.x_touch))
 
@@ -96,7 +101,7 @@ class StripMap:
         """Coefficient vector of the P2 displacement that maps the reference mesh onto ``shape``."""
         rp, X = self.rp, self.P[:, 0]
         x = self.stretch(X, shape.x_c)
-        H = roll_height(rp, x)
+        H = roll_height(self.roll, x)
         ent, ex = X < rp.x_touch, X > rp.axis_x
         H[ent] = np.interp(x[ent], shape.entry_x, shape.entry_y)
         H[ex] = np.interp(x[ex], shape.exit_x, shape.exit_y)

@@ -38,11 +38,10 @@ def plate_geometry(rp: RollPass, length: float):
 
 def top_height(rp: RollPass, x: np.ndarray) -> np.ndarray:
     """Height of the top boundary in the maximum-contact shape: flat, the roll arc, flat."""
-    cx, cy = rp.centre
     x = np.asarray(x, dtype=float)
     on_arc = (x > rp.x_touch) & (x < rp.axis_x)
     y = np.where(x >= rp.axis_x, rp.half_exit, rp.half_entry)
-    y[on_arc] = cy - np.sqrt(np.maximum(rp.radius**2 - (x[on_arc] - cx) ** 2, 0.0))
+    y[on_arc] = rp.height(x[on_arc])
     return y
 
 
@@ -59,7 +58,7 @@ def _strip_geometry(rp: RollPass, x0: float, x1: float):
     Edges named ``sym`` (y = 0), ``in`` (x = x0), ``out`` (x = x1), ``top`` (flat entry),
     ``arc`` and ``exit`` (flat top after the gap).
     """
-    from netgen.occ import ArcOfCircle, Face, OCCGeometry, Pnt, Segment, Wire
+    from netgen.occ import ArcOfCircle, Face, OCCGeometry, Pnt, Segment, SplineInterpolation, Wire
 
     cx, cy = rp.centre
     xt, h0, h1, R = rp.x_touch, rp.half_entry, rp.half_exit, rp.radius
@@ -67,8 +66,14 @@ def _strip_geometry(rp: RollPass, x0: float, x1: float):
     gap = [(x1, h1)] + ([(rp.axis_x, h1)] if x1 > rp.axis_x else [])
     P = [Pnt(x, y, 0) for x, y in [(x0, 0), (x1, 0), *gap, (xt, h0), (x0, h0)]]
     arc = len(P) - 3     # from the gap point at X_roll to the touching point
-    edges = [ArcOfCircle(P[i], Pnt(cx + R * math.cos(am), cy + R * math.sin(am), 0), P[i + 1])
-             if i == arc else Segment(P[i], P[(i + 1) % len(P)]) for i in range(len(P))]
+    if rp.shape is None:
+        roll = ArcOfCircle(P[arc], Pnt(cx + R * math.cos(am), cy + R * math.sin(am), 0), P[arc + 1])
+    else:       # a flattened roll: a spline through its surface from the gap to the touch
+        xs = rp.axis_x + (xt - rp.axis_x) * np.linspace(0.0, 1.0, 41)
+        ys = rp.height(xs)
+        ys[0], ys[-1] = h1, h0
+        roll = SplineInterpolation([Pnt(float(a), float(b), 0) for a, b in zip(xs, ys)])
+    edges = [roll if i == arc else Segment(P[i], P[(i + 1) % len(P)]) for i in range(len(P))]
     face = Face(Wire(edges))
     # name the edges of the face itself (names on the input segments are not kept)
     scale = max(1.0, x1 - x0)

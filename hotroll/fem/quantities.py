@@ -172,8 +172,12 @@ def integrals(form: RollingForm, K: float) -> dict:
         "penalty_power": K * (free_pen + face_pen + contact_pen),
         "contact_penalty_power": K * contact_pen,
         "outlet_penalty_power": K * outlet_pen,
-        "roll_power": K * form.integrate_friction(chi * (-kf * s) * U),
-        "roll_torque": K * form.integrate_friction(chi * (-kf * s) * r),
+        # the shear's power at the rim's speed (the pressure does no work on the turning roll)
+        # and the torque that supplies it, power / omega: r = R on the circle; R (1 + e_tt)
+        # on a flattened roll (its rim keeps its centre distance ~R and its hoop strain)
+        "roll_power": K * form.integrate_friction(chi * (-kf * s) * form.roll_speed()),
+        "roll_torque": K * form.integrate_friction(
+            chi * (-kf * s) * (r if form.roll_hoop is None else form.roll_speed() / rp.omega)),
         # power of the tensions' traction sigma n on the plate (back: < 0, front: > 0)
         "tension_power": K * (bnd(form.tension_back * (u * nh), mesh.Boundaries("in"))
                               + bnd(form.tension_front * (u * nh), mesh.Boundaries("out"))),

@@ -162,20 +162,45 @@ class RollingForm:
         # back / front tension over K (reduced, like every stress in the form)
         self.tension_back, self.tension_front = Parameter(tensions[0]), Parameter(tensions[1])
         self.top_elements = _elements_on(mesh, TOP) if friction.uses_k else None
+        # a flattened roll (rp.shape): its normal's tilt from the radius and its rim's hoop
+        # strain at the mesh vertices (P1; set_roll_shape), read on the arc
+        self.roll_tilt = self.roll_hoop = None
+        if rp.shape is not None:
+            from ngsolve import H1
+
+            P1 = H1(mesh, order=1)
+            self.roll_tilt, self.roll_hoop = GridFunction(P1), GridFunction(P1)
         self.nonlinear = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll,
                                         jacobian=self.jacobian,
                                         pressure_row_scale=self.mu_ref)
 
+    def set_roll_shape(self, vertices) -> None:
+        """The flattened roll's tilt and hoop strain at the mesh vertices ``vertices`` (their
+        current positions, m; one row per vertex)."""
+        rp = self.rp
+        self.roll_tilt.vec.FV().NumPy()[:] = rp.tilt(vertices)
+        self.roll_hoop.vec.FV().NumPy()[:] = rp.shape.strain(rp.angle(vertices))
+
     # --- geometry of the roll as coefficient functions ------------------------------------
     def roll_frame(self):
-        """(n, t): roll normal (out of the plate, into the roll) and tangent along U_roll."""
-        from ngsolve import CF, sqrt, x, y
+        """(n, t): roll normal (out of the plate, into the roll) and tangent along U_roll; a
+        flattened roll's turned by its tilt b: (cos b n0 - sin b t0, sin b n0 + cos b t0)."""
+        from ngsolve import CF, cos, sin, sqrt, x, y
 
         cx, cy = self.rp.centre
         r = sqrt((x - cx) ** 2 + (y - cy) ** 2)
         n = CF(((cx - x) / r, (cy - y) / r))
         t = CF((-(y - cy) / r, (x - cx) / r))
-        return n, t
+        if self.roll_tilt is None:
+            return n, t
+        b = self.roll_tilt
+        return cos(b) * n - sin(b) * t, sin(b) * n + cos(b) * t
+
+    def roll_speed(self):
+        """|U_roll|: omega R, times (1 + e_tt) on a flattened roll's rim."""
+        if self.roll_hoop is None:
+            return self.rp.u_roll
+        return self.rp.u_roll * (1.0 + self.roll_hoop)
 
     def free_normal(self, u):
         """u.n on the free top for (3.2d): the mesh normal before the gap, the normal of the
@@ -189,7 +214,7 @@ class RollingForm:
     def slip(self, u):
         """Scalar slip v_s . t = u.t - |U_roll| (2.27); negative where the plate lags the roll."""
         _, t = self.roll_frame()
-        return u * t - self.rp.u_roll
+        return u * t - self.roll_speed()
 
     @property
     def exact(self) -> bool:

@@ -57,6 +57,9 @@ class RollShape:
         """The rim's hoop strain e_tt(theta), -."""
         return self._hoop(self._clip(theta))
 
+    def copy(self) -> "RollShape":
+        return RollShape(self.theta, self.w, self.hoop)
+
     @property
     def max_offset(self) -> float:
         return float(np.max(np.abs(self.w)))

@@ -362,6 +362,8 @@ class SteadyRun:
         self.d[:] = self.map.displacement(self.shape)
         self._set_contact()
         self.mesh.SetDeformation(self.disp)
+        if self.form.roll_tilt is not None:       # a flattened roll's frame at the new nodes
+            self.form.set_roll_shape(self.top.vertex_positions(self.d, np.arange(self.mesh.nv)))
 
     def _kinematic_guess(self) -> None:
         """Divergence-free slab flow through the strip: v_x = q / H(x), v_y = v_x y H'(x) / H(x)
