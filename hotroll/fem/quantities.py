@@ -141,7 +141,6 @@ def integrals(form: RollingForm, K: float) -> dict:
     s = form.slip(u)
     kf = form.friction_coefficient(u)
     gam = pen.surface(x, rp.soft_zone)
-    U = rp.u_roll
     eps = strain_rate(u)
     e2 = edot_squared(eps)
     mu = form.material.viscosity(e2, m=form.m_material, K=form.consistency)
