@@ -127,3 +127,100 @@ class ElasticDisc:
             values = np.fft.irfft(spec, N)
             out[key] = np.interp(at, np.append(grid, math.pi), np.append(values, values[0]))
         return out
+
+
+ROLL_MODELS = ("rigid", "hitchcock", "elastic")
+
+
+class FlatteningRoll:
+    """The flattening work roll of one pass: its surface (``RollShape``, shared with the
+    ``RollPass`` the solver uses) updated in place from the contact tractions of the current
+    strip solution, with under-relaxation.
+
+    - ``"hitchcock"``: the circle of radius R' = R (1 + C F'/dh) through the gap (F' the roll
+      force per unit width from the pressure and shear, dh = h0 - h1);
+    - ``"elastic"``: the rim of the elastic disc (``ElasticDisc``) under the nodal pressure and
+      shear, its constant part (the approach) dropped so that the surface's lowest point stays
+      at the gap.
+    """
+
+    def __init__(self, rp, kind: str, elasticity: RollElasticity = RollElasticity(),
+                 relaxation: float = 1.0, points: int = 240):
+        from hotroll.model.geometry import RollShape
+
+        if kind not in ("hitchcock", "elastic"):
+            raise ValueError(f"roll.model must be 'hitchcock' or 'elastic' here, not {kind!r}")
+        if not 0.0 < relaxation <= 1.0:
+            raise ValueError(f"roll.relaxation must be in (0, 1], not {relaxation}")
+        if rp.shape is None:
+            raise ValueError("the pass's RollPass needs a RollShape to flatten")
+        self.rp, self.kind, self.elasticity, self.relaxation = rp, kind, elasticity, relaxation
+        self.disc = ElasticDisc(rp.radius, elasticity)
+        self.points = points
+        self.shape: RollShape = rp.shape
+        self.updates = 0
+
+    @classmethod
+    def start(cls, rp, kind: str, elasticity: RollElasticity = RollElasticity(),
+              relaxation: float = 1.0, force_per_width: float | None = None):
+        """A RollPass with a shape (Hitchcock's circle for ``force_per_width``, else the rigid
+        circle) and the FlatteningRoll that updates it."""
+        from dataclasses import replace
+
+        from hotroll.model.geometry import RollShape
+
+        ratio = 1.0
+        if force_per_width is not None:
+            ratio = elasticity.hitchcock_ratio(force_per_width, 2.0 * rp.draft)
+        theta = cls.table(rp, math.sqrt(ratio) * rp.bite_angle)
+        shaped = replace(rp, shape=RollShape.circle(rp.radius, ratio * rp.radius, theta))
+        return shaped, cls(shaped, kind, elasticity, relaxation)
+
+    @staticmethod
+    def table(rp, bite: float, points: int = 240) -> np.ndarray:
+        """The shape's angles: from half a bite angle past the gap to 2.5 bite angles."""
+        return np.linspace(-0.5 * bite, 2.5 * bite, points)
+
+    def target(self, theta, pressure, shear, force=None) -> tuple[np.ndarray, np.ndarray,
+                                                                    np.ndarray]:
+        """(angles, w, hoop strain) of the roll under the nodal tractions (Pa) at the contact
+        angles ``theta`` (increasing); Hitchcock's takes the roll force per unit width ``force``
+        (N/m; default: the tractions' resultant)."""
+        from hotroll.model.geometry import RollShape
+
+        rp = self.rp
+        grid = self.table(rp, max(rp.bite_angle, float(np.max(theta))), self.points)
+        if self.kind == "hitchcock":
+            if force is None:
+                force = self.force_per_width(theta, pressure, shear)
+            ratio = max(1.0, self.elasticity.hitchcock_ratio(force, 2.0 * rp.draft))
+            circle = RollShape.circle(rp.radius, ratio * rp.radius, grid)
+            return grid, circle.w, np.zeros_like(grid)
+        out = self.disc.rim(theta, pressure, shear, at=grid)
+        w = out["u_r"]
+        R, c = rp.radius, 0.0
+        for _ in range(20):     # the lowest point at the gap: max (R + w - c) cos t = R
+            step = float(np.max((R + w - c) * np.cos(grid))) - R
+            c += step
+            if abs(step) < 1e-15 * R:
+                break
+        return grid, w - c, out["hoop"]
+
+    def force_per_width(self, theta, pressure, shear) -> float:
+        """The roll force per unit width of the tractions: the vertical resultant of the
+        pressure (along the radius, to first order in the tilt) and the shear (along e_t =
+        (-cos t, sin t)) on the arc."""
+        R = self.rp.radius
+        fy = pressure * np.cos(theta) + shear * np.sin(theta)
+        return float(np.sum(0.5 * (fy[1:] + fy[:-1]) * np.diff(theta))) * R
+
+    def update(self, theta, pressure, shear, force=None) -> float:
+        """One relaxed update of the shape; the largest change of the surface (m)."""
+        grid, w, hoop = self.target(np.asarray(theta, float), np.asarray(pressure, float),
+                                    np.asarray(shear, float), force)
+        old = self.shape.offset(grid)
+        new = old + self.relaxation * (w - old)
+        old_hoop = self.shape.strain(grid)
+        self.shape.set(grid, new, old_hoop + self.relaxation * (hoop - old_hoop))
+        self.updates += 1
+        return float(np.max(np.abs(new - old)))

@@ -109,3 +109,29 @@ class FreeSurface(Coupling):
         moved = self.trace()
         result.surface_moves.append(moved)
         return moved / self.tol
+
+
+class RollFlattening(Coupling):
+    """The flattening work roll (``model/roll_elastic.py``): its surface moved by the contact
+    tractions of the current flow (``loads``: angles, pressure, shear in Pa), then the strip's
+    roll frame and mesh follow (``apply``); the change is the surface's largest move in units
+    of ``tol`` (m)."""
+
+    name = "roll"
+    #: moved only once the flow's other couplings are within 10 tolerances of their fixed
+    #: point: the tractions of an unsettled flow (a_f far off) would throw the roll far off
+    after_others = 10.0
+
+    def __init__(self, roll, loads: Callable[[], tuple], apply: Callable[[], None], tol: float):
+        self.roll, self.loads, self.apply, self.tol = roll, loads, apply, tol
+        self.moves: list[float] = []
+
+    def update(self, result) -> float:
+        moved = self.roll.update(*self.loads())
+        self.moves.append(moved)
+        self.apply()
+        return moved / self.tol
+
+    def advance(self, dt: float) -> None:
+        self.roll.update(*self.loads())
+        self.apply()

@@ -35,6 +35,8 @@ class Problem:
     thermal: tuple | None = None  # (ThermalProperties, ThermalBoundary, strip mesh refinement)
     strain_profile: object = None  # the inlet's strain over the half thickness (a
                                    # process.profile.ThicknessProfile; steady solver), or None
+    roll: object = None            # a flattening roll (model/roll_elastic.FlatteningRoll) whose
+                                   # shape rp holds, or None: the rigid roll
 
     @property
     def v_reg(self) -> float:

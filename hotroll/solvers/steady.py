@@ -294,11 +294,33 @@ class SteadyRun:
             out.append(C.AfEstimate(self.form.a_f, self._estimate_a_f, s.a_f_rtol))
         if s.free_surface == "traced":
             out.append(C.FreeSurface(self.update_surface, s.surface_tol * self.problem.h))
+        if self.problem.roll is not None:
+            out.append(C.RollFlattening(self.problem.roll, self._roll_loads, self._set_shape,
+                                        s.roll_tol * self.problem.rp.half_exit))
         return out
 
+    def _roll_loads(self) -> tuple:
+        """The contact tractions on the roll (angles increasing; pressure and shear, Pa) and
+        the roll force per unit width (N/m) of the form."""
+        K = self.problem.material.K
+        prof = Q.contact_profile(self.form, self.top, self.d, K)
+        order = np.argsort(prof["angle"])
+        force = -Q.force_balance(self.form, K)["roll_force_y"]
+        return (prof["angle"][order], -prof["normal_stress"][order],
+                prof["shear_stress"][order], force)
+
     def _update_coupled(self, res: SteadyResult) -> float:
-        """One update of every coupling; the largest change in units of its tolerance."""
-        return max((c.update(res) for c in self.couplings), default=0.0)
+        """One update of every coupling; the largest change in units of its tolerance. A
+        coupling with ``after_others`` waits (its change counts as infinite) until the others
+        before it have changed by at most that many tolerances."""
+        changes: list[float] = []
+        for c in self.couplings:
+            wait = getattr(c, "after_others", None)
+            if wait is not None and max(changes, default=0.0) > wait:
+                changes.append(math.inf)
+                continue
+            changes.append(c.update(res))
+        return max(changes, default=0.0)
 
     def _set_contact(self) -> None:
         """The contact edges: arc edges with both vertices active (all of the arc without an
