@@ -170,6 +170,7 @@ class RollingForm:
 
             P1 = H1(mesh, order=1)
             self.roll_tilt, self.roll_hoop = GridFunction(P1), GridFunction(P1)
+            self.roll_cx = Parameter(rp.centre[0])     # moves with the lowest point
         self.nonlinear = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll,
                                         jacobian=self.jacobian,
                                         pressure_row_scale=self.mu_ref)
@@ -178,6 +179,7 @@ class RollingForm:
         """The flattened roll's tilt and hoop strain at the mesh vertices ``vertices`` (their
         current positions, m; one row per vertex)."""
         rp = self.rp
+        self.roll_cx.Set(rp.centre[0])
         self.roll_tilt.vec.FV().NumPy()[:] = rp.tilt(vertices)
         self.roll_hoop.vec.FV().NumPy()[:] = rp.shape.strain(rp.angle(vertices))
 
@@ -188,6 +190,8 @@ class RollingForm:
         from ngsolve import CF, cos, sin, sqrt, x, y
 
         cx, cy = self.rp.centre
+        if self.roll_tilt is not None:
+            cx = self.roll_cx
         r = sqrt((x - cx) ** 2 + (y - cy) ** 2)
         n = CF(((cx - x) / r, (cy - y) / r))
         t = CF((-(y - cy) / r, (x - cx) / r))

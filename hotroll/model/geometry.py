@@ -36,6 +36,7 @@ class RollShape:
         if np.any(np.diff(theta) <= 0.0):
             raise ValueError("a roll shape's angles must increase")
         self.theta, self.w, self.hoop = theta.copy(), w.copy(), hoop.copy()
+        self._lowest: tuple | None = None
         self._w = CubicSpline(theta, w, bc_type="clamped")
         self._dw = self._w.derivative()
         self._hoop = CubicSpline(theta, hoop, bc_type="clamped")
@@ -56,6 +57,21 @@ class RollShape:
     def strain(self, theta):
         """The rim's hoop strain e_tt(theta), -."""
         return self._hoop(self._clip(theta))
+
+    def lowest(self, radius: float) -> tuple[float, float]:
+        """(t_min, r(t_min)): the angle of the surface's lowest point, where (R + w) cos t is
+        largest (cached until the shape changes)."""
+        if self._lowest is None or self._lowest[0] != radius:
+            from scipy.optimize import minimize_scalar
+
+            t = self.theta
+            i = int(np.argmax((radius + self.w) * np.cos(t)))
+            lo, hi = t[max(i - 1, 0)], t[min(i + 1, len(t) - 1)]
+            res = minimize_scalar(lambda a: -(radius + float(self.offset(a))) * math.cos(a),
+                                  bounds=(lo, hi), method="bounded",
+                                  options={"xatol": 1e-13 * max(1.0, abs(hi - lo))})
+            self._lowest = (radius, float(res.x), radius + float(self.offset(res.x)))
+        return self._lowest[1], self._lowest[2]
 
     def copy(self) -> "RollShape":
         return RollShape(self.theta, self.w, self.hoop)
@@ -88,7 +104,12 @@ class RollPass:
 
     @property
     def centre(self) -> tuple[float, float]:
-        return (self.axis_x, self.half_exit + self.radius)
+        """The roll's axis: at X_roll, the gap plus R above the axis; a flattened roll's is
+        shifted in x so that its surface's lowest point (the gap) is at X_roll."""
+        if self.shape is None:
+            return (self.axis_x, self.half_exit + self.radius)
+        t, r = self.shape.lowest(self.radius)
+        return (self.axis_x + r * math.sin(t), self.half_exit + self.radius)
 
     @property
     def u_roll(self) -> float:
@@ -106,7 +127,7 @@ class RollPass:
         if self.shape is None:
             return self.axis_x - math.sqrt(self.radius**2 - (cy - self.half_entry) ** 2)
         t = self.bite_angle
-        return self.axis_x - float(self.surface_radius(t)) * math.sin(t)
+        return self.centre[0] - float(self.surface_radius(t)) * math.sin(t)
 
     @property
     def contact_length(self) -> float:
