@@ -29,6 +29,7 @@ from hotroll.config.sections import (  # noqa: F401 (re-exported)
     OutputConfig,
     PassConfig,
     PlateConfig,
+    RollConfig,
     SolverConfig,
     check_profile,
 )
@@ -54,6 +55,8 @@ class Case(Section):
     contact: ContactConfig = Field(default_factory=ContactConfig,
                                    description="roll contact formulation")
     output: OutputConfig = Field(default_factory=OutputConfig, description="output switches")
+    roll: RollConfig = Field(default_factory=RollConfig,
+                             description="the work roll: rigid, Hitchcock's flattening or elastic")
     thermal: ThermalConfig | None = Field(
         None, description="heat sources and losses; present: the coupled thermo-mechanical "
         "problem, absent: isothermal at plate.temperature")

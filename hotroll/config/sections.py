@@ -221,6 +221,25 @@ class ContactConfig(Section):
         return "multiplier" if solver_method == "steady" else "penalty"
 
 
+class RollConfig(Section):
+    """The work roll's elasticity (docs/theory.md 1f)."""
+
+    model: Literal["rigid", "hitchcock", "elastic"] = field(
+        "rigid", "the work roll: rigid; flattened by Hitchcock's formula (a circle of radius R' "
+        "through the gap); or elastic (the plane-strain disc under the computed contact "
+        "pressure and shear, its surface iterated with the strip)", "",
+        '"rigid", "hitchcock" or "elastic"')
+    youngs_modulus: PosFloat = field(210e9, "the roll's Young's modulus (steel 210e9)", "Pa",
+                                     "> 0", gt=0)
+    poissons_ratio: float = field(0.3, "the roll's Poisson's ratio (steel 0.3)", "",
+                                  ">= 0 and < 0.5", ge=0.0, lt=0.5)
+    relaxation: float = field(1.0, "the share of each surface update taken (under-relaxation)",
+                              "", "> 0 and <= 1", gt=0.0, le=1.0)
+    tolerance: float = field(1e-4, "the roll has settled when its surface moves less than this "
+                             "x the exit half-thickness per update", "", "> 0 and < 1",
+                             gt=0.0, lt=1.0)
+
+
 class OutputConfig(Section):
     figures: bool = field(True, "write figures", "", "true or false")
     vtk: bool = field(True, "write VTK files", "", "true or false")

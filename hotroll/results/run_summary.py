@@ -133,6 +133,25 @@ def _nanmean(values) -> float:
     return float(vals.mean()) if len(vals) else math.nan
 
 
+def roll_figures(case: Case, run, prof: dict) -> dict:
+    """A flattening roll's figures (m): the surface's largest offset w over the contact and
+    the radius of the circle fitted to it there; {} for a rigid roll."""
+    roll = getattr(run.problem, "roll", None)
+    if roll is None:
+        return {}
+    rp = run.problem.rp
+    ang = np.asarray(prof["angle"], dtype=float)
+    lo, hi = (float(ang.min()), float(ang.max())) if len(ang) else (0.0, rp.bite_angle)
+    t = np.linspace(lo, hi, 101)
+    r = rp.surface_radius(t)
+    X, Y = -r * np.sin(t), -r * np.cos(t)
+    c = np.linalg.lstsq(np.c_[X, Y, np.ones_like(X)], X**2 + Y**2, rcond=None)[0]
+    return {"roll_model": case.roll.model,
+            "roll_flattening": float(np.max(rp.shape.offset(t))),
+            "roll_equivalent_radius": float(np.sqrt(c[2] + (c[0] / 2) ** 2 + (c[1] / 2) ** 2)),
+            "roll_updates": roll.updates}
+
+
 def summarise(case: Case, run, prof: dict, wall: float) -> dict:
     """The summary.json dictionary: last-window means and run figures."""
     rp, state, last = run.problem.rp, run.state, run.state.history[-1]
@@ -247,4 +266,5 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
            if case.thermal is not None},
         **({"thermal_dofs": last["thermal_dofs"], "thermal_layer": last["thermal_layer"]}
            if case.thermal is not None else {}),
+        **roll_figures(case, run, prof),
     }

@@ -201,6 +201,16 @@ class Summary(Mapping):
     thermal_dofs: int = _f("-", "thermal unknowns", "the strip mesh's unknowns", when="thermal")
     thermal_layer: float = _f("m", "thermal layer", "the chilled layer's thickness",
                               when="thermal")
+    roll_model: str = _f(None, "roll model", "`hitchcock` or `elastic` (`[roll] model`)",
+                         group="Pass", when="roll")
+    roll_flattening: float = _f("m", "roll flattening", "the largest distance of the flattened "
+                                "surface outside the rigid circle through the gap, over the "
+                                "contact (at its entry)", group="Pass", when="roll")
+    roll_equivalent_radius: float = _f("m", "equivalent roll radius", "R' of the circle that "
+                                       "fits the flattened surface over the contact",
+                                       group="Pass", when="roll")
+    roll_updates: int = _f("-", "roll updates", "the surface's updates in the fixed point",
+                           when="roll")
     estimated_dofs: int = _f(None, "estimated unknowns", "the estimate made before meshing",
                              when="run")
     estimated_memory: float = _f("B", "estimated memory", "the estimate made before meshing",
@@ -283,6 +293,7 @@ class Summary(Mapping):
     def reference_rows(cls) -> list[tuple[str, str, str, str]]:
         """(key, unit, label, meaning with its condition) for docs/reference/summary.md."""
         note = {"thermal": "with `[thermal]`", "width": "with `[pass] width`",
+                "roll": "with `[roll] model` hitchcock or elastic",
                 "run": "written by a run (`hotroll run`, a schedule, a study)"}
         rows = []
         for f in fields(cls):

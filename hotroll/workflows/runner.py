@@ -15,6 +15,7 @@ from typing import Callable
 from hotroll.config.case import Case, CaseError, flat
 from hotroll.fem.mesh import MeshSpec, plate_fine_length
 from hotroll.model.material import NortonHoff
+from hotroll.model.roll_elastic import FlatteningRoll, RollElasticity
 from hotroll.results.figures import plot_all
 from hotroll.results.outcome import CONSERVATION_TOL, conservation_problem, exit_code, leak_to_slip  # noqa: F401 (API)
 from hotroll.results.output import (
@@ -68,6 +69,11 @@ def build_model(case: Case):
                                   case.thermal.mesh_refinement)
                          if case.thermal else None,
                          strain_profile=e_profile)
+    if case.roll.model != "rigid":
+        shaped, roll = FlatteningRoll.start(
+            rp, case.roll.model, RollElasticity(case.roll.youngs_modulus, case.roll.poissons_ratio),
+            case.roll.relaxation)
+        model = replace(model, rp=shaped, roll=roll)
     settings = TransientSettings(
         dt=case.dt, end_time=end_time, nonlinear=sv.nonlinear, tol=sv.tolerance,
         max_it=sv.max_iterations, steady_tol=sv.steady_tolerance, max_steps=sv.max_steps,
@@ -86,7 +92,8 @@ def steady_settings(case: Case):
         a_f=case.friction.a_f_rule,
         a_f_max=case.friction.a_f_max, upstream=sv.steady_entry_length,
         downstream=sv.steady_exit_length, free_surface=case.plate.free_surface,
-        contact=case.contact.resolved(sv.method), unilateral=case.contact.unilateral)
+        contact=case.contact.resolved(sv.method), unilateral=case.contact.unilateral,
+        roll_tol=case.roll.tolerance)
 
 
 def contact_tolerance(rp, dt: float) -> float:
