@@ -65,6 +65,9 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
                                       else prof["normal_stress"])
     prof["normal_stress_smooth"] = Q.smoothed(prof, prof["normal_stress"])
     prof["shear_stress_smooth"] = Q.smoothed(prof, prof["shear_stress"])
+    rp = run.problem.rp
+    if rp.shape is not None:      # a flattened roll: its surface's offset from R there (m)
+        prof["roll_offset"] = np.asarray(rp.shape.offset(prof["angle"]), dtype=float)
     # positions are written where the case puts the roll axis (``frame_shift``: the steady
     # solver works in the roll's frame)
     shift = getattr(run, "frame_shift", 0.0)
