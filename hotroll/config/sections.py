@@ -37,6 +37,10 @@ class PassConfig(Section):
                                   "Pa", ">= 0", ge=0)
     width: PosFloat | None = field(None, "strip width (omit: results per unit width only)", "m",
                                     "> 0")
+    mill_modulus: PosFloat | None = field(
+        None, "the stand's modulus M: its whole force per metre the roll gap opens (hot strip "
+        "finishing stands about 4e9-7e9 N/m); reports the mill stretch F/M and the no-load gap "
+        "to set, exit thickness - F/M (needs width)", "N/m", "> 0")
 
     @model_validator(mode="after")
     def _check_geometry(self) -> PassConfig:
@@ -50,6 +54,9 @@ class PassConfig(Section):
                 f"pass.roll_radius: must exceed the draft per side (entry - exit)/2 = "
                 f"{self.draft:g} m, otherwise the roll cannot bite the plate; allowed: "
                 f"roll_radius > {self.draft:g} m, got {self.roll_radius:g} m")
+        if self.mill_modulus is not None and self.width is None:
+            problems.append("pass.mill_modulus: needs pass.width (the stand carries the whole "
+                            "width's force)")
         if problems:
             raise Problems(problems)
         return self

@@ -41,6 +41,17 @@ def width_totals(summary: dict, width: float | None) -> dict:
             "mill_power": 2.0 * summary["roll_power"] * width}
 
 
+def mill_setup(summary: dict, exit_thickness: float, modulus: float | None) -> dict:
+    """The gaugemeter equation h1 = S + F/M (Weber 1973): the stand's stretch F/M under the
+    whole-width force and the no-load gap S = h1 - F/M to set for the exit thickness h1 (m);
+    {} without a mill modulus."""
+    if modulus is None:
+        return {}
+    stretch = summary["roll_force_total"] / modulus
+    return {"mill_modulus": modulus, "mill_stretch": stretch,
+            "gap_setting": exit_thickness - stretch}
+
+
 def display(key: str, value, unit: str | None = None):
     """(text, unit) for a person: forces in MN/m (MN), torques in kN m/m (kN m), powers in
     kW/m (kW), stresses in MPa, where the magnitude calls for it; SI otherwise. ``unit``: the

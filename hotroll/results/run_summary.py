@@ -11,7 +11,7 @@ import numpy as np
 
 from hotroll.config.case import Case
 from hotroll.fem import quantities as Q
-from hotroll.results.engineering import gap_means, width_totals
+from hotroll.results.engineering import gap_means, mill_setup, width_totals
 from hotroll.results.outcome import conservation_problem, exit_code, leak_to_slip
 from hotroll.results.output import vertex_fields, write_csv, write_json, write_npz, write_vtk
 from hotroll.results.profiles import exit_profiles
@@ -101,6 +101,7 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
     summary["mean_pressure"] = (summary["roll_force"] / summary["contact_length"]
                                 if summary.get("contact_length") else None)
     summary.update(width_totals(summary, case.pass_.width))
+    summary.update(mill_setup(summary, case.pass_.exit_thickness, case.pass_.mill_modulus))
     summary["temperature"] = case.plate.temperature
 
     profile = exit_profiles(run)

@@ -201,6 +201,12 @@ class Summary(Mapping):
     thermal_dofs: int = _f("-", "thermal unknowns", "the strip mesh's unknowns", when="thermal")
     thermal_layer: float = _f("m", "thermal layer", "the chilled layer's thickness",
                               when="thermal")
+    mill_modulus: float = _f("N/m", "mill modulus", "the stand's modulus M (`[pass] "
+                             "mill_modulus`)", group="Pass", when="mill")
+    mill_stretch: float = _f("m", "mill stretch", "F/M: the stand's stretch under the whole "
+                             "width's force", group="Pass", when="mill")
+    gap_setting: float = _f("m", "gap to set", "the no-load roll gap S = h1 - F/M that gives "
+                            "the exit thickness (gaugemeter equation)", group="Pass", when="mill")
     roll_model: str = _f(None, "roll model", "`hitchcock` or `elastic` (`[roll] model`)",
                          group="Pass", when="roll")
     roll_flattening: float = _f("m", "roll flattening", "the largest distance of the flattened "
@@ -294,6 +300,7 @@ class Summary(Mapping):
         """(key, unit, label, meaning with its condition) for docs/reference/summary.md."""
         note = {"thermal": "with `[thermal]`", "width": "with `[pass] width`",
                 "roll": "with `[roll] model` hitchcock or elastic",
+                "mill": "with `[pass] mill_modulus`",
                 "run": "written by a run (`hotroll run`, a schedule, a study)"}
         rows = []
         for f in fields(cls):
