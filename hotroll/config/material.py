@@ -69,7 +69,7 @@ class _MaterialSection(LawSection):
     def problems_at(self, temperature: float, strain: float) -> list[str]:
         """What is wrong with the flow-stress law at the plate's entry state (temperature in K,
         strain): its rate exponent must be in (0, 1] and its consistency K finite and > 0 (the
-        reference Norton-Hoff law of ``runner.reference_material``)."""
+        reference Norton-Hoff law of ``workflows.build.reference_material``)."""
         flow = self.flow_stress()
         m = float(flow.rate_exponent(temperature))
         if not 0.0 < m <= 1.0:

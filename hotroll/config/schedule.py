@@ -9,9 +9,11 @@
     [material]         as in a case (the flow stress and the thermal data)
     [friction]         default of every pass (a pass may give its own table)
     [thermal]          as in a case: roll contact, air; required (a schedule carries T)
+    [roll]             the work rolls of every stand: rigid, hitchcock or elastic (as a case)
     [mesh] [solver] [output]   defaults of every pass's case
-    [[pass]]           roll_radius, exit_thickness, roll_surface_speed or
-                       roll_angular_velocity, back_tension, front_tension, friction, name
+    [[pass]]           roll_radius, exit_thickness (or roll_gap with mill_modulus),
+                       roll_surface_speed or roll_angular_velocity, back_tension,
+                       front_tension, mill_modulus, friction, name
     [pass.transport]   after the pass: duration (s) or distance (m, at the exit speed),
                        htc_air, emissivity (default [thermal]'s), strain_retained
 
@@ -34,6 +36,7 @@ from hotroll.config.case import (
     MaterialConfig,
     MeshConfig,
     OutputConfig,
+    RollConfig,
     SolverConfig,
     case_from_dict,
     check_profile,
@@ -103,8 +106,15 @@ class TransportConfig(Section):
 class PassEntry(Section):
     name: str | None = Field(None, description="pass name (default P1, P2, ...)")
     roll_radius: float = field(..., "roll radius", "m", "> 0", gt=0)
-    exit_thickness: float = field(..., "full exit thickness (the roll gap: rigid rolls)", "m",
-                                   "> 0 and < the entry thickness", gt=0)
+    exit_thickness: PosFloat | None = field(
+        None, "full exit thickness (the roll gap of rigid rolls and a rigid mill); with "
+        "roll_gap: omit, it is found with the force", "m", "> 0 and < the entry thickness")
+    roll_gap: PosFloat | None = field(
+        None, "the no-load roll gap S set on the stand (instead of exit_thickness): the exit "
+        "thickness is S + F/M (needs mill_modulus and strip.width)", "m", "> 0")
+    mill_modulus: PosFloat | None = field(
+        None, "the stand's modulus M (reports the stretch F/M and the gap to set; needs "
+        "strip.width)", "N/m", "> 0")
     roll_surface_speed: PosFloat | None = field(None, "roll surface speed", "m/s", "> 0")
     roll_angular_velocity: PosFloat | None = field(None, "roll angular velocity", "rad/s",
                                                     "> 0")
@@ -113,6 +123,12 @@ class PassEntry(Section):
     friction: FrictionConfig | None = Field(None, description="this pass's friction (omit: "
                                             "the schedule's [friction])")
     transport: TransportConfig | None = Field(None, description="the transport after the pass")
+
+    @property
+    def nominal_exit(self) -> float:
+        """The exit thickness, or the roll gap (m): the pass's thinnest exit, which the
+        checks before a run use."""
+        return self.exit_thickness if self.roll_gap is None else self.roll_gap
 
     def angular_velocity(self) -> float | None:
         if self.roll_angular_velocity is not None:
@@ -129,6 +145,7 @@ class Schedule(Section):
     material: MaterialConfig
     friction: FrictionConfig = Field(default_factory=FrictionConfig)
     thermal: ThermalConfig
+    roll: RollConfig = Field(default_factory=RollConfig)
     mesh: MeshConfig = Field(default_factory=MeshConfig)
     solver: SolverConfig = Field(default_factory=SolverConfig)
     output: OutputConfig = Field(default_factory=OutputConfig)
@@ -139,10 +156,22 @@ class Schedule(Section):
         problems = []
         h = self.strip.thickness
         for k, p in enumerate(self.passes, 1):
-            if p.exit_thickness >= h:
-                problems.append(f"pass[{k}].exit_thickness: must be < the entry thickness "
-                                f"{h:g} m (the previous exit), got {p.exit_thickness:g} m")
-            h = p.exit_thickness
+            if (p.exit_thickness is None) == (p.roll_gap is None):
+                problems.append(f"pass[{k}]: give exactly one of exit_thickness (m) and "
+                                f"roll_gap (m, with mill_modulus)")
+                continue
+            key = "exit_thickness" if p.roll_gap is None else "roll_gap"
+            h1 = getattr(p, key)
+            if h1 >= h:
+                problems.append(f"pass[{k}].{key}: must be < the entry thickness "
+                                f"{h:g} m (the previous {'exit' if k > 1 else 'strip'}"
+                                f"{' or gap' if k > 1 else ''}), got {h1:g} m")
+            h = h1
+            if p.roll_gap is not None and p.mill_modulus is None:
+                problems.append(f"pass[{k}].roll_gap: needs pass[{k}].mill_modulus (N/m)")
+            if p.mill_modulus is not None and self.strip.width is None:
+                problems.append(f"pass[{k}].mill_modulus: needs strip.width (the stand "
+                                f"carries the whole width's force)")
             speed = [x for x in (p.roll_surface_speed, p.roll_angular_velocity) if x is not None]
             if self.mill.speeds == "given" or k == 1:
                 if len(speed) != 1:
@@ -172,11 +201,11 @@ class Schedule(Section):
         ``process.profile.ThicknessProfile`` or None)."""
         p = self.passes[k]
         omega = angular_velocity if angular_velocity is not None else p.angular_velocity()
-        lc = (p.roll_radius * 0.5 * (entry_thickness - p.exit_thickness)) ** 0.5
+        lc = (p.roll_radius * 0.5 * (entry_thickness - p.nominal_exit)) ** 0.5
         d = {
             "name": f"{k + 1:02d}_{self.pass_name(k)}",
             "pass": {"roll_radius": p.roll_radius, "entry_thickness": entry_thickness,
-                     "exit_thickness": p.exit_thickness, "roll_angular_velocity": omega,
+                     "roll_angular_velocity": omega,
                      "back_tension": p.back_tension, "front_tension": p.front_tension},
             "plate": {"length": PLATE_CONTACT_LENGTHS * lc, "temperature": temperature,
                       "entry_strain": strain},
@@ -186,7 +215,11 @@ class Schedule(Section):
             "solver": self.solver.model_dump(exclude_none=True),
             "output": self.output.model_dump(exclude_none=True),
             "thermal": self.thermal.model_dump(exclude_none=True),
+            "roll": self.roll.model_dump(exclude_none=True),
         }
+        for key in ("exit_thickness", "roll_gap", "mill_modulus"):
+            if getattr(p, key) is not None:
+                d["pass"][key] = getattr(p, key)
         if self.strip.width is not None:
             d["pass"]["width"] = self.strip.width
         if temperature_profile is not None:
@@ -212,13 +245,13 @@ class Schedule(Section):
             omega = p.angular_velocity()
             if omega is None:      # mass_flow: a volume-constant guess (checks only)
                 omega = omega1 * self.passes[0].roll_radius / p.roll_radius * \
-                    self.passes[0].exit_thickness / p.exit_thickness
+                    self.passes[0].nominal_exit / p.nominal_exit
             try:
                 cases.append(self.pass_case(k, h, self.strip.temperature, None,
                                             self.strip.strain, None, omega))
             except CaseError as e:
                 problems += [q for q in e.problems if q not in problems]
-            h = p.exit_thickness
+            h = p.nominal_exit
         if problems:
             raise CaseError(problems, "schedule")
         return cases

@@ -25,8 +25,10 @@ class PassConfig(Section):
                                 le=MAX_LENGTH)
     entry_thickness: float = field(..., "full plate thickness at entry", "m",
                                     f"> 0 and <= {MAX_LENGTH:g}", gt=0, le=MAX_LENGTH)
-    exit_thickness: float = field(..., "full plate thickness at exit (roll gap)", "m",
-                                   "> 0 and < entry_thickness", gt=0)
+    exit_thickness: float = field(
+        ..., "full plate thickness at exit (the roll gap of rigid rolls and a rigid mill); "
+        "with roll_gap: the first guess of it (omit: roll_gap)", "m",
+        "> 0 and < entry_thickness", gt=0)
     roll_angular_velocity: float = field(..., "roll angular velocity omega", "rad/s", "> 0", gt=0)
     roll_axis_x: float = field(1.0, "x of the roll centre (initial plate head position)", "m",
                                 f"in [-{MAX_LENGTH:g}, {MAX_LENGTH:g}]", ge=-MAX_LENGTH,
@@ -41,6 +43,20 @@ class PassConfig(Section):
         None, "the stand's modulus M: its whole force per metre the roll gap opens (hot strip "
         "finishing stands about 4e9-7e9 N/m); reports the mill stretch F/M and the no-load gap "
         "to set, exit thickness - F/M (needs width)", "N/m", "> 0")
+    roll_gap: PosFloat | None = field(
+        None, "the no-load roll gap S set on the stand: the exit thickness is then found with "
+        "the force, h1 = S + F/M (gaugemeter; needs mill_modulus, steady solver)", "m",
+        "> 0 and < entry_thickness")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _gap_guess(cls, data: Any) -> Any:
+        """With a roll gap and no exit thickness, the first guess is the gap (the geometry
+        the case is checked with: the largest draft the stand can give)."""
+        if isinstance(data, dict) and data.get("roll_gap") is not None \
+                and data.get("exit_thickness") is None:
+            data = {**data, "exit_thickness": data["roll_gap"]}
+        return data
 
     @model_validator(mode="after")
     def _check_geometry(self) -> PassConfig:
@@ -54,6 +70,13 @@ class PassConfig(Section):
                 f"pass.roll_radius: must exceed the draft per side (entry - exit)/2 = "
                 f"{self.draft:g} m, otherwise the roll cannot bite the plate; allowed: "
                 f"roll_radius > {self.draft:g} m, got {self.roll_radius:g} m")
+        if self.roll_gap is not None:
+            if self.roll_gap >= self.entry_thickness:
+                problems.append(f"pass.roll_gap: must be smaller than pass.entry_thickness "
+                                f"({self.entry_thickness:g} m), got {self.roll_gap:g} m")
+            if self.mill_modulus is None:
+                problems.append("pass.roll_gap: needs pass.mill_modulus (N/m) and pass.width "
+                                "(m): the exit thickness is the gap plus the stretch F/M")
         if self.mill_modulus is not None and self.width is None:
             problems.append("pass.mill_modulus: needs pass.width (the stand carries the whole "
                             "width's force)")

@@ -138,8 +138,9 @@ def _nanmean(values) -> float:
 
 
 def roll_figures(case: Case, run, prof: dict) -> dict:
-    """A flattening roll's figures (m): the surface's largest offset w over the contact and
-    the radius of the circle fitted to it there; {} for a rigid roll."""
+    """A flattening roll's figures (m): the flattening (how far the flattened surface lies
+    below the rigid roll through the same gap, largest over the contact: at its entry) and the
+    radius of the circle fitted to the surface over the contact; {} for a rigid roll."""
     roll = getattr(run.problem, "roll", None)
     if roll is None:
         return {}
@@ -151,9 +152,19 @@ def roll_figures(case: Case, run, prof: dict) -> dict:
     X, Y = -r * np.sin(t), -r * np.cos(t)
     c = np.linalg.lstsq(np.c_[X, Y, np.ones_like(X)], X**2 + Y**2, rcond=None)[0]
     return {"roll_model": case.roll.model,
-            "roll_flattening": float(np.max(rp.shape.offset(t))),
+            "roll_flattening": flattening(rp, float(np.min(X)) + rp.centre[0]),
             "roll_equivalent_radius": float(np.sqrt(c[2] + (c[0] / 2) ** 2 + (c[1] / 2) ** 2)),
             "roll_updates": roll.updates}
+
+
+def flattening(rp, x_start: float) -> float:
+    """max over [x_start, X_roll] of (rigid roll's height - flattened surface's height), m:
+    the rigid roll of radius R touching the same lowest point (the gap at X_roll). For
+    Hitchcock's circle R' it is about l^2 (1/R - 1/R') / 2, l the contact length."""
+    x = np.linspace(x_start, rp.axis_x, 201)
+    R = rp.radius
+    rigid = rp.half_exit + R - np.sqrt(np.maximum(R**2 - (x - rp.axis_x) ** 2, 0.0))
+    return float(np.max(rigid - rp.height(x)))
 
 
 def summarise(case: Case, run, prof: dict, wall: float) -> dict:

@@ -207,10 +207,19 @@ class Summary(Mapping):
                              "width's force", group="Pass", when="mill")
     gap_setting: float = _f("m", "gap to set", "the no-load roll gap S = h1 - F/M that gives "
                             "the exit thickness (gaugemeter equation)", group="Pass", when="mill")
+    roll_gap: float = _f("m", "roll gap set", "the no-load gap S given (`[pass] roll_gap`); the "
+                         "exit thickness h1 = S + F/M was found with the force", group="Pass",
+                         when="gap")
+    gauge_thickness: float = _f("m", "exit thickness from the gap", "h1 = S + F/M, the pass's "
+                                "exit thickness the search found (the measured one: "
+                                "`exit_thickness`)", group="Pass", when="gap")
+    gauge_solves: int = _f(None, "FE solves for the gap", "solves of the pass at trial exit "
+                           "thicknesses until h1 - S - F/M <= 1e-4 S", group="Solver",
+                           when="gap")
     roll_model: str = _f(None, "roll model", "`hitchcock` or `elastic` (`[roll] model`)",
                          group="Pass", when="roll")
-    roll_flattening: float = _f("m", "roll flattening", "the largest distance of the flattened "
-                                "surface outside the rigid circle through the gap, over the "
+    roll_flattening: float = _f("m", "roll flattening", "how far the flattened surface lies "
+                                "below the rigid roll through the same gap: largest over the "
                                 "contact (at its entry)", group="Pass", when="roll")
     roll_equivalent_radius: float = _f("m", "equivalent roll radius", "R' of the circle that "
                                        "fits the flattened surface over the contact",
@@ -301,6 +310,7 @@ class Summary(Mapping):
         note = {"thermal": "with `[thermal]`", "width": "with `[pass] width`",
                 "roll": "with `[roll] model` hitchcock or elastic",
                 "mill": "with `[pass] mill_modulus`",
+                "gap": "with `[pass] roll_gap`",
                 "run": "written by a run (`hotroll run`, a schedule, a study)"}
         rows = []
         for f in fields(cls):

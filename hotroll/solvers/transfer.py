@@ -28,10 +28,12 @@ from hotroll.fem.free_surface import StripShape, roll_height
 
 
 def _knots(run) -> np.ndarray:
-    """The strip's knots in x: inlet, touching point, roll gap, outlet (reference mesh)."""
+    """The strip's knots in x: inlet, touching point, roll gap, outlet (the inlet and outlet
+    of the reference mesh: a flattened roll touches the strip further upstream than the roll
+    the mesh was made for)."""
     rp = run.problem.rp
-    return np.array([rp.x_touch - run.upstream, rp.x_touch, rp.axis_x,
-                     rp.axis_x + run.downstream])
+    x = run.top.X0[run.top.verts][:, 0]
+    return np.array([float(np.min(x)), rp.x_touch, rp.axis_x, float(np.max(x))])
 
 
 def knot_map(x, a: np.ndarray, b: np.ndarray) -> np.ndarray:

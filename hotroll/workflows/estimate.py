@@ -106,7 +106,7 @@ def estimate(case) -> Estimate:
     rp, h = case.pass_.roll_pass(), case.mesh.h
     spec = MeshSpec(h=h, fine_length=0.0, h_far=case.mesh.h_far, grading=case.mesh.grading)
     far = max(spec.far(rp), h)
-    if case.solver.method == "steady":      # the lengths runner.steady_settings passes on
+    if case.solver.method == "steady":      # the lengths build.steady_settings passes on
         up, down, margin, core = SteadySettings(
             upstream=case.solver.steady_entry_length,
             downstream=case.solver.steady_exit_length).mesh_zone(rp, h)

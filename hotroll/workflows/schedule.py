@@ -77,7 +77,13 @@ def exit_state(sch: Schedule, case, summary: dict) -> StripState:
         e = ThicknessProfile(tuple(eta), tuple(np.maximum(prof["strain"], 0.0)))
     else:
         e = ThicknessProfile.uniform(summary["homogeneous_exit_strain"])
-    return StripState(case.pass_.exit_thickness, T, e)
+    return StripState(exit_thickness(case, summary), T, e)
+
+
+def exit_thickness(case, summary) -> float:
+    """The pass's exit thickness (m): the case's, or the one found with the force when the
+    pass gives its roll gap (``workflows/gauge.py``)."""
+    return summary.get("gauge_thickness", case.pass_.exit_thickness)
 
 
 def transport(sch: Schedule, k: int, state: StripState, exit_velocity: float):
@@ -137,24 +143,27 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
         omega = None
         if sch.mill.speeds == "mass_flow" and k > 0:
             f_guess = rows[-1]["forward_slip"]
-            omega = flux / (0.5 * p.exit_thickness * (1.0 + f_guess)) / p.roll_radius
+            h1 = p.exit_thickness if p.exit_thickness is not None else (
+                p.roll_gap + rows[-1].get("mill_stretch", 0.0))     # a guess: the flux decides
+            omega = flux / (0.5 * h1 * (1.0 + f_guess)) / p.roll_radius
             if resume:          # the speed a finished run of this pass settled on
                 omega = _last_speed(out / f"{k + 1:02d}_{sch.pass_name(k)}") or omega
-        solves, iterations = 0, 0
+        solves, iterations, tries = 0, 0, 0
         while True:
+            tries += 1
             case = pass_case(sch, k, state, omega)
             pdir = out / case.name
             summary = _reuse(case, pdir) if resume else None
             if summary is None:
                 summary = run_case(case, pdir, resume=False, sweep=sweep)
-                solves += 1
+                solves += int(summary.get("gauge_solves", 1))
                 iterations += int(summary.get("nonlinear_iterations") or 0)
             if summary.get("exit_code") != 0:
                 raise ScheduleError(k, case.name, summary, rows)
             if flux is None or sch.mill.speeds != "mass_flow":
                 break
             miss = summary["mass_flux_in"] / flux - 1.0
-            if abs(miss) <= sch.mill.mass_flow_tolerance or solves >= 6:
+            if abs(miss) <= sch.mill.mass_flow_tolerance or tries >= 6:
                 break
             omega = case.pass_.roll_angular_velocity / (1.0 + miss)
         if flux is None:
@@ -192,9 +201,10 @@ class ScheduleError(RuntimeError):
 
 def _pass_row(sch, k, case, s, entry_T, entry_e, solves, iterations, wall) -> dict:
     pa = case.pass_
+    h1 = exit_thickness(case, s)
     row = {"pass": k + 1, "name": sch.pass_name(k), "case": case.name,
-           "entry_thickness": pa.entry_thickness, "exit_thickness": pa.exit_thickness,
-           "reduction": 1.0 - pa.exit_thickness / pa.entry_thickness,
+           "entry_thickness": pa.entry_thickness, "exit_thickness": h1,
+           "reduction": 1.0 - h1 / pa.entry_thickness,
            "roll_radius": pa.roll_radius, "roll_surface_speed": pa.roll_surface_speed,
            "roll_angular_velocity": pa.roll_angular_velocity,
            "roll_force": s["roll_force"], "roll_torque": s["roll_torque"],
@@ -208,6 +218,10 @@ def _pass_row(sch, k, case, s, entry_T, entry_e, solves, iterations, wall) -> di
            "exit_strain_mean": None,          # the profile handed on (run_schedule)
            "homogeneous_exit_strain": s["homogeneous_exit_strain"],
            "newton_iterations": iterations, "fe_solves": solves, "wall_time": wall}
+    # the roll's flattening and the stand's stretch, where the schedule asks for them
+    row.update({key: s[key] for key in ("roll_flattening", "roll_equivalent_radius",
+                                        "roll_gap", "mill_stretch", "gap_setting")
+                if key in s})
     if sch.strip.width is not None:
         row.update({"roll_force_total": s.get("roll_force_total"),
                     "roll_torque_total": s.get("roll_torque_total"),

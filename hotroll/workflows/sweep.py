@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 from hotroll.config.case import Case, flat
 from hotroll.solvers.steady import SteadyRun
 from hotroll.solvers.transfer import SimilarPass
-from hotroll.workflows.runner import steady_settings
+from hotroll.workflows.build import steady_settings
 
 #: Keys a kept SteadyRun may differ in: they enter as parameters or settings, not in the form.
 _RUN_FREE = ("name", "material.m", "material.K", "friction.a_f", "friction.a_f_max",

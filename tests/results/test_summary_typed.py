@@ -99,7 +99,8 @@ def test_the_declaration_helpers_at_call_time():
     assert list(groups) == ["Pass", "Temperature and heat", "Checks", "Solver"]
     assert groups["Solver"] == ("h_contact", "dofs", "steps", "time", "dt", "newton_solves",
                                 "coupling_updates", "nonlinear_iterations",
-                                "iterations_per_step", "averaged_over_steps", "wall_time_s")
+                                "iterations_per_step", "averaged_over_steps", "wall_time_s",
+                                "gauge_solves")
     assert groups["Pass"][:3] == ("roll_force", "roll_force_total", "roll_torque")
     rows = {r[0]: r for r in Summary.reference_rows()}
     assert rows["roll_force_total"] == ("roll_force_total", "N", "roll force, whole width",

@@ -16,7 +16,8 @@ from casebuild import shared_scope
 from hotroll.config.case import case_from_dict
 from hotroll.examples import example_path
 from hotroll.model.geometry import RollShape
-from hotroll.model.roll_elastic import RollElasticity
+from hotroll.model.roll_elastic import ElasticDisc, RollElasticity
+from hotroll.results.run_dir import RunDir
 from hotroll.solvers.steady import SteadyRun
 from hotroll.workflows.runner import build_model, run_case, steady_settings
 
@@ -41,7 +42,9 @@ def runs(tmp_path_factory):
     for name, roll in (("rigid", {}), ("stiff", {"model": "elastic", "youngs_modulus": 210e12}),
                        ("hitchcock", {"model": "hitchcock"}), ("elastic", {"model": "elastic"}),
                        ("soft", {"model": "elastic", "youngs_modulus": 105e9})):
-        out[name] = run_case(_case(**roll), tmp_path_factory.mktemp(name), resume=False)
+        where = tmp_path_factory.mktemp(name)
+        out[name] = run_case(_case(**roll), where, resume=False)
+        out[f"{name}_dir"] = where
     return out
 
 
@@ -105,3 +108,20 @@ def test_a_circular_shape_is_the_rigid_roll_of_that_radius():
     for key in ("roll_force", "contact_length", "forward_slip"):
         assert out[0][key] == pytest.approx(out[1][key], rel=2e-3), key
     assert math.isfinite(out[0]["roll_torque"])
+
+
+def test_the_strip_sees_the_discs_displacement_under_its_own_tractions(runs):
+    """A guard of the coupling (an identity of its converged fixed point, not an independent
+    reference): the flattened surface in contact.csv (``roll_offset``) is the elastic disc's
+    radial displacement under the contact tractions of the same file, up to the constant the
+    gap fixes, to the coupling's tolerance (1e-4 of the exit half-thickness per update)."""
+    e = runs["elastic"]
+    prof = RunDir(runs["elastic_dir"]).table("contact.csv")
+    order = np.argsort(prof["angle"])
+    t, p, q = (np.asarray(prof[k], dtype=float)[order]
+               for k in ("angle", "normal_stress", "shear_stress"))
+    w = np.asarray(prof["roll_offset"], dtype=float)[order]
+    u = ElasticDisc(0.35, RollElasticity(210e9, 0.3)).rim(t, -p, q)["u_r"]
+    dw, du = w - w[0], u - u[0]
+    assert np.max(np.abs(du)) > 5e-6 and e["roll_updates"] >= 2   # the roll does flatten
+    assert np.max(np.abs(dw - du)) < 0.02 * np.max(np.abs(du))
