@@ -175,6 +175,10 @@ BUGS: dict[str, tuple[str, str, str, str]] = {
                       'g = h - S - s["roll_force_total"] / M',
                       'g = h - S - 1.1 * s["roll_force_total"] / M',
                       "the gap search's stretch x 1.1"),
+    "tension_handover": ("hotroll/workflows/schedule.py",
+                         "pulls = (tensions[k - 1] if k > 0 else p.back_tension,",
+                         "pulls = (1.1 * tensions[k - 1] if k > 0 else p.back_tension,",
+                         "a tandem stand's back tension x 1.1 of the one before's front"),
     # --- the thermal figures (issue 16) ---
     "exit_T_surface": ("hotroll/solvers/thermal_coupling.py",
                        "surface = float(self.field.values[(ny - 1) * nx1 + self.strip.i_exit])",

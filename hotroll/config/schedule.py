@@ -78,6 +78,14 @@ class MillConfig(Section):
     start_from_previous: bool = field(
         True, "start each pass's Newton from the previous pass mapped onto its mesh "
         "(solvers/transfer.py; false: from the slab guess, cold)", "", "true or false")
+    tensions: Literal["given", "from_speeds"] = field(
+        "given", "interstand tensions: each pass's own (given), or those that make every "
+        "stand pass the same mass flux at the given roll speeds (from_speeds: a cold tandem, "
+        "a mill log; the first pass's back and the last pass's front tension stay given)", "",
+        '"given" or "from_speeds"')
+    flux_tolerance: float = field(
+        1e-4, "from_speeds: largest relative difference of the stands' exit mass fluxes", "",
+        "in (0, 0.01]", gt=0, le=0.01)
     mass_flow_tolerance: float = field(
         1e-3, "mass_flow: relative flux difference between stands at which a stand's speed "
         "is accepted", "", "in (0, 0.1]", gt=0, le=0.1)
@@ -183,6 +191,12 @@ class Schedule(Section):
             if k < len(self.passes) and p.transport is None:
                 problems.append(f"pass[{k}].transport: missing; the time (or distance) to the "
                                 f"next pass is needed ([pass.transport] duration or distance)")
+        if self.mill.tensions == "from_speeds":
+            if self.mill.speeds != "given":
+                problems.append('mill.tensions: "from_speeds" needs mill.speeds = "given" '
+                                f'(every stand\'s roll speed), got "{self.mill.speeds}"')
+            if len(self.passes) < 2:
+                problems.append('mill.tensions: "from_speeds" needs at least two passes')
         if self.solver.method != "steady":
             problems.append("solver.method: a schedule runs the steady solver, got "
                             f"\"{self.solver.method}\"")
@@ -196,17 +210,20 @@ class Schedule(Section):
 
     def pass_case(self, k: int, entry_thickness: float, temperature: float,
                   temperature_profile=None, strain: float = 0.0, strain_profile=None,
-                  angular_velocity: float | None = None) -> Case:
+                  angular_velocity: float | None = None,
+                  tensions: tuple[float, float] | None = None) -> Case:
         """The k-th pass (from 0) as a validated case entering with this state (profiles:
-        ``process.profile.ThicknessProfile`` or None)."""
+        ``process.profile.ThicknessProfile`` or None); ``tensions``: (back, front) in Pa
+        (None: the pass's own)."""
         p = self.passes[k]
+        back, front = tensions if tensions is not None else (p.back_tension, p.front_tension)
         omega = angular_velocity if angular_velocity is not None else p.angular_velocity()
         lc = (p.roll_radius * 0.5 * (entry_thickness - p.nominal_exit)) ** 0.5
         d = {
             "name": f"{k + 1:02d}_{self.pass_name(k)}",
             "pass": {"roll_radius": p.roll_radius, "entry_thickness": entry_thickness,
                      "roll_angular_velocity": omega,
-                     "back_tension": p.back_tension, "front_tension": p.front_tension},
+                     "back_tension": back, "front_tension": front},
             "plate": {"length": PLATE_CONTACT_LENGTHS * lc, "temperature": temperature,
                       "entry_strain": strain},
             "material": self.material.model_dump(exclude_none=True),

@@ -17,6 +17,9 @@ UNITS: dict[str, str] = {
     "newton_iterations": "-", "fe_solves": "-", "wall_time": "s", "transport_duration": "s",
     "transport_heat_lost": "J/m^2", "next_entry_temperature_mean": "K",
     "next_entry_temperature_surface": "K", "next_entry_strain_mean": "-",
+    # a tandem's tensions (schedule.csv, schedule.json)
+    "back_tension": "Pa", "front_tension": "Pa", "interstand_tensions": "Pa",
+    "flux_mismatch": "-", "tension_runs": "-",
     # a schedule study's own columns
     "passes": "-", "max_roll_force": "N/m", "total_roll_power": "W/m",
 }

@@ -31,6 +31,7 @@ from hotroll.results.schedule_plot import plot_schedule
 from hotroll.results.units import UNITS
 from hotroll.workflows.runner import finished_summary, run_case
 from hotroll.workflows.sweep import Sweep
+from hotroll.workflows.tandem import solve_tensions
 
 
 class StripState:
@@ -52,12 +53,14 @@ def entry_state(sch: Schedule) -> StripState:
                       e_prof or ThicknessProfile.uniform(sch.strip.strain))
 
 
-def pass_case(sch: Schedule, k: int, state: StripState, omega: float | None = None):
-    """The k-th pass entering with ``state`` (uniform profiles are given as numbers)."""
+def pass_case(sch: Schedule, k: int, state: StripState, omega: float | None = None,
+              tensions: tuple[float, float] | None = None):
+    """The k-th pass entering with ``state`` (uniform profiles are given as numbers);
+    ``tensions``: its (back, front) tensions in Pa (None: the pass's own)."""
     T, e = state.temperature, state.strain
     return sch.pass_case(k, state.thickness, _enthalpy_mean(sch, T),
                          None if T.is_uniform else T, e.mean(),
-                         None if e.is_uniform else e, omega)
+                         None if e.is_uniform else e, omega, tensions)
 
 
 def _enthalpy_mean(sch: Schedule, T: ThicknessProfile) -> float:
@@ -133,11 +136,45 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     say = progress or (lambda msg: None)
-    state, rows, profiles = entry_state(sch), [], []
-    flux = None                                    # the tandem's mass flux (half strip)
     t_start = time.perf_counter()
     # each pass starts from the last one solved; history.csv keeps the final state only
     sweep = Sweep(similar=sch.mill.start_from_previous, history=False)
+
+    def roll(tensions=None, quiet: bool = False) -> tuple[list[dict], list[dict]]:
+        rows, profiles = _roll(sch, out, resume, sweep, (lambda m: None) if quiet else say,
+                               tensions)
+        _write(sch, out, rows, profiles, time.perf_counter() - t_start, extra)
+        return rows, profiles
+
+    extra: dict = {}
+    if sch.mill.tensions == "from_speeds":
+        rows, profiles, info = solve_tensions(sch, roll, _previous_tensions(out) if resume
+                                              else None, say)
+        extra.update(info)
+        _write(sch, out, rows, profiles, time.perf_counter() - t_start, extra)
+    else:
+        rows, profiles = roll()
+    if figure:
+        plot_schedule(rows, out / "schedule.png", width=sch.strip.width)
+    return rows
+
+
+def _previous_tensions(out: Path) -> list[float] | None:
+    """The interstand tensions a finished run of this schedule settled on (schedule.json)."""
+    import json
+
+    try:
+        return [float(t) for t in json.loads((out / "schedule.json").read_text())
+                ["interstand_tensions"]]
+    except (OSError, KeyError, TypeError, ValueError):
+        return None
+
+
+def _roll(sch: Schedule, out: Path, resume: bool, sweep: Sweep, say, tensions=None):
+    """One pass after the other from the entry strip; ``tensions``: the interstand tensions
+    (Pa, one fewer than the passes; None: each pass's own). (rows, profiles)."""
+    state, rows, profiles = entry_state(sch), [], []
+    flux = None                                    # the tandem's mass flux (half strip)
     for k, p in enumerate(sch.passes):
         t0 = time.perf_counter()
         omega = None
@@ -148,10 +185,14 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
             omega = flux / (0.5 * h1 * (1.0 + f_guess)) / p.roll_radius
             if resume:          # the speed a finished run of this pass settled on
                 omega = _last_speed(out / f"{k + 1:02d}_{sch.pass_name(k)}") or omega
+        pulls = None
+        if tensions is not None:
+            pulls = (tensions[k - 1] if k > 0 else p.back_tension,
+                     tensions[k] if k < len(sch.passes) - 1 else p.front_tension)
         solves, iterations, tries = 0, 0, 0
         while True:
             tries += 1
-            case = pass_case(sch, k, state, omega)
+            case = pass_case(sch, k, state, omega, pulls)
             pdir = out / case.name
             summary = _reuse(case, pdir) if resume else None
             if summary is None:
@@ -182,10 +223,7 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
             profiles[-1]["after_transport"] = state.to_dict()
         rows.append(row)
         say(_line(row))
-        _write(sch, out, rows, profiles, time.perf_counter() - t_start)
-    if figure:
-        plot_schedule(rows, out / "schedule.png", width=sch.strip.width)
-    return rows
+    return rows, profiles
 
 
 class ScheduleError(RuntimeError):
@@ -207,10 +245,12 @@ def _pass_row(sch, k, case, s, entry_T, entry_e, solves, iterations, wall) -> di
            "reduction": 1.0 - h1 / pa.entry_thickness,
            "roll_radius": pa.roll_radius, "roll_surface_speed": pa.roll_surface_speed,
            "roll_angular_velocity": pa.roll_angular_velocity,
+           "back_tension": pa.back_tension, "front_tension": pa.front_tension,
            "roll_force": s["roll_force"], "roll_torque": s["roll_torque"],
            "roll_power": s["roll_power"], "forward_slip": s["forward_slip"],
            "entry_velocity": s["entry_velocity"], "exit_velocity": s["exit_velocity"],
-           "mass_flux": s["mass_flux_in"],
+           "mass_flux": s["mass_flux_in"], "mass_flux_out": s["mass_flux_out"],
+           "mean_flow_stress": s["mean_flow_stress"],
            "entry_temperature_mean": entry_T,
            "exit_temperature_mean": s.get("exit_temperature_mean"),
            "exit_temperature_surface": s.get("exit_temperature_surface"),
@@ -241,10 +281,12 @@ def _line(r: dict) -> str:
     return text
 
 
-def _write(sch, out: Path, rows: list[dict], profiles: list[dict], wall: float) -> None:
+def _write(sch, out: Path, rows: list[dict], profiles: list[dict], wall: float,
+           extra: dict | None = None) -> None:
     keys = list(dict.fromkeys(k for r in rows for k in r))
     write_csv(out / "schedule.csv", [{k: r.get(k) for k in keys} for r in rows])
+    extra = extra or {}
     write_json(out / "schedule.json", {
         "name": sch.name, "passes": rows, "profiles": profiles, "wall_time": wall,
-        "fe_solves": sum(r["fe_solves"] for r in rows),
-        "units": {k: u for k, u in UNITS.items() if k in keys}})
+        "fe_solves": extra.get("fe_solves", sum(r["fe_solves"] for r in rows)), **extra,
+        "units": {k: u for k, u in UNITS.items() if k in keys or k in extra}})

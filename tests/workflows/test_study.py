@@ -176,13 +176,17 @@ def test_killed_and_run_again_ends_with_the_uninterrupted_table(files, serial, t
     for a, b in zip(serial, rows):
         if a["status"] == "done":
             # a resumed study warm-starts its cases from other neighbours: the same answer to
-            # the solver's tolerance (1e-5 U; measured with exact contact 7e-9 on the slip,
-            # 1.1e-6 on the torque)
+            # the solver's tolerance from a neighbour on the same mesh (1e-5 U; measured with
+            # exact contact 7e-9 on the slip, 1.1e-6 on the torque), but only to 3e-4 (force)
+            # and 8e-4 (slip) from a pass of another exit thickness: the entry top meets the
+            # roll tangentially, so the contact start is a double root of the traced gap and
+            # two starts settle 6e-5 rad apart on this coarse mesh (h = 0.02 m), each with
+            # its surface residual below 1e-6 h (measured 2026-11-26; docs/theory.md 3.4)
             for k in ("roll_force", "roll_torque", "forward_slip", "neutral_angle"):
                 if a[k] is None:             # a sticking arc: no neutral point in either
                     assert b[k] == "", (a["case"], k)
                     continue
-                assert float(b[k]) == pytest.approx(a[k], rel=1e-5), (a["case"], k)
+                assert float(b[k]) == pytest.approx(a[k], rel=1.5e-3), (a["case"], k)
 
 
 def test_a_worker_killed_mid_study_loses_nothing(files, serial, tmp_path):
