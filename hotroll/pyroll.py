@@ -1,20 +1,29 @@
-"""hotroll as PyRolL's model of flat roll passes (issue 17): ``import hotroll.pyroll``.
+"""hotroll as PyRolL's model of flat roll passes (issues 17, 32): ``import hotroll.pyroll``.
 
-Importing this module registers hook functions with pyroll-core (3.1), as any PyRolL plugin:
-for a ``RollPass`` whose groove is a ``FlatGroove`` the roll force, the roll torque, the
-forward slip, the neutral angle, the exit velocity, the exit strain and the exit temperature
-come from one steady thermo-mechanical hotroll solve of the pass; other passes return None
-and are left to PyRolL's other plugins. With ``Config.TRANSPORT_COOLING`` a ``Transport``
-cools the strip's mean temperature with hotroll's interpass model (``model/interpass.py``).
+Importing this module registers hook functions with pyroll-core (3.1), as any PyRolL plugin.
+hotroll solves a ``RollPass`` whose groove is a ``FlatGroove`` and for which it has its inputs
+(a roll speed and a flow stress, ``handles``): the roll force, the roll torque, the forward
+slip, the neutral angle, the contact length, the flattened radius (``flattened_radius``,
+``flattening_ratio``: the names of pyroll-hitchcock-roll-flattening), the exit velocity, strain
+and temperature come from one steady thermo-mechanical hotroll solve of the pass. Every other
+unit, and a flat pass without those inputs (logged once), is left to PyRolL's own models and
+other plugins: every hook returns None there, and nothing else changes. A flat strip entering a
+flat pass hotroll solves is not turned by 90 degrees (PyRolL's rotation rule for flat after
+flat is an edging pass's). With ``Config.TRANSPORT_COOLING`` a plain ``Transport`` after a
+hotroll pass cools the strip's mean temperature with hotroll's interpass model
+(``model/interpass.py``).
 
 PyRolL's conventions (docs/notes/pyroll-api.md): SI, heights are full thicknesses, the roll
 force is the force on one roll over the whole width (N), the torque that of one roll (N m),
 temperatures in K, tensions are stresses (Pa).
 
 What the FE pass takes from PyRolL:
-- geometry and speed: ``in_profile.height``, ``gap``, ``in_profile.width``,
-  ``roll.working_radius``, ``roll.working_velocity``; tensions ``back_tension``,
-  ``front_tension``;
+- geometry and speed: ``in_profile.height``, ``gap``, ``in_profile.width``, the roll's
+  ``nominal_radius`` (or the ``working_radius`` set on it), its ``rotational_frequency``,
+  ``surface_velocity`` or ``working_velocity``, or the pass's ``velocity`` (PyRolL's strip
+  speed at the neutral point, U cos(phi_n)); tensions ``back_tension``, ``front_tension``;
+- the roll's ``elastic_modulus`` and ``poissons_ratio`` (an elastic roll; ``Config.ROLL``
+  the case's [roll] otherwise);
 - the strip: ``in_profile.temperature``, ``in_profile.strain``; the flow stress
   ``in_profile.flow_stress_function`` (e.g. pyroll-freiberg-flow-stress) as a Hensel-Spittel
   law fitted over the pass's range (``model/flow_stress_fit.py``; the fit's error is in
@@ -33,12 +42,13 @@ solution, a new pass from the last pass solved, mapped onto its mesh (``workflow
 """
 from __future__ import annotations
 
+import logging
 import math
 import tempfile
 from pathlib import Path
 
 try:
-    from pyroll.core import FlatGroove, Hook, RollPass, Transport, Unit, root_hooks
+    from pyroll.core import BaseRollPass, FlatGroove, Hook, RollPass, Rotator, Transport
 except ImportError as e:      # pragma: no cover - the extra is not installed
     raise ImportError("hotroll.pyroll needs pyroll-core: pip install 'hotroll[pyroll]'") from e
 
@@ -64,6 +74,12 @@ class Config:
     OUTPUT_DIR: Path | None = None    # each FE run into OUTPUT_DIR/<label>; None: a temp dir
     TRANSPORT_COOLING: bool = True
     PLATE_CONTACT_LENGTHS: float = 5.0
+    #: the pass cases' [roll] (model, youngs_modulus, ...); {}: rigid, or elastic where the
+    #: Roll gives its elastic_modulus
+    ROLL: dict = {}
+
+
+_LOG = logging.getLogger("hotroll.pyroll")
 
 
 #: FE solves, cache hits and warm starts since import (or ``reset_stats()``).
@@ -107,8 +123,76 @@ def _value(obj, name: str, default):
     """A hook's value if it can be computed, else ``default``."""
     try:
         return getattr(obj, name) if obj.has_value(name) else default
-    except (AttributeError, ValueError):
+    except (AttributeError, ValueError, TypeError):
         return default
+
+
+def _missing(rp, profile=None) -> str | None:
+    """What hotroll lacks to solve the flat pass ``rp`` (None: it solves it): a roll speed and
+    a flow stress (the profile's flow_stress_function or a hotroll grade as its material).
+    ``profile``: the strip entering (default the pass's in profile)."""
+    if _roll_speed(rp) is None:
+        return ("no roll speed (the roll's rotational_frequency, surface_velocity or "
+                "working_velocity, or the pass's velocity)")
+    ip = rp.in_profile if profile is None else profile
+    if _value(ip, "flow_stress_function", None) is None and _grade(ip) is None:
+        return (f"no flow_stress_function on the profile and its material "
+                f"{_value(ip, 'material', None)!r} is no hotroll grade "
+                f"({', '.join(list_grades())})")
+    return None
+
+
+def handles(rp) -> bool:
+    """Whether hotroll solves this pass: a flat one with its inputs (``_missing``). Others are
+    left to PyRolL's own models and plugins (every hook returns None); a flat pass left so is
+    logged once, with the reason."""
+    if not is_flat(rp):
+        return False
+    why = _missing(rp)
+    if why is not None:
+        if not rp.__dict__.get("_hotroll_told"):
+            rp.__dict__["_hotroll_told"] = True
+            _LOG.info("hotroll.pyroll: pass %r left to PyRolL: %s", rp.label, why)
+        return False
+    return True
+
+
+def _grade(profile) -> str | None:
+    names = _value(profile, "material", None)
+    names = [names] if isinstance(names, str) else list(names or [])
+    known = {g.lower(): g for g in list_grades()}
+    for n in names:
+        if str(n).lower() in known:
+            return known[str(n).lower()]
+    return None
+
+
+def _radius(rp) -> float:
+    """The rigid roll's radius (m): the working radius the user set, else the nominal one
+    (not PyRolL's working radius, which a flattening plugin raises to R')."""
+    roll = rp.roll
+    if roll.has_set("working_radius"):
+        return float(roll.working_radius)
+    return float(roll.nominal_radius)
+
+
+def _roll_speed(rp) -> float | None:
+    """The roll's surface speed (m/s) from what the user set: the roll's working_velocity,
+    rotational_frequency or surface_velocity, or the pass's velocity v, PyRolL's strip speed
+    at the neutral point, U cos(phi_n) (hotroll's phi_n of the last solve, rounded to 1e-9
+    rad: the pass is solved again until U settles); None if nothing is set."""
+    roll = rp.roll
+    R = _radius(rp)
+    if roll.has_set("working_velocity"):
+        return float(roll.working_velocity)
+    if roll.has_set("rotational_frequency"):
+        return 2.0 * math.pi * float(roll.rotational_frequency) * R
+    if roll.has_set("surface_velocity"):
+        return float(roll.surface_velocity) * R / float(roll.nominal_radius)
+    if rp.has_set("velocity"):
+        phi = round(rp.__dict__.get("_hotroll_neutral", 0.0), 9)
+        return float(rp.velocity) / math.cos(phi)
+    return None
 
 
 def _material(rp, T0: float, e0: float, h0: float, h1: float, U: float, lc: float):
@@ -135,39 +219,24 @@ def _material(rp, T0: float, e0: float, h0: float, h1: float, U: float, lc: floa
         table, info = fits[box]
         return dict(table), dict(info)
 
-    names = _value(ip, "material", None)
-    names = [names] if isinstance(names, str) else list(names or [])
-    known = {g.lower(): g for g in list_grades()}
-    for n in names:
-        if str(n).lower() in known:
-            return {"law": "hensel-spittel", "grade": known[str(n).lower()]}, {
-                "source": f"hotroll grade {known[str(n).lower()]}"}
-    raise ValueError(f"hotroll.pyroll: pass {rp.label!r}: the in profile has no "
-                     f"flow_stress_function and its material {names} is no hotroll grade "
-                     f"({', '.join(list_grades())})")
-
-
-def _roll_speed(rp) -> float:
-    """The roll's surface speed at the working radius (m/s) from what the user set on the roll
-    (not through PyRolL's pass velocity, which depends on the neutral angle hotroll gives)."""
-    roll = rp.roll
-    R = float(roll.working_radius)
-    if roll.has_set("working_velocity"):
-        return float(roll.working_velocity)
-    if roll.has_set("rotational_frequency"):
-        return 2.0 * math.pi * float(roll.rotational_frequency) * R
-    if roll.has_set("surface_velocity"):
-        return float(roll.surface_velocity) * R / float(roll.nominal_radius)
-    raise ValueError(f"hotroll.pyroll: pass {rp.label!r}: give the roll a rotational_frequency "
-                     f"(1/s), surface_velocity or working_velocity (m/s)")
+    grade = _grade(ip)
+    if grade is None:
+        raise ValueError(f"hotroll.pyroll: pass {rp.label!r}: {_missing(rp)}")
+    return {"law": "hensel-spittel", "grade": grade}, {"source": f"hotroll grade {grade}"}
 
 
 def pass_case(rp) -> tuple[Case, dict]:
     """The hotroll case of a flat PyRolL roll pass and its flow-stress description."""
     ip = rp.in_profile
-    R = float(rp.roll.working_radius)
+    R = _radius(rp)
     h0, h1 = round(float(ip.height), 6), round(float(rp.height), 6)
-    U = _roll_speed(rp)
+    width = float(ip.width)
+    if "vertical" in _value(ip, "classifiers", set()) and h0 > width:
+        raise ValueError(f"hotroll.pyroll: pass {rp.label!r}: the strip enters on edge "
+                         f"({h0:g} m high, {width:g} m wide): PyRolL turned it by 90 degrees "
+                         f"before this flat pass; give the pass rotation=False (or put a "
+                         f"Rotator(rotation=0) before it)")
+    U = round(_roll_speed(rp), 9)
     T0 = round(float(ip.temperature), 2)
     e0 = round(float(_value(ip, "strain", 0.0)), 6)
     lc = math.sqrt(R * 0.5 * (h0 - h1))
@@ -199,8 +268,22 @@ def pass_case(rp) -> tuple[Case, dict]:
         "solver": {"method": "steady", **Config.SOLVER},
         "output": {"figures": False, "vtk": False},
         "thermal": thermal,
+        "roll": _roll_table(rp.roll),
     }
     return case_from_dict(d), fit
+
+
+def _roll_table(roll) -> dict:
+    """The case's [roll]: ``Config.ROLL`` with the Roll's elastic_modulus and poissons_ratio
+    where PyRolL gives them (the model then elastic unless ``Config.ROLL`` names one)."""
+    table = dict(Config.ROLL)
+    E, nu = _value(roll, "elastic_modulus", None), _value(roll, "poissons_ratio", None)
+    if E is not None:
+        table["youngs_modulus"] = float(E)
+        table.setdefault("model", "elastic")
+    if nu is not None:
+        table["poissons_ratio"] = float(nu)
+    return table
 
 
 def solve(rp) -> dict:
@@ -228,6 +311,8 @@ def solve(rp) -> dict:
         raise RuntimeError(f"hotroll.pyroll: pass {rp.label!r} ended with exit code "
                            f"{summary.get('exit_code')} (status {summary.get('status')}); "
                            f"its output is in {out}")
+    # PyRolL's pass velocity is U cos(phi_n): the next call's roll speed uses this phi_n
+    rp.__dict__["_hotroll_neutral"] = float(summary.get("neutral_angle") or 0.0)
     T_out, e_out = _outlet_means(case, summary)
     summary = dict(summary, flow_stress_fit=fit, case_toml=key, output_dir=str(out),
                    outlet_temperature_mean=T_out, outlet_strain_mean=e_out)
@@ -251,12 +336,12 @@ def _outlet_means(case: Case, s: dict) -> tuple[float, float]:
 
 @RollPass.hotroll_result
 def hotroll_result(self: RollPass):
-    return solve(self) if is_flat(self) else None
+    return solve(self) if handles(self) else None
 
 
 @RollPass.roll_force(tryfirst=True)
 def roll_force(self: RollPass):
-    if not is_flat(self):
+    if not handles(self):
         return None
     s = solve(self)
     return s["roll_force"] * self.in_profile.width
@@ -265,53 +350,130 @@ def roll_force(self: RollPass):
 @RollPass.Roll.roll_torque(tryfirst=True)
 def roll_torque(self: RollPass.Roll):
     rp = self.roll_pass
-    if not is_flat(rp):
+    if not handles(rp):
         return None
     return solve(rp)["roll_torque"] * rp.in_profile.width
 
 
 @RollPass.forward_slip_ratio(tryfirst=True)
 def forward_slip_ratio(self: RollPass):
-    return solve(self)["forward_slip"] if is_flat(self) else None
+    return solve(self)["forward_slip"] if handles(self) else None
 
 
 @RollPass.Roll.neutral_angle(tryfirst=True)
 def neutral_angle(self: RollPass.Roll):
     """PyRolL's sign: negative towards the entry (hotroll's is positive there)."""
     rp = self.roll_pass
-    if not is_flat(rp):
+    if not handles(rp):
         return None
     ang = solve(rp)["neutral_angle"]  # null in a sticking zone: PyRolL's own hooks decide
     return None if ang is None else -ang
 
 
+@BaseRollPass.Roll.contact_length(tryfirst=True)
+def contact_length(self):
+    """hotroll's contact length (m): where the strip touches the (flattened) roll."""
+    rp = self.roll_pass
+    return solve(rp)["contact_length"] if handles(rp) else None
+
+
+_declare(BaseRollPass.Roll, "flattened_radius", "the flattened roll's radius R' (m)")
+_declare(BaseRollPass.Roll, "flattening_ratio", "R'/R, the flattened over the rigid radius")
+
+
+@BaseRollPass.Roll.flattened_radius(tryfirst=True)
+def flattened_radius(self):
+    """R' (m): the radius of the circle fitted to hotroll's flattened roll over the contact
+    (``roll_equivalent_radius``); the rigid radius for a rigid roll. The names are those of
+    pyroll-hitchcock-roll-flattening: with hotroll's pass PyRolL reads hotroll's R'."""
+    rp = self.roll_pass
+    if not handles(rp):
+        return None
+    return solve(rp).get("roll_equivalent_radius", _radius(rp))
+
+
+@BaseRollPass.Roll.flattening_ratio(tryfirst=True)
+def flattening_ratio(self):
+    rp = self.roll_pass
+    if not handles(rp):
+        return None
+    return solve(rp).get("roll_equivalent_radius", _radius(rp)) / _radius(rp)
+
+
 @RollPass.OutProfile.velocity(tryfirst=True)
 def out_velocity(self: RollPass.OutProfile):
     rp = self.roll_pass
-    return solve(rp)["exit_velocity"] if is_flat(rp) else None
-
-
-@RollPass.OutProfile.temperature(tryfirst=True)
-def out_temperature(self: RollPass.OutProfile):
-    rp = self.roll_pass
-    return solve(rp)["outlet_temperature_mean"] if is_flat(rp) else None
+    return solve(rp)["exit_velocity"] if handles(rp) else None
 
 
 @RollPass.OutProfile.strain(tryfirst=True)
 def out_strain(self: RollPass.OutProfile):
     rp = self.roll_pass
-    return solve(rp)["outlet_strain_mean"] if is_flat(rp) else None
+    return solve(rp)["outlet_strain_mean"] if handles(rp) else None
 
 
-@Transport.OutProfile.temperature
-def transport_temperature(self: Transport.OutProfile):
-    """hotroll's interpass cooling of a uniform strip at the in profile's mean temperature:
-    1D conduction, convection and radiation (``thermal/interpass.cool``)."""
-    if not Config.TRANSPORT_COOLING:
+@Rotator.rotation(tryfirst=True)
+def flat_strip_stays_flat(self: Rotator):
+    """0 (no turn) between a flat strip and a flat pass hotroll solves. PyRolL (3.1.15,
+    rule ``flat_flat_0``) turns a flat profile by 90 degrees before a flat pass, as for an
+    edging pass of a bar; a strip rolled flat after flat would enter on edge. Other passes
+    keep PyRolL's rules."""
+    nxt = self.next_roll_pass
+    if ("flat" in _value(self.in_profile, "classifiers", set()) and is_flat(nxt)
+            and "3fold" not in nxt.classifiers and _missing(nxt, self.in_profile) is None):
+        return 0
+    return None
+
+
+class _SetValues:
+    """A PyRolL post-processor (``Unit.post_processors``): sets values on the unit's out
+    profile as it leaves (the temperature hotroll computed; PyRolL hands on only the values
+    set on a profile)."""
+
+    label = "hotroll"
+
+    def __init__(self, unit, values: dict):
+        self.values = values
+        for key, value in values.items():
+            setattr(unit.out_profile, key, value)
+
+    def solve(self, profile):
+        for key, value in self.values.items():
+            setattr(profile, key, value)
+        return profile
+
+
+def _after_pass(unit):
+    """A flat pass hotroll solves leaves at the FE outlet's mean temperature."""
+    if isinstance(unit, RollPass) and handles(unit):
+        return _SetValues(unit, {"temperature": solve(unit)["outlet_temperature_mean"]})
+    return None
+
+
+def _after_transport(unit):
+    """A plain Transport after a pass hotroll solved cools by hotroll's interpass model
+    (``Config.TRANSPORT_COOLING``); other transports (cooling pipes, furnaces, ...) and
+    those after other passes keep PyRolL's models."""
+    if type(unit) is not Transport or not Config.TRANSPORT_COOLING:
         return None
+    try:
+        before = unit.prev_of(RollPass)
+    except (ValueError, IndexError, AttributeError):
+        return None
+    if not handles(before):
+        return None
+    T = transport_temperature(unit)
+    return None if T is None else _SetValues(unit, {"temperature": T})
 
-    tr = self.transport
+
+def transport_temperature(tr) -> float | None:
+    """hotroll's interpass cooling of a uniform strip at the in profile's mean temperature
+    over the transport's duration: 1D conduction, convection and radiation
+    (``model/interpass.cool``); None without a temperature or a duration."""
     ip = tr.in_profile
+    T0, duration = _value(ip, "temperature", None), _value(tr, "duration", None)
+    if T0 is None or duration is None:
+        return None
     props = Config.PROPERTIES
     p = ThermalProperties(float(_value(ip, "density", props["density"])),
                           float(_value(ip, "specific_heat_capacity", props["specific_heat"])),
@@ -319,9 +481,10 @@ def transport_temperature(self: Transport.OutProfile):
     htc = float(_value(tr, "convection_heat_transfer_coefficient", Config.THERMAL["htc_air"]))
     eps = float(_value(tr, "relative_radiation_coefficient", Config.THERMAL["emissivity"]))
     ambient = float(_value(tr, "environment_temperature", Config.THERMAL["ambient_temperature"]))
-    res = cool([0.0], [float(ip.temperature)], 0.5 * float(ip.height), float(tr.duration), p,
-               htc, eps, ambient)
+    res = cool([0.0], [float(T0)], 0.5 * float(ip.height), float(duration), p, htc, eps,
+               ambient)
     return res.mean
 
 
-root_hooks.add(Unit.OutProfile.temperature)
+RollPass.post_processors.append(_after_pass)
+Transport.post_processors.append(_after_transport)
