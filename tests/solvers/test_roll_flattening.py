@@ -125,3 +125,24 @@ def test_the_strip_sees_the_discs_displacement_under_its_own_tractions(runs):
     dw, du = w - w[0], u - u[0]
     assert np.max(np.abs(du)) > 5e-6 and e["roll_updates"] >= 2   # the roll does flatten
     assert np.max(np.abs(dw - du)) < 0.02 * np.max(np.abs(du))
+
+
+def test_the_power_balance_closes_on_the_flattened_roll(runs):
+    """An identity of any converged solve (not an independent reference): the power the roll
+    delivers at its rim, omega R (1 + e_tt) against the contact tractions, is the plastic and
+    the friction power (the roll's elastic energy does not change in steady rotation), to the
+    discretisation's 1e-3, as on the rigid roll; torque x omega is that power."""
+    for key in ("rigid", "hitchcock", "elastic", "soft"):
+        s = runs[key]
+        assert s["power_balance_error"] < 1e-3, key
+        omega = BASE["pass"]["roll_angular_velocity"]
+        assert s["roll_torque"] * omega == pytest.approx(s["roll_power"], rel=1e-9), key
+
+
+def test_the_flattened_roll_has_its_figure(runs):
+    from hotroll.results.figures import RunFiles
+    from hotroll.results.figures.roll import fig_roll
+
+    path = runs["elastic_dir"] / "fig_roll.png"
+    assert fig_roll(RunFiles(runs["elastic_dir"]), path) == path and path.stat().st_size > 10000
+    assert fig_roll(RunFiles(runs["rigid_dir"]), runs["rigid_dir"] / "fig_roll.png") is None
