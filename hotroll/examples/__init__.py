@@ -19,6 +19,7 @@ EXAMPLES: dict[str, list[str]] = {
     "hot_aluminium": ["hot_aluminium"],
     "tension_pass": ["tension_pass"],
     "hot_strip_finishing_thermal": ["hot_strip_finishing_thermal"],
+    "thin_strip": ["thin_strip"],
 }
 
 
