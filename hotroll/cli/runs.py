@@ -18,6 +18,7 @@ from hotroll.config.study import load_study, parse_value
 from hotroll.examples import find_study
 from hotroll.workflows.schedule import ScheduleError, run_schedule
 from hotroll.workflows.study import FAILED, run_study
+from hotroll.workflows.tandem import TensionError
 
 
 def schedule(
@@ -49,19 +50,28 @@ def schedule(
     except ScheduleError as e:
         err_console.print(Text(str(e), style="yellow"), soft_wrap=True)
         raise typer.Exit(int(e.summary.get("exit_code") or 1)) from None
+    except TensionError as e:          # the speeds ask for an impossible interstand pull
+        err_console.print(Text(str(e), style="yellow"), soft_wrap=True)
+        raise typer.Exit(5) from None
     width = sch.strip.width
     table = Table(title=escape(f"{sch.name}: schedule"))
+    tensions = sch.mill.tensions == "from_speeds"
     heads = ["pass", "h mm", "U m/s", "F MN" if width else "F MN/m",
              "M kNm" if width else "M kNm/m", "T out K", "strain", "FE", "s"]
+    if tensions:
+        heads.insert(3, "t front MPa")
     for h in heads:
         table.add_column(h, justify="left" if h == "pass" else "right")
     for r in rows:
         w = width or 1.0
-        table.add_row(
+        cells = [
             escape(r["name"]), f"{1e3 * r['entry_thickness']:.1f}>{1e3 * r['exit_thickness']:.1f}",
             f"{r['roll_surface_speed']:.2f}", f"{1e-6 * w * r['roll_force']:.2f}",
             f"{1e-3 * w * r['roll_torque']:.0f}", f"{r['exit_temperature_mean']:.1f}",
-            f"{r['exit_strain_mean']:.3f}", str(r["fe_solves"]), f"{r['wall_time']:.1f}")
+            f"{r['exit_strain_mean']:.3f}", str(r["fe_solves"]), f"{r['wall_time']:.1f}"]
+        if tensions:
+            cells.insert(3, f"{1e-6 * r['front_tension']:.2f}")
+        table.add_row(*cells)
     console.print(table)
     console.print(f"force and torque per roll{', whole width' if width else ''}; exit "
                   f"temperature: mixing-cup mean after the gap; all columns (power, surface "
