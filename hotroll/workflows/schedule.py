@@ -250,7 +250,7 @@ def _pass_row(sch, k, case, s, entry_T, entry_e, solves, iterations, wall) -> di
            "roll_power": s["roll_power"], "forward_slip": s["forward_slip"],
            "entry_velocity": s["entry_velocity"], "exit_velocity": s["exit_velocity"],
            "mass_flux": s["mass_flux_in"], "mass_flux_out": s["mass_flux_out"],
-           "mean_flow_stress": s["mean_flow_stress"],
+           "mean_flow_stress": s.get("mean_flow_stress"),
            "entry_temperature_mean": entry_T,
            "exit_temperature_mean": s.get("exit_temperature_mean"),
            "exit_temperature_surface": s.get("exit_temperature_surface"),

@@ -181,7 +181,7 @@ def test_killed_and_run_again_ends_with_the_uninterrupted_table(files, serial, t
             # and 8e-4 (slip) from a pass of another exit thickness: the entry top meets the
             # roll tangentially, so the contact start is a double root of the traced gap and
             # two starts settle 6e-5 rad apart on this coarse mesh (h = 0.02 m), each with
-            # its surface residual below 1e-6 h (measured 2026-11-26; docs/theory.md 3.4)
+            # its surface residual below 1e-6 h (measured 2026-11-26; docs/theory.md 4d)
             for k in ("roll_force", "roll_torque", "forward_slip", "neutral_angle"):
                 if a[k] is None:             # a sticking arc: no neutral point in either
                     assert b[k] == "", (a["case"], k)
@@ -235,7 +235,10 @@ def test_a_worker_killed_mid_study_loses_nothing(files, serial, tmp_path):
     assert [r["status"] for r in rows] == [r["status"] for r in serial]
     for a, b in zip(serial, rows):
         if a["status"] == "done":
-            assert b["roll_force"] == pytest.approx(a["roll_force"], rel=1e-5), a["case"]
+            # the group solved again may start from a pass of another exit thickness: the
+            # traced free surface then settles up to 3e-4 away in force (docs/theory.md 4d;
+            # test_killed_and_run_again_ends_with_the_uninterrupted_table)
+            assert b["roll_force"] == pytest.approx(a["roll_force"], rel=1.5e-3), a["case"]
 
 
 def test_the_table_is_each_cases_own_run(files, serial, tmp_path):
@@ -279,4 +282,7 @@ def test_a_case_killed_between_its_summary_and_its_state_is_solved_again(files, 
     assert done and not any(r["resumed"] for r in done)
     for a, b in zip(serial, rows):
         if a["status"] == "done":
-            assert b["roll_force"] == pytest.approx(a["roll_force"], rel=1e-5), a["case"]
+            # the group solved again may start from a pass of another exit thickness: the
+            # traced free surface then settles up to 3e-4 away in force (docs/theory.md 4d;
+            # test_killed_and_run_again_ends_with_the_uninterrupted_table)
+            assert b["roll_force"] == pytest.approx(a["roll_force"], rel=1.5e-3), a["case"]
