@@ -105,3 +105,15 @@ def assert_same_table(a: list[dict], b: list[dict], skip=("wall_time_s", "worker
             va, vb = ra[k], rb[k]
             assert va == vb or (isinstance(va, float) and math.isnan(va) and math.isnan(vb)), \
                 (ra.get("case"), k)
+
+
+def assert_schedule_refused(d: dict, field: str) -> None:
+    """``schedule_from_dict(d)`` refuses the schedule with a CaseError naming ``field``."""
+    import pytest
+
+    from hotroll.config.case import CaseError
+    from hotroll.config.schedule import schedule_from_dict
+
+    with pytest.raises(CaseError) as e:
+        schedule_from_dict(d, "schedule.toml")
+    assert field in str(e.value)

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from casebuild import shared_scope
+from casebuild import assert_schedule_refused, shared_scope
 from scipy.optimize import brentq
 
 from hotroll.config.case import CaseError
@@ -153,9 +153,7 @@ def _data() -> dict:
 def test_bad_schedules_name_the_field(change, field):
     d = _data()
     change(d)
-    with pytest.raises(CaseError) as e:
-        schedule_from_dict(d, "schedule.toml")
-    assert field in str(e.value)
+    assert_schedule_refused(d, field)
 
 
 def test_the_warm_starts_do_not_change_the_answer(rolled, tmp_path):

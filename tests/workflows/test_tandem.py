@@ -12,9 +12,8 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
-from casebuild import shared_scope
+from casebuild import assert_schedule_refused, shared_scope
 
-from hotroll.config.case import CaseError
 from hotroll.config.schedule import schedule_from_dict
 from hotroll.workflows.schedule import run_schedule
 from hotroll.workflows.tandem import TensionError, solve_tensions
@@ -152,6 +151,4 @@ def test_a_faster_stand_pulls_harder_before_it_and_pushes_less_after(tandems):
 def test_bad_tandems_name_the_field(change, field):
     d = copy.deepcopy(_tandem())
     change(d)
-    with pytest.raises(CaseError) as e:
-        schedule_from_dict(d, "schedule.toml")
-    assert field in str(e.value)
+    assert_schedule_refused(d, field)
