@@ -44,12 +44,33 @@ def _units(seq) -> list:
 
 
 def _run(make):
+    made = make()
+    seq, ip, extra = made if len(made) == 3 else (*made, None)
+    processor = extra if isinstance(extra, type) else None
+    if processor is not None:
+        pr.Transport.post_processors.append(processor)
     try:
-        seq, ip = make()
         seq.solve(ip)
-        return _units(seq)
+        out = _units(seq)
+        if extra == "plot":
+            out.append(_plot(seq.units[0]))
+        return out
     except Exception as e:  # noqa: BLE001 - the outcome is what is compared
         return f"{type(e).__name__}: {str(e)[:120]}"
+    finally:
+        if processor is not None:
+            pr.Transport.post_processors.remove(processor)
+
+
+def _plot(unit) -> list:
+    """The lines of the unit's matplotlib plot: per line its point count and coordinate sums."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    fig = unit.plot_matplotlib()
+    return [[len(ln.get_xdata()), _number(sum(map(float, ln.get_xdata()))),
+             _number(sum(map(float, ln.get_ydata())))]
+            for ax in fig.axes for ln in ax.get_lines()]
 
 
 def flat_without_speed():
@@ -100,9 +121,36 @@ def transport_of_a_hot_strip_alone():
     return pr.PassSequence([pr.Transport(label="T", duration=10.0)]), ip
 
 
+def a_users_post_processor():
+    """A post-processor of the user's own on Transport (PyRolL's Unit.post_processors, where
+    the plugin registers its cooling too): it runs as without the plugin."""
+
+    class Halve:
+        label = "10 K off"
+
+        def __init__(self, unit):
+            pass
+
+        def solve(self, profile):
+            profile.temperature = profile.temperature - 10.0
+            return profile
+
+    ip = pr.Profile.box(height=0.02, width=0.25, corner_radius=1e-3, temperature=1373.15,
+                        strain=0.4, material="C45", flow_stress=100e6, density=7.5e3,
+                        specific_heat_capacity=690)
+    return pr.PassSequence([pr.Transport(label="T", duration=10.0),
+                            pr.Transport(label="T2", duration=5.0)]), ip, Halve
+
+
+def the_box_pass_plotted():
+    """A roll pass's plot (matplotlib): the same lines with and without the plugin."""
+    seq, ip = box_pass_of_a_hotroll_grade()
+    return seq, ip, "plot"
+
+
 SCENARIOS = (flat_without_speed, flat_with_speed_no_flow_stress_law,
              box_pass_of_a_hotroll_grade, transport_without_temperature,
-             transport_of_a_hot_strip_alone)
+             transport_of_a_hot_strip_alone, a_users_post_processor, the_box_pass_plotted)
 
 if __name__ == "__main__":
     print(json.dumps({f.__name__: _run(f) for f in SCENARIOS}, sort_keys=True))

@@ -134,3 +134,18 @@ def test_the_plugin_changes_nothing_it_does_not_solve():
             for flag in ([], ["--plugin"])]
     assert runs[0] == runs[1]
     assert sum(isinstance(v, list) for v in runs[0].values()) >= 4   # most do solve
+
+
+def test_a_cooling_pipe_after_a_hotroll_pass_keeps_pyrolls_model():
+    """Only a plain Transport after a hotroll pass cools by hotroll's model: a CoolingPipe
+    (a Transport of its own kind, with its own models in PyRolL's plugins) is left alone; with
+    pyroll-core alone it hands the temperature on unchanged."""
+    roll = pr.Roll(groove=pr.FlatGroove(usable_width=300e-3), nominal_radius=R)
+    seq = pr.PassSequence([pr.RollPass(label="I", roll=roll, gap=GAPS[0], velocity=V),
+                           pr.CoolingPipe(label="pipe", duration=2.0, length=2.0,
+                                          inner_radius=0.02)])
+    seq.solve(_profile())
+    rp, pipe = seq.units
+    assert rp.hotroll_result is not None
+    assert pipe.out_profile.temperature == rp.out_profile.temperature
+    assert pipe.in_profile.temperature == rp.out_profile.temperature < 1373.15
