@@ -40,6 +40,10 @@ SUMMARY_KEYS = ["status", "free_surface", "h_contact", "neutral_point", "neutral
                 "mean_flow_stress", "mean_strain_rate", "exit_strain", "roll_force_total",
                 "roll_torque_total", "mill_power", "a_f", "balance_error",
                 "converged", "steps", "nonlinear_iterations", "wall_time_s"]
+#: A flattening roll, a mill modulus, a roll gap: shown where the summary has them.
+MILL_KEYS = ["contact_length", "roll_model", "roll_equivalent_radius", "roll_flattening",
+             "roll_updates", "mill_stretch", "gap_setting", "roll_gap", "gauge_thickness",
+             "gauge_solves"]
 #: With [thermal]: shown after the mechanics' figures (units from summary.json's ``units``).
 THERMAL_KEYS = ["exit_temperature_mean", "exit_temperature_surface", "plastic_heat",
                 "friction_heat_to_strip", "heat_to_roll", "heat_to_air", "heat_balance_error"]
@@ -113,7 +117,11 @@ def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
     table.add_column("unit")
 
     thermal = THERMAL_KEYS if summary.get("thermal") else []
-    keys = SUMMARY_KEYS[:-4] + thermal + SUMMARY_KEYS[-4:]      # before the run's own figures
+    mill = [k for k in MILL_KEYS if k != "contact_length"] if summary.get("roll_model") or \
+        summary.get("mill_modulus") else []
+    if summary.get("roll_model"):
+        mill = ["contact_length"] + mill
+    keys = SUMMARY_KEYS[:-4] + mill + thermal + SUMMARY_KEYS[-4:]  # before the run's own figures
     for key in keys:
         if summary.get(key) is not None:
             text, unit = display(key, summary[key], summary.get("units", {}).get(key))
