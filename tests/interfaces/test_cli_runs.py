@@ -149,3 +149,30 @@ def test_a_full_disk_and_a_refused_mesh_end_with_their_messages(monkeypatch, cap
         cli.main()
     assert e.value.code == 8
     assert "refused: the mesh needs 40 GB" in capsys.readouterr().err
+
+
+def test_run_prints_the_rolls_and_the_mills_figures(tmp_path, monkeypatch):
+    """``hotroll run`` of a case with a flattening roll and a mill modulus (the run faked):
+    the roll's and the mill's rows with their units; a plain run has none of them."""
+    from hotroll.cli import passes
+    from hotroll.examples import example_path
+
+    base = {"exit_code": 0, "status": "steady", "converged": True, "roll_force": 7.6e6,
+            "contact_length": 0.0141, "units": {"contact_length": "m"}}
+    flat = {**base, "roll_model": "hitchcock", "roll_equivalent_radius": 0.4975,
+            "roll_flattening": 8.39e-5, "roll_updates": 10, "mill_modulus": 5e9,
+            "mill_stretch": 2.29e-3, "gap_setting": -2.9e-4}
+    monkeypatch.setattr(passes.console, "width", 300)
+    for summary, shown in ((flat, True), (base, False)):
+        monkeypatch.setattr(passes, "run_case", lambda *a, s=summary, **k: s)
+        r = CliRunner().invoke(app, ["run", str(example_path("thin_strip")), "--out",
+                                     str(tmp_path / "o")])
+        assert r.exit_code == 0, r.output
+        if shown:
+            assert _cells(r.output, "roll_equivalent_radius")[1:] == ["0.4975", "m"]
+            assert _cells(r.output, "roll_flattening")[1:] == ["8.39e-05", "m"]
+            assert _cells(r.output, "mill_stretch")[1:] == ["0.00229", "m"]
+            assert _cells(r.output, "gap_setting")[1:] == ["-0.00029", "m"]
+            assert _cells(r.output, "contact_length")[1:] == ["0.0141", "m"]
+        else:
+            assert "roll_equivalent_radius" not in r.output and "contact_length" not in r.output
