@@ -5,7 +5,8 @@ hotroll solves a ``RollPass`` whose groove is a ``FlatGroove`` and for which it 
 (a roll speed and a flow stress, ``handles``): the roll force, the roll torque, the forward
 slip, the neutral angle, the contact length, the flattened radius (``flattened_radius``,
 ``flattening_ratio``: the names of pyroll-hitchcock-roll-flattening), the exit velocity, strain
-and temperature come from one steady thermo-mechanical hotroll solve of the pass. Every other
+and temperature come from one steady thermo-mechanical hotroll solve of the pass, and the exit
+width is the entry width (plane strain: no spread). Every other
 unit, and a flat pass without those inputs (logged once), is left to PyRolL's own models and
 other plugins: every hook returns None there, and nothing else changes. A flat strip entering a
 flat pass hotroll solves is not turned by 90 degrees (PyRolL's rotation rule for flat after
@@ -404,6 +405,14 @@ def flattening_ratio(self):
 def out_velocity(self: RollPass.OutProfile):
     rp = self.roll_pass
     return solve(rp)["exit_velocity"] if handles(rp) else None
+
+
+@RollPass.OutProfile.width(tryfirst=True)
+def out_width(self: RollPass.OutProfile):
+    """hotroll's pass is plane strain: the strip leaves as wide as it enters (no spread;
+    PyRolL's default fills the groove's usable width)."""
+    rp = self.roll_pass
+    return float(rp.in_profile.width) if handles(rp) else None
 
 
 @RollPass.OutProfile.strain(tryfirst=True)

@@ -62,6 +62,13 @@ def test_every_pass_is_hotrolls_and_the_strip_stays_flat(rolled):
     for p in passes:
         assert "vertical" not in p.in_profile.classifiers
         assert p.hotroll_result is not None and p.roll_force > 0.0
+        # plane strain: no spread (PyRolL alone fills the groove's 0.3 m), so the whole-width
+        # force is hotroll's per width x 0.25 m and PyRolL's entry speed is volume-constant
+        # (to its cross-sections' rounded corners, 1 mm: 2e-4)
+        assert p.in_profile.width == p.out_profile.width == 0.25
+        assert p.roll_force == pytest.approx(p.hotroll_result["roll_force"] * 0.25, rel=1e-12)
+        assert p.in_profile.velocity * p.in_profile.height == pytest.approx(
+            p.out_profile.velocity * p.out_profile.height, rel=1e-3)
     assert stats["fe_solves"] >= 3
 
 
