@@ -60,6 +60,9 @@ def schedule(
              "M kNm" if width else "M kNm/m", "T out K", "strain", "FE", "s"]
     if tensions:
         heads.insert(3, "t front MPa")
+    flat = any("roll_equivalent_radius" in r for r in rows)
+    gaps = any("gap_setting" in r for r in rows)
+    heads[-2:-2] = (["R'/R"] if flat else []) + (["gap mm"] if gaps else [])
     for h in heads:
         table.add_column(h, justify="left" if h == "pass" else "right")
     for r in rows:
@@ -71,8 +74,18 @@ def schedule(
             f"{r['exit_strain_mean']:.3f}", str(r["fe_solves"]), f"{r['wall_time']:.1f}"]
         if tensions:
             cells.insert(3, f"{1e-6 * r['front_tension']:.2f}")
+        extra = []
+        if flat:
+            extra.append(f"{r['roll_equivalent_radius'] / r['roll_radius']:.4f}"
+                         if "roll_equivalent_radius" in r else "-")
+        if gaps:
+            extra.append(f"{1e3 * r['gap_setting']:.3f}" if "gap_setting" in r else "-")
+        cells[-2:-2] = extra
         table.add_row(*cells)
     console.print(table)
+    if flat or gaps:
+        console.print("R'/R: the flattened roll's equivalent radius over its radius; gap: the "
+                      "no-load roll gap to set (exit thickness - F/M)")
     console.print(f"force and torque per roll{', whole width' if width else ''}; exit "
                   f"temperature: mixing-cup mean after the gap; all columns (power, surface "
                   f"temperature, transports) in {out / 'schedule.csv'}; figure "

@@ -176,3 +176,28 @@ def test_run_prints_the_rolls_and_the_mills_figures(tmp_path, monkeypatch):
             assert _cells(r.output, "contact_length")[1:] == ["0.0141", "m"]
         else:
             assert "roll_equivalent_radius" not in r.output and "contact_length" not in r.output
+
+
+def test_schedule_on_a_mill_shows_the_flattening_the_gap_and_the_tensions(tmp_path,
+                                                                          monkeypatch, wide):
+    """finishing_mill_elastic (elastic rolls, stand moduli) with tensions from the speeds (the
+    rows faked): R'/R, the gap to set in mm and the front tension in MPa, by hand."""
+    row = {**ROW, "roll_radius": 0.35, "roll_equivalent_radius": 0.3549, "gap_setting": 0.0181,
+           "front_tension": 12.5e6}
+    from hotroll.config.schedule import load_schedule
+    from hotroll.examples import schedule_path
+
+    sch = load_schedule(schedule_path("finishing_mill_elastic"))
+    sch.mill.tensions = "from_speeds"
+    monkeypatch.setattr(runs, "load_schedule", lambda f: sch)
+    monkeypatch.setattr(runs, "run_schedule", lambda *a, **k: [row])
+    path = tmp_path / "s.toml"
+    path.write_text("")
+    r = CliRunner().invoke(app, ["schedule", str(path), "--out", str(tmp_path / "o")])
+    assert r.exit_code == 0, r.output
+    head = next(x for x in r.output.splitlines() if "pass" in x and "┃" in x)
+    assert [c.strip() for c in head.strip("┃").split("┃")] == [
+        "pass", "h mm", "U m/s", "t front MPa", "F MN", "M kNm", "T out K", "strain", "R'/R",
+        "gap mm", "FE", "s"]
+    assert _cells(r.output, "F1")[3] == "12.50" and _cells(r.output, "F1")[8:10] == [
+        "1.0140", "18.100"]
