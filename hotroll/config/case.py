@@ -98,6 +98,10 @@ class Case(Section):
             problems.append('contact.method: "multiplier" needs solver.method = "steady" (the '
                             'report\'s scheme has the penalty contact of Table 1), got '
                             f'"{self.solver.method}"')
+        if self.roll.model != "rigid" and self.solver.method != "steady":
+            problems.append(f'roll.model: "{self.roll.model}" needs solver.method = "steady" '
+                            '(the report\'s scheme rolls with the rigid roll), got '
+                            f'"{self.solver.method}"')
         if self.pass_.roll_gap is not None and self.solver.method != "steady":
             problems.append('pass.roll_gap: needs solver.method = "steady" (the exit thickness '
                             f'is found by repeated steady solves), got "{self.solver.method}"')

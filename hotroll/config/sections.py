@@ -257,7 +257,8 @@ class RollConfig(Section):
     model: Literal["rigid", "hitchcock", "elastic"] = field(
         "rigid", "the work roll: rigid; flattened by Hitchcock's formula (a circle of radius R' "
         "through the gap); or elastic (the plane-strain disc under the computed contact "
-        "pressure and shear, its surface iterated with the strip)", "",
+        "pressure and shear, its surface iterated with the strip); flattening rolls need the "
+        "steady solver", "",
         '"rigid", "hitchcock" or "elastic"')
     youngs_modulus: PosFloat = field(210e9, "the roll's Young's modulus (steel 210e9)", "Pa",
                                      "> 0", gt=0)

@@ -146,3 +146,16 @@ def test_the_flattened_roll_has_its_figure(runs):
     path = runs["elastic_dir"] / "fig_roll.png"
     assert fig_roll(RunFiles(runs["elastic_dir"]), path) == path and path.stat().st_size > 10000
     assert fig_roll(RunFiles(runs["rigid_dir"]), runs["rigid_dir"] / "fig_roll.png") is None
+
+
+def test_a_flattening_roll_needs_the_steady_solver():
+    """The report's time stepping rolls with the rigid roll: a flattening roll there is
+    refused before anything runs, not silently rigid."""
+    from hotroll.config.case import CaseError
+
+    d = copy.deepcopy(BASE)
+    d["roll"] = {"model": "elastic"}
+    d["solver"] = {"method": "transient"}
+    d["contact"] = {"method": "penalty"}
+    with pytest.raises(CaseError, match='roll.model: "elastic" needs solver.method = "steady"'):
+        case_from_dict(d)
