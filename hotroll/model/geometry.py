@@ -22,7 +22,11 @@ class RollShape:
     increasing angles and interpolated by cubic splines (constant beyond the table). Mutable:
     the roll coupling updates it in place (``set``), and every ``RollPass`` holding it follows."""
 
-    def __init__(self, theta, w, hoop=None):
+    def __init__(self, theta, w, hoop=None, tie: float = 0.0):
+        #: heights (m) within which two lowest points count as equal: the exit is then the one
+        #: nearest the last exit (``lowest``); 0: always the lowest
+        self.tie = tie
+        self._previous_t: float | None = None
         self.set(theta, w, hoop)
 
     def set(self, theta, w, hoop=None) -> None:
@@ -36,6 +40,9 @@ class RollShape:
         if np.any(np.diff(theta) <= 0.0):
             raise ValueError("a roll shape's angles must increase")
         self.theta, self.w, self.hoop = theta.copy(), w.copy(), hoop.copy()
+        last = getattr(self, "_lowest", None)
+        if last is not None:
+            self._previous_t = last[1]
         self._lowest: tuple | None = None
         self._w = CubicSpline(theta, w, bc_type="clamped")
         self._dw = self._w.derivative()
@@ -60,12 +67,21 @@ class RollShape:
 
     def lowest(self, radius: float) -> tuple[float, float]:
         """(t_min, r(t_min)): the angle of the surface's lowest point, where (R + w) cos t is
-        largest (cached until the shape changes)."""
+        largest (cached until the shape changes). Where the surface is flat to within ``tie``
+        (several local lowest points less than ``tie`` above the lowest), the one nearest the
+        last shape's: the exit moves continuously instead of jumping between near-equal dips
+        (a thin strip's flat zone, docs/theory.md 1f)."""
         if self._lowest is None or self._lowest[0] != radius:
             from scipy.optimize import minimize_scalar
 
             t = self.theta
-            i = int(np.argmax((radius + self.w) * np.cos(t)))
+            h = (radius + self.w) * np.cos(t)
+            i = int(np.argmax(h))
+            if self.tie > 0.0 and self._previous_t is not None:
+                peak = np.r_[h[0] >= h[1], (h[1:-1] >= h[:-2]) & (h[1:-1] >= h[2:]),
+                             h[-1] >= h[-2]]
+                near = np.flatnonzero(peak & (h >= h[i] - self.tie))
+                i = int(near[np.argmin(np.abs(t[near] - self._previous_t))])
             lo, hi = t[max(i - 1, 0)], t[min(i + 1, len(t) - 1)]
             res = minimize_scalar(lambda a: -(radius + float(self.offset(a))) * math.cos(a),
                                   bounds=(lo, hi), method="bounded",
@@ -74,7 +90,9 @@ class RollShape:
         return self._lowest[1], self._lowest[2]
 
     def copy(self) -> "RollShape":
-        return RollShape(self.theta, self.w, self.hoop)
+        out = RollShape(self.theta, self.w, self.hoop, self.tie)
+        out._previous_t = self._previous_t
+        return out
 
     @property
     def max_offset(self) -> float:

@@ -162,9 +162,11 @@ class FlatteningRoll:
 
     @classmethod
     def start(cls, rp, kind: str, elasticity: RollElasticity = RollElasticity(),
-              relaxation: float = 1.0, force_per_width: float | None = None):
+              relaxation: float = 1.0, force_per_width: float | None = None,
+              tie: float = 0.0):
         """A RollPass with a shape (Hitchcock's circle for ``force_per_width``, else the rigid
-        circle) and the FlatteningRoll that updates it."""
+        circle) and the FlatteningRoll that updates it; ``tie`` (m): heights within which two
+        lowest points of the surface count as equal (``RollShape.lowest``)."""
         from dataclasses import replace
 
         from hotroll.model.geometry import RollShape
@@ -173,7 +175,9 @@ class FlatteningRoll:
         if force_per_width is not None:
             ratio = elasticity.hitchcock_ratio(force_per_width, 2.0 * rp.draft)
         theta = cls.table(rp, math.sqrt(ratio) * rp.bite_angle)
-        shaped = replace(rp, shape=RollShape.circle(rp.radius, ratio * rp.radius, theta))
+        shape = RollShape.circle(rp.radius, ratio * rp.radius, theta)
+        shape.tie = tie
+        shaped = replace(rp, shape=shape)
         return shaped, cls(shaped, kind, elasticity, relaxation)
 
     @staticmethod

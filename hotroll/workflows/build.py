@@ -13,6 +13,11 @@ from hotroll.solvers.settling import default_end_time
 from hotroll.solvers.steady_settings import SteadySettings
 from hotroll.solvers.transient import TransientSettings
 
+#: Two dips of a flattened roll's surface less than this share of the exit half-thickness
+#: apart in height are the same exit: the nearest to the last one is kept (``RollShape.lowest``;
+#: thin strip's flat zone, docs/theory.md 1f). The exit thickness moves by at most 1e-3.
+EXIT_TIE = 1e-3
+
 
 def reference_material(case: Case):
     """(NortonHoff(K_ref, m, eps0), flow-stress law): the Norton-Hoff law that coincides with
@@ -55,7 +60,7 @@ def build_model(case: Case):
     if case.roll.model != "rigid":
         shaped, roll = FlatteningRoll.start(
             rp, case.roll.model, RollElasticity(case.roll.youngs_modulus, case.roll.poissons_ratio),
-            case.roll.relaxation)
+            case.roll.relaxation, tie=EXIT_TIE * rp.half_exit)
         model = replace(model, rp=shaped, roll=roll)
     settings = TransientSettings(
         dt=case.dt, end_time=end_time, nonlinear=sv.nonlinear, tol=sv.tolerance,

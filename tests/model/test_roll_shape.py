@@ -59,3 +59,32 @@ def test_bad_shapes_are_refused():
         RollShape([0.0, 0.2, 0.1, 0.3], np.zeros(4))
     with pytest.raises(ValueError, match="at least 4"):
         RollShape([0.0, 0.1], np.zeros(2))
+
+
+def _two_dips(depth_second: float, tie: float) -> RollShape:
+    """A roll surface with two lowest points (local maxima of h = (R + w) cos t, the height
+    below the roll's centre) at t = -0.004 and -0.001 rad, 1 um proud of a gentle bowl, the
+    second ``depth_second`` m less proud than the first."""
+    t = np.linspace(-0.02, 0.05, 701)
+    h = (R + 1e-6 * (np.exp(-((t + 0.004) / 5e-4) ** 2)
+                     + (1.0 - depth_second / 1e-6) * np.exp(-((t + 0.001) / 5e-4) ** 2))
+         - 2e-6 * (t / 0.02) ** 2)
+    return RollShape(t, h / np.cos(t) - R, tie=tie)
+
+
+def test_the_exit_is_the_lowest_point_unless_another_is_as_low_and_nearer_the_last():
+    """Two dips 0.2 um apart in height: without a tie the lower one is the exit; with a tie of
+    0.5 um the one nearest the last exit is kept (the surface set again, as the coupling
+    does); with the last exit's dip 0.9 um less low, the lowest wins despite the tie."""
+    near = _two_dips(0.2e-6, tie=0.0)
+    assert near.lowest(R)[0] == pytest.approx(-0.004, abs=2e-4)
+    s = _two_dips(0.2e-6, tie=0.5e-6)
+    s._previous_t = -0.001                 # the last exit at the other dip
+    assert s.lowest(R)[0] == pytest.approx(-0.001, abs=2e-4)
+    s.set(s.theta, s.w, s.hoop)            # an update keeps the last exit as the reference
+    assert s._previous_t == pytest.approx(-0.001, abs=2e-4)
+    assert s.lowest(R)[0] == pytest.approx(-0.001, abs=2e-4)
+    far = _two_dips(0.9e-6, tie=0.5e-6)    # the -0.001 dip 0.9 um less low: not the exit
+    far._previous_t = -0.001
+    assert far.lowest(R)[0] == pytest.approx(-0.004, abs=2e-4)
+    assert s.copy().tie == 0.5e-6 and s.copy()._previous_t == s._previous_t
