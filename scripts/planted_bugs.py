@@ -187,6 +187,10 @@ BUGS: dict[str, tuple[str, str, str, str]] = {
                            "_missing(nxt, self.in_profile) is None):\n        return 0",
                            "_missing(nxt, self.in_profile) is None):\n        return None",
                            "a flat strip turned by 90 degrees before a flat hotroll pass"),
+    "exit_tie": ("hotroll/model/geometry.py",
+                 "            if self.tie > 0.0 and self._previous_t is not None:",
+                 "            if False:",
+                 "a flattened roll's exit always the lowest dip (no tie: the thin strip cycles)"),
     # --- the thermal figures (issue 16) ---
     "exit_T_surface": ("hotroll/solvers/thermal_coupling.py",
                        "surface = float(self.field.values[(ny - 1) * nx1 + self.strip.i_exit])",
