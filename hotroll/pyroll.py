@@ -158,6 +158,15 @@ def handles(rp) -> bool:
     return True
 
 
+def _properties(profile) -> ThermalProperties:
+    """The profile's density, specific heat and conductivity (else ``Config.PROPERTIES``)."""
+    props = Config.PROPERTIES
+    return ThermalProperties(
+        float(_value(profile, "density", props["density"])),
+        float(_value(profile, "specific_heat_capacity", props["specific_heat"])),
+        float(_value(profile, "thermal_conductivity", props["conductivity"])))
+
+
 def _grade(profile) -> str | None:
     names = _value(profile, "material", None)
     names = [names] if isinstance(names, str) else list(names or [])
@@ -242,12 +251,9 @@ def pass_case(rp) -> tuple[Case, dict]:
     e0 = round(float(_value(ip, "strain", 0.0)), 6)
     lc = math.sqrt(R * 0.5 * (h0 - h1))
     material, fit = _material(rp, T0, e0, h0, h1, U, lc)
-    props = Config.PROPERTIES
-    material.update(density=float(_value(ip, "density", props["density"])),
-                    specific_heat=float(_value(ip, "specific_heat_capacity",
-                                               props["specific_heat"])),
-                    conductivity=float(_value(ip, "thermal_conductivity",
-                                              props["conductivity"])))
+    props = _properties(ip)
+    material.update(density=props.density, specific_heat=props.specific_heat,
+                    conductivity=props.conductivity)
     mu = _value(rp, "coulomb_friction_coefficient", None)
     thermal = dict(Config.THERMAL)
     thermal["roll_temperature"] = float(_value(rp.roll, "temperature",
@@ -483,10 +489,7 @@ def transport_temperature(tr) -> float | None:
     T0, duration = _value(ip, "temperature", None), _value(tr, "duration", None)
     if T0 is None or duration is None:
         return None
-    props = Config.PROPERTIES
-    p = ThermalProperties(float(_value(ip, "density", props["density"])),
-                          float(_value(ip, "specific_heat_capacity", props["specific_heat"])),
-                          float(_value(ip, "thermal_conductivity", props["conductivity"])))
+    p = _properties(ip)
     htc = float(_value(tr, "convection_heat_transfer_coefficient", Config.THERMAL["htc_air"]))
     eps = float(_value(tr, "relative_radiation_coefficient", Config.THERMAL["emissivity"]))
     ambient = float(_value(tr, "environment_temperature", Config.THERMAL["ambient_temperature"]))

@@ -117,10 +117,8 @@ def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
     table.add_column("unit")
 
     thermal = THERMAL_KEYS if summary.get("thermal") else []
-    mill = [k for k in MILL_KEYS if k != "contact_length"] if summary.get("roll_model") or \
-        summary.get("mill_modulus") else []
-    if summary.get("roll_model"):
-        mill = ["contact_length"] + mill
+    # absent keys are not shown; the contact length only beside a flattened roll's figures
+    mill = [k for k in MILL_KEYS if k != "contact_length" or summary.get("roll_model")]
     keys = SUMMARY_KEYS[:-4] + mill + thermal + SUMMARY_KEYS[-4:]  # before the run's own figures
     for key in keys:
         if summary.get(key) is not None:

@@ -131,7 +131,3 @@ class RollFlattening(Coupling):
         self.moves.append(moved)
         self.apply()
         return moved / self.tol
-
-    def advance(self, dt: float) -> None:
-        self.roll.update(*self.loads())
-        self.apply()

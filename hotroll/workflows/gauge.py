@@ -23,6 +23,7 @@ from hotroll.config.case import Case
 from hotroll.results.outcome import exit_code
 from hotroll.results.output import write_json, write_text
 from hotroll.results.summary import Summary
+from hotroll.results.units import UNITS
 from hotroll.workflows.sweep import Sweep
 
 #: |h1 - S - F/M| at which the exit thickness is accepted, relative to the gap S.
@@ -112,7 +113,7 @@ def _finish(case: Case, out: Path, last, h1: float, n_solves: int,
     d = dict(last)
     d["roll_gap"], d["gauge_solves"] = case.pass_.roll_gap, n_solves
     d["gauge_thickness"] = h1
-    d["units"] = {**d.get("units", {}), "roll_gap": "m", "gauge_thickness": "m"}
+    d["units"] = {k: u for k, u in UNITS.items() if k in d}       # as write_results does
     if failure is not None:
         d.update(converged=False, status="unsettled", failure=failure)
         d["exit_code"] = exit_code(d)

@@ -38,10 +38,14 @@ class TensionError(RuntimeError):
     search did not settle."""
 
 
+def _log_flux(rows: list[dict]) -> np.ndarray:
+    """ln Q_k of the stands' exit fluxes (half strip)."""
+    return np.log([r["mass_flux_out"] for r in rows])
+
+
 def residuals(rows: list[dict]) -> np.ndarray:
-    """r_k = ln Q_{k+1} - ln Q_k of the stands' exit fluxes (half strip)."""
-    q = np.log([r["mass_flux_out"] for r in rows])
-    return np.diff(q)
+    """r_k = ln Q_{k+1} - ln Q_k."""
+    return np.diff(_log_flux(rows))
 
 
 def solve_tensions(sch, roll: Callable, start: list[float] | None,
@@ -103,7 +107,7 @@ def _jacobian(rows: list[dict], t: np.ndarray, run, upper: np.ndarray) -> np.nda
     (downwards where a tension is at its upper bound)."""
     m = len(t)
     sigma = float(np.mean([row["mean_flow_stress"] for row in rows]))
-    base = np.log([row["mass_flux_out"] for row in rows])
+    base = _log_flux(rows)
     J = np.zeros((m, m))
     for colour in (0, 1):
         moved = np.arange(m) % 2 == colour
@@ -111,7 +115,7 @@ def _jacobian(rows: list[dict], t: np.ndarray, run, upper: np.ndarray) -> np.nda
             continue
         h = np.where(t + STEP_SHARE * sigma <= upper, 1.0, -1.0) * STEP_SHARE * sigma
         tt = np.where(moved, t + h, t)
-        q = np.log([row["mass_flux_out"] for row in run(tt)[0]]) - base
+        q = _log_flux(run(tt)[0]) - base
         for i in np.flatnonzero(moved):            # tension i: stand i's front, i+1's back
             dq = np.zeros(m + 1)
             dq[i], dq[i + 1] = q[i] / h[i], q[i + 1] / h[i]
