@@ -72,6 +72,10 @@ def test_mass_flux_is_the_same_in_both_stands(rolled):
     # stand 2's speed from the mass flow: with exact contact its first guess (stand 1's flux
     # over stand 2's exit at its forward slip) lands inside the tolerance (penalty: 2 solves)
     assert rows[1]["fe_solves"] >= 1 and rows[0]["fe_solves"] == 1
+    # the rows hand on each run's own figures
+    for r, s in zip(rows, (s1, s2)):
+        assert (r["mass_flux_out"], r["mean_flow_stress"]) == (s["mass_flux_out"],
+                                                               s["mean_flow_stress"])
 
 
 def test_strain_accumulates_pass_by_pass(rolled):

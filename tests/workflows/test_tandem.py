@@ -125,6 +125,8 @@ def test_the_stands_pass_one_flux(tandems):
     rows, js = tandems["base"]
     q = np.array([r["mass_flux_out"] for r in rows])
     assert np.max(q) / np.min(q) - 1.0 <= 1e-4
+    assert js["flux_mismatch"] == pytest.approx(float(np.max(np.abs(np.diff(np.log(q))))),
+                                                rel=1e-9, abs=0.0)
     t = js["interstand_tensions"]
     assert [r["front_tension"] for r in rows[:-1]] == t == [r["back_tension"] for r in rows[1:]]
     assert rows[0]["back_tension"] == 0.0 and rows[-1]["front_tension"] == 0.0
