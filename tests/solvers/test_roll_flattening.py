@@ -182,3 +182,32 @@ def test_the_thin_strips_elastic_roll_settles(tmp_path):
                      resume=False)
     assert elastic["exit_code"] == 0 and elastic["roll_updates"] <= 20
     assert elastic["roll_force"] > 1.15 * rigid["roll_force"]
+
+
+def test_the_flattening_roll_keeps_the_exact_scalings(tmp_path):
+    """A slow lab pass (R 0.1 m, 10 -> 8 mm, 0.05 m/s, Norton-Hoff, Coulomb, elastic roll):
+    K x 1000 with the roll's E x 1000 scales force and torque by 1000 and leaves slip, the
+    neutral angle, the contact and R_eq (the equations are linear in K and E together); moving
+    the roll axis changes nothing (measured 1e-15 and 0)."""
+    def lab(name, K=50e6, E=210e9, axis=1.0):
+        return case_from_dict({
+            "name": name, "pass": {"roll_radius": 0.1, "entry_thickness": 0.01,
+                                   "exit_thickness": 0.008, "roll_angular_velocity": 0.5,
+                                   "roll_axis_x": axis},
+            "plate": {"length": 0.1}, "material": {"K": K, "m": 0.15},
+            "friction": {"law": "coulomb", "mu": 0.3}, "mesh": {"h_contact": 5e-4},
+            "roll": {"model": "elastic", "youngs_modulus": E},
+            "solver": {"method": "steady", "threads": 1},
+            "output": {"figures": False, "vtk": False}})
+
+    b = run_case(lab("b"), tmp_path / "b", resume=False)
+    k = run_case(lab("k", K=50e9, E=210e12), tmp_path / "k", resume=False)
+    a = run_case(lab("a", axis=-2.5), tmp_path / "a", resume=False)
+    assert b["exit_code"] == 0 and b["roll_equivalent_radius"] > 0.1
+    for key in ("roll_force", "roll_torque"):
+        assert k[key] == pytest.approx(1000.0 * b[key], rel=1e-9)
+        assert a[key] == pytest.approx(b[key], rel=1e-12)
+    for key in ("forward_slip", "neutral_angle", "contact_length", "roll_equivalent_radius",
+                "roll_flattening"):
+        assert k[key] == pytest.approx(b[key], rel=1e-9)
+        assert a[key] == pytest.approx(b[key], rel=1e-12)
