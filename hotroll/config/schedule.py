@@ -10,6 +10,7 @@
     [friction]         default of every pass (a pass may give its own table)
     [thermal]          as in a case: roll contact, air; required (a schedule carries T)
     [roll]             the work rolls of every stand: rigid, hitchcock or elastic (as a case)
+    [microstructure]   recrystallisation between the passes (config/microstructure.py)
     [mesh] [solver] [output]   defaults of every pass's case
     [[pass]]           roll_radius, exit_thickness (or roll_gap with mill_modulus),
                        roll_surface_speed or roll_angular_velocity, back_tension,
@@ -41,6 +42,7 @@ from hotroll.config.case import (
     case_from_dict,
     check_profile,
 )
+from hotroll.config.microstructure import MicrostructureConfig, check_schedule
 from hotroll.config.thermal import ThermalConfig
 from hotroll.model.profile import ThicknessProfile
 
@@ -157,6 +159,7 @@ class Schedule(Section):
     mesh: MeshConfig = Field(default_factory=MeshConfig)
     solver: SolverConfig = Field(default_factory=SolverConfig)
     output: OutputConfig = Field(default_factory=OutputConfig)
+    microstructure: MicrostructureConfig = Field(default_factory=MicrostructureConfig)
     passes: list[PassEntry] = Field(..., alias="pass", min_length=1)
 
     @model_validator(mode="after")
@@ -197,6 +200,9 @@ class Schedule(Section):
                                 f'(every stand\'s roll speed), got "{self.mill.speeds}"')
             if len(self.passes) < 2:
                 problems.append('mill.tensions: "from_speeds" needs at least two passes')
+        temps = [self.strip.temperature] + [T for _, T in self.strip.temperature_profile or []]
+        problems += check_schedule(self.microstructure, self.material.grade, temps,
+                                   [(k, p.transport) for k, p in enumerate(self.passes, 1)])
         if self.solver.method != "steady":
             problems.append("solver.method: a schedule runs the steady solver, got "
                             f"\"{self.solver.method}\"")

@@ -44,6 +44,8 @@ class TransportResult:
     surface: float
     heat_lost: float
     balance_error: float
+    times: np.ndarray | None = None      # s, with ``record``: 0 and the end of every step
+    history: np.ndarray | None = None    # K, the profile at those times (steps + 1, nodes)
 
 
 def _weights(n: int, dy: float) -> np.ndarray:
@@ -72,13 +74,14 @@ def enthalpy_mean(props: ThermalProperties, T: np.ndarray, weights: np.ndarray) 
 def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
          props: ThermalProperties, htc: float | None, emissivity: float | None, ambient: float,
          intervals: int = 40, steps: int | None = None,
-         surface: HeatTransferLaw | None = None) -> TransportResult:
+         surface: HeatTransferLaw | None = None, record: bool = False) -> TransportResult:
     """The temperature profile ``T`` (K) at ``y`` (from the mid-plane, 0, to the surface, the
     last value; rescaled onto ``half_thickness``, so a logical coordinate in [0, 1] serves too)
     after ``duration`` seconds in air (module docstring); one value is a uniform profile.
     ``steps`` implicit steps (default: at least 100, and dt at most a tenth of H^2 / alpha).
     The surface loses q(T) of the free surfaces' law ``surface`` (``model/heat_transfer``;
-    default: convection ``htc`` and radiation ``emissivity``)."""
+    default: convection ``htc`` and radiation ``emissivity``). ``record``: keep the profile
+    after every step (``times``, ``history``: what the recrystallisation kinetics integrate)."""
     H = finite_number("half_thickness", half_thickness, 0.0, True, None, "m")
     t_end = finite_number("duration", duration, 0.0, False, None, "s")
     if surface is None:            # htc and emissivity ignored when a law is given
@@ -100,12 +103,14 @@ def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
     H0 = float(w @ props.enthalpy_values(temp))
     if t_end == 0.0:
         return TransportResult(nodes, temp, enthalpy_mean(props, temp, w), float(temp[-1]),
-                               0.0, 0.0)
+                               0.0, 0.0, np.zeros(1) if record else None,
+                               temp[None, :].copy() if record else None)
     if steps is None:
         alpha = float(np.max(props.k_values(temp) / props.rho_c_values(temp)))
         steps = max(100, math.ceil(t_end / (0.1 * H * H / alpha)))
     dt = t_end / int(steps)
     lost = 0.0
+    history = [temp.copy()] if record else None
     for _ in range(int(steps)):
         old_H = props.enthalpy_values(temp)
         new = temp.copy()
@@ -132,8 +137,11 @@ def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
             if np.max(np.abs(d)) <= 1e-11 * np.max(new):
                 break
         temp = new
+        if record:
+            history.append(temp.copy())
         lost += dt * surface.flux(temp[-1], T_amb)
     change = H0 - float(w @ props.enthalpy_values(temp))
     err = abs(change - lost) / max(abs(lost), 1e-300)
     return TransportResult(nodes, temp, enthalpy_mean(props, temp, w), float(temp[-1]), lost,
-                           err)
+                           err, np.linspace(0.0, t_end, int(steps) + 1) if record else None,
+                           np.array(history) if record else None)

@@ -4,13 +4,18 @@ Measured where the steady model ends, on its outlet section, where the strip mov
 - temperature: the thermal strip mesh's last column (its rows, dense at the surface, are the
   eta grid), K;
 - strain: the strain field at the same eta (the mechanics' P1 field), -;
-- eta = y / half thickness, 0 centre line, 1 surface.
+- eta = y / half thickness, 0 centre line, 1 surface;
+- along the streamline ending there (issue 33; with a strain field): the pass strain, and the
+  strain-weighted means of ln(edot) (edot in 1/s) and of 1/T (1/K) that the recrystallisation
+  kinetics' Zener-Hollomon parameter takes (``solvers/streamlines.py``; thermal runs).
 A steady run without a strain field (a law independent of the strain) and without [thermal]
 has no profile (None).
 """
 from __future__ import annotations
 
 import numpy as np
+
+from hotroll.solvers.streamlines import streamline_means
 
 #: eta grid of the strain profile in an isothermal run (no thermal strip mesh).
 ISOTHERMAL_ROWS = 21
@@ -28,14 +33,28 @@ def exit_profiles(run) -> dict | None:
         temperature = thermal.field.values.reshape(strip.shape)[:, -1].copy()
     else:
         eta, temperature = np.linspace(0.0, 1.0, ISOTHERMAL_ROWS), None
-    values = None if strain is None else _outlet_strain(run, strain, eta)
-    return {"eta": eta.tolist(),
-            "temperature": None if temperature is None else temperature.tolist(),
-            "strain": None if values is None else values.tolist()}
+    out = {"eta": eta.tolist(),
+           "temperature": None if temperature is None else temperature.tolist(),
+           "strain": None, "pass_strain": None, "log_rate_mean": None,
+           "inverse_temperature_mean": None}
+    if strain is not None:
+        out["strain"] = _outlet(run, (strain.gf,), eta)[0].tolist()
+    if thermal is not None:
+        means = streamline_means(thermal, eta)
+        out.update({k: means[k].tolist() for k in ("pass_strain", "log_rate_mean",
+                                                   "inverse_temperature_mean")})
+    return out
+    T = thermal.T if thermal is not None else run.problem.temperature
+    total, log_rate, inv_T = strain.streamline_means(run.form.nonlinear.velocity, T)
+    e, de, a, b = _outlet(run, (strain.gf, total, log_rate, inv_T), eta)
+    safe = np.maximum(de, 1e-300)
+    out.update(strain=e.tolist(), pass_strain=de.tolist(),
+               log_rate_mean=(a / safe).tolist(), inverse_temperature_mean=(b / safe).tolist())
+    return out
 
 
-def _outlet_strain(run, strain, eta: np.ndarray) -> np.ndarray:
-    """The strain field at eta on the outlet section (searched in the undeformed mesh, as
+def _outlet(run, fields, eta: np.ndarray) -> list[np.ndarray]:
+    """The fields at eta on the outlet section (searched in the undeformed mesh, as
     NGSolve's point search ignores the deformation, and evaluated on the deformed one)."""
     top = run.top
     ref = top.X0[top.verts]
@@ -49,4 +68,4 @@ def _outlet_strain(run, strain, eta: np.ndarray) -> np.ndarray:
         pts = mesh(np.full_like(y, x), y)
     finally:
         mesh.SetDeformation(run.disp)
-    return np.asarray(strain.gf(pts), dtype=float).reshape(-1)
+    return [np.asarray(f(pts), dtype=float).reshape(-1) for f in fields]

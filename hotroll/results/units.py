@@ -17,6 +17,14 @@ UNITS: dict[str, str] = {
     "newton_iterations": "-", "fe_solves": "-", "wall_time": "s", "transport_duration": "s",
     "transport_heat_lost": "J/m^2", "next_entry_temperature_mean": "K",
     "next_entry_temperature_surface": "K", "next_entry_strain_mean": "-",
+    # the microstructure (issue 33): pass and transport columns
+    "drx_onset_share": "-", "zener_log_mean": "ln(1/s)", "critical_strain_centre": "-",
+    "critical_strain_surface": "-", "kinetics_strain_centre": "-",
+    "kinetics_strain_surface": "-", "recrystallised_fraction_mean": "-",
+    "recrystallised_fraction_surface": "-", "recrystallised_fraction_centre": "-",
+    "grain_size_mean": "m", "grain_size_surface": "m", "grain_size_centre": "m",
+    "retained_strain_mean": "-", "retained_strain_surface": "-", "retained_strain_centre": "-",
+    "mechanism_surface": "-", "mechanism_centre": "-",
     # a tandem's tensions (schedule.csv, schedule.json)
     "back_tension": "Pa", "front_tension": "Pa", "interstand_tensions": "Pa",
     "flux_mismatch": "-", "tension_runs": "-",

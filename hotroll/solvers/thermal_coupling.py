@@ -175,6 +175,10 @@ class ThermalCoupling(FlowStressFeedback):
     def _column_flux(self) -> np.ndarray:
         """The flux below each strip vertex along its column (ny+1, nx+1), m^2/s: int v.n ds
         over the column's current (deformed) line, SUBSAMPLES points per row interval."""
+        return self.fine_column_flux()[::SUBSAMPLES]
+
+    def fine_column_flux(self) -> np.ndarray:
+        """The flux below every fine column point (``_fine`` eta, all columns), m^2/s."""
         shape = (len(self._fine), len(self.strip.X), 4)
         both = self._at(self._column_cf, self._col_pts).reshape(shape)
         pos, vel = both[..., :2], both[..., 2:]
@@ -182,7 +186,7 @@ class ThermalCoupling(FlowStressFeedback):
         vm = 0.5 * (vel[1:] + vel[:-1])
         flux = np.concatenate([np.zeros((1, shape[1])),
                                np.cumsum(vm[..., 0] * dy - vm[..., 1] * dx, axis=0)])
-        return flux[::SUBSAMPLES]
+        return flux
 
     def _transfer(self) -> None:
         """Place the strip, and carry the flow, the heat sources and the contact over."""

@@ -24,33 +24,42 @@ import numpy as np
 
 from hotroll.config.schedule import Schedule
 from hotroll.model.interpass import cool, enthalpy_mean
+from hotroll.model.microstructure.softening import PassState
 from hotroll.model.profile import ThicknessProfile
 from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv, write_json
 from hotroll.results.schedule_plot import plot_schedule
 from hotroll.results.units import UNITS
+from hotroll.workflows import microstructure as MS
 from hotroll.workflows.runner import finished_summary, run_case
 from hotroll.workflows.sweep import Sweep
 from hotroll.workflows.tandem import solve_tensions
 
 
 class StripState:
-    """The strip between passes: full thickness (m), temperature and strain profiles."""
+    """The strip between passes: full thickness (m), temperature and strain profiles, and
+    with a microstructure model the austenite grain size (m)."""
 
     def __init__(self, thickness: float, temperature: ThicknessProfile,
-                 strain: ThicknessProfile):
+                 strain: ThicknessProfile, grain: ThicknessProfile | None = None):
         self.thickness, self.temperature, self.strain = thickness, temperature, strain
+        self.grain = grain
 
     def to_dict(self) -> dict:
-        return {"thickness": self.thickness, "temperature_profile": self.temperature.pairs(),
-                "strain_profile": self.strain.pairs()}
+        d = {"thickness": self.thickness, "temperature_profile": self.temperature.pairs(),
+             "strain_profile": self.strain.pairs()}
+        if self.grain is not None:
+            d["grain_size_profile"] = self.grain.pairs()
+        return d
 
 
 def entry_state(sch: Schedule) -> StripState:
     t_prof, e_prof = sch.entry_profiles()
+    mic = sch.microstructure
     return StripState(sch.strip.thickness,
                       t_prof or ThicknessProfile.uniform(sch.strip.temperature),
-                      e_prof or ThicknessProfile.uniform(sch.strip.strain))
+                      e_prof or ThicknessProfile.uniform(sch.strip.strain),
+                      None if mic.kinetics is None else ThicknessProfile.uniform(mic.grain_size))
 
 
 def pass_case(sch: Schedule, k: int, state: StripState, omega: float | None = None,
@@ -70,9 +79,11 @@ def _enthalpy_mean(sch: Schedule, T: ThicknessProfile) -> float:
     return enthalpy_mean(sch.material.thermal_properties(), np.asarray(T.values), T.weights())
 
 
-def exit_state(sch: Schedule, case, summary: dict) -> StripState:
+def exit_state(sch: Schedule, case, summary: dict,
+               grain: ThicknessProfile | None = None) -> StripState:
     """The state at the pass's outlet (``summary["exit_profile"]``); without a strain field
-    (a law independent of strain) the homogeneous exit strain, uniform."""
+    (a law independent of strain) the homogeneous exit strain, uniform. ``grain``: the grain
+    size entering the pass (it changes in the transport after it)."""
     prof = summary["exit_profile"]
     eta = np.asarray(prof["eta"], dtype=float)
     T = ThicknessProfile(tuple(eta), tuple(prof["temperature"]))
@@ -80,7 +91,7 @@ def exit_state(sch: Schedule, case, summary: dict) -> StripState:
         e = ThicknessProfile(tuple(eta), tuple(np.maximum(prof["strain"], 0.0)))
     else:
         e = ThicknessProfile.uniform(summary["homogeneous_exit_strain"])
-    return StripState(exit_thickness(case, summary), T, e)
+    return StripState(exit_thickness(case, summary), T, e, grain)
 
 
 def exit_thickness(case, summary) -> float:
@@ -89,24 +100,35 @@ def exit_thickness(case, summary) -> float:
     return summary.get("gauge_thickness", case.pass_.exit_thickness)
 
 
-def transport(sch: Schedule, k: int, state: StripState, exit_velocity: float):
-    """The state after the k-th pass's transport, and its row (duration, heat lost)."""
+def transport(sch: Schedule, k: int, state: StripState, exit_velocity: float,
+              deformed: PassState | None = None):
+    """The state after the k-th pass's transport, its row (duration, heat lost) and the
+    softening; with the pass's ``deformed`` state (a microstructure model) the retained
+    strain and the grain size from the kinetics (``workflows/microstructure.py``)."""
     tr = sch.passes[k].transport
     th = sch.thermal
     duration = tr.duration if tr.duration is not None else tr.distance / exit_velocity
     T = state.temperature
     res = cool(np.asarray(T.eta), np.asarray(T.values), 0.5 * state.thickness, duration,
                sch.material.thermal_properties(), None, None, th.ambient_temperature,
-               surface=th.law("surface", htc_air=tr.htc_air, emissivity=tr.emissivity))
+               surface=th.law("surface", htc_air=tr.htc_air, emissivity=tr.emissivity),
+               record=deformed is not None)
     eta = res.y / res.y[-1]
-    new = StripState(state.thickness, ThicknessProfile(tuple(eta), tuple(res.temperature)),
-                     state.strain.scaled(tr.strain_retained))
+    T_new = ThicknessProfile(tuple(eta), tuple(res.temperature))
+    soft = None
+    if deformed is None:
+        new = StripState(state.thickness, T_new, state.strain.scaled(tr.strain_retained))
+    else:
+        soft = MS.after_transport(sch, deformed, res, f"pass[{k + 1}].transport")
+        new = StripState(state.thickness, T_new, *MS.handed_on(soft))
     row = {"transport_duration": duration, "transport_heat_lost": res.heat_lost,
            "transport_balance_error": res.balance_error,
            "next_entry_temperature_mean": res.mean,
            "next_entry_temperature_surface": res.surface,
            "next_entry_strain_mean": new.strain.mean()}
-    return new, row
+    if soft is not None:
+        row.update(MS.transport_columns(soft))
+    return new, row, soft
 
 
 def _reuse(case, out: Path) -> dict | None:
@@ -211,16 +233,26 @@ def _roll(sch: Schedule, out: Path, resume: bool, sweep: Sweep, say, tensions=No
             flux = summary["mass_flux_out"]
         entry_T = _enthalpy_mean(sch, state.temperature)
         entry_e = state.strain.mean()
-        state = exit_state(sch, case, summary)
+        ps = None
+        if sch.microstructure.kinetics is not None:
+            ps = MS.deformed(sch, state.strain, state.grain, summary, k)
+        state = exit_state(sch, case, summary, state.grain)
         row = _pass_row(sch, k, case, summary, entry_T, entry_e, solves, iterations,
                         time.perf_counter() - t0)
         row["outlet_temperature_mean"] = _enthalpy_mean(sch, state.temperature)
         row["exit_strain_mean"] = state.strain.mean()
         profiles.append({"pass": row["name"], "exit": state.to_dict()})
+        soft = None
+        if ps is not None:
+            row.update(MS.pass_columns(ps))
         if p.transport is not None:
-            state, trow = transport(sch, k, state, summary["exit_velocity"])
+            state, trow, soft = transport(sch, k, state, summary["exit_velocity"], ps)
             row.update(trow)
             profiles[-1]["after_transport"] = state.to_dict()
+        if ps is not None:
+            record = MS.profile_dict(ps, soft)
+            profiles[-1]["microstructure"] = record
+            MS.write_table(pdir / "microstructure.csv", record)
         rows.append(row)
         say(_line(row))
     return rows, profiles

@@ -1,0 +1,61 @@
+"""Histories along the steady strip's streamlines (issue 33; docs/theory.md 1g).
+
+The recrystallisation kinetics need, on each streamline, the strain it gains in the pass and
+the strain-weighted means of ln(edot) and 1/T, from which ln Z = <ln edot> + Q_def/R <1/T>.
+A streamline is a line of constant flux fraction phi (the flux below it over the section's):
+on each column of the thermal strip mesh (``fem/strip_mesh.py``: fine over the contact) its
+height follows from the column's flux profile (``ThermalCoupling.fine_column_flux``, the
+stream function's own data), and at the outlet, where the strip moves rigidly, phi = eta.
+Along it, with the points' current positions x_i and speeds |v_i|, dt_i = |x_{i+1} - x_i| /
+mean |v| and every integral is a trapezoid sum. The temperature is the strip mesh's own, not
+the coarser mechanics mesh's. Streamline means from a transported field (SUPG) were tried
+first and not kept: the Galerkin solution is not monotone, and on finishing_mill's first
+pass the centre's mean temperature came out 4 K below the entry temperature (the centre only
+heats).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from hotroll.fem.forms import strain_rate
+from hotroll.model.material import edot_squared
+
+
+def streamline_means(thermal, eta: np.ndarray) -> dict[str, np.ndarray]:
+    """At the outlet heights ``eta`` (flux fractions): the pass strain int edot dt, the
+    strain-weighted means of ln(edot) (edot in 1/s) and of 1/T (1/K), and the time from the
+    strip's inlet to its outlet (s), along the streamline through each."""
+    from ngsolve import CF, sqrt, x, y
+
+    strip = thermal.strip
+    eta = np.asarray(eta, dtype=float)
+    flux = thermal.fine_column_flux()
+    frac = flux / flux[-1]
+    fine = thermal._fine
+    ncol = len(strip.X)
+    path = np.empty((len(eta), ncol))
+    for i in range(ncol):
+        path[:, i] = np.interp(eta, frac[:, i], fine)
+    X = np.broadcast_to(strip.X, path.shape)
+    ref = np.stack([X.ravel(), path.ravel() * strip.top_height(X.ravel())], -1)
+    ref[:, 1] *= 1.0 - 1e-9                      # inside the top
+    u = thermal.form.nonlinear.velocity
+    rate = sqrt(edot_squared(strain_rate(u)) + 1e-300)
+    vals = thermal._at(CF((x, y, u[0], u[1], rate)), thermal._find(ref))
+    vals = vals.reshape(path.shape + (5,))
+    smesh = strip.mesh
+    T = np.asarray(thermal.field.gf(smesh(X.ravel(), np.clip(path.ravel(), 0.0, 1.0))),
+                   dtype=float).reshape(path.shape)
+    pos, speed = vals[..., :2], np.hypot(vals[..., 2], vals[..., 3])
+    edot = np.maximum(vals[..., 4], 1e-300)
+    dt = np.hypot(*np.moveaxis(np.diff(pos, axis=1), -1, 0)) / (0.5 * (speed[:, 1:] +
+                                                                       speed[:, :-1]))
+
+    def integral(f):
+        return np.sum(0.5 * (f[:, 1:] + f[:, :-1]) * dt, axis=1)
+
+    strain = integral(edot)
+    safe = np.maximum(strain, 1e-300)
+    return {"pass_strain": strain, "log_rate_mean": integral(edot * np.log(edot)) / safe,
+            "inverse_temperature_mean": integral(edot / T) / safe,
+            "transit_time": np.sum(dt, axis=1)}
