@@ -24,7 +24,8 @@ UNITS: dict[str, str] = {
     "recrystallised_fraction_surface": "-", "recrystallised_fraction_centre": "-",
     "grain_size_mean": "m", "grain_size_surface": "m", "grain_size_centre": "m",
     "retained_strain_mean": "-", "retained_strain_surface": "-", "retained_strain_centre": "-",
-    "mechanism_surface": "-", "mechanism_centre": "-",
+    "mechanism_surface": "-", "mechanism_centre": "-", "kinetics_temperature_min": "K",
+    "kinetics_extrapolated_share": "-",
     # a tandem's tensions (schedule.csv, schedule.json)
     "back_tension": "Pa", "front_tension": "Pa", "interstand_tensions": "Pa",
     "flux_mismatch": "-", "tension_runs": "-",

@@ -77,6 +77,9 @@ def transport_columns(soft: Softened) -> dict:
         out[f"{key}_mean"] = _profile(soft.eta, vals).mean()
         out[f"{key}_surface"] = float(vals[-1])
         out[f"{key}_centre"] = float(vals[0])
+    out["kinetics_temperature_min"] = float(np.min(soft.coldest))
+    out["kinetics_extrapolated_share"] = _profile(soft.eta,
+                                                  soft.extrapolated.astype(float)).mean()
     out["mechanism_surface"] = "metadynamic" if soft.metadynamic[-1] else "static"
     out["mechanism_centre"] = "metadynamic" if soft.metadynamic[0] else "static"
     return out
@@ -95,7 +98,9 @@ def profile_dict(ps: PassState, soft: Softened | None) -> dict:
                   "recrystallised_grain_size": soft.rex_grain.tolist(),
                   "grain_size": soft.grain.tolist(),
                   "retained_strain": soft.retained_strain.tolist(),
-                  "finished": soft.finished.astype(int).tolist()})
+                  "finished": soft.finished.astype(int).tolist(),
+                  "coldest": soft.coldest.tolist(),
+                  "extrapolated": soft.extrapolated.astype(int).tolist()})
     return d
 
 

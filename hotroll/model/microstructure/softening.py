@@ -25,7 +25,7 @@ from hotroll.model.microstructure.jmak import hold
 
 
 class KineticsRangeError(ValueError):
-    """A temperature outside the set's range, named with where it occurred."""
+    """A cooling history that is not one (named with where it occurred)."""
 
 
 @dataclass(frozen=True)
@@ -62,7 +62,10 @@ def pass_state(s: RecrystallisationSet, eta, strain, grain, log_rate, inverse_T,
 @dataclass(frozen=True)
 class Softened:
     """After the transport, per point: mechanism (1 metadynamic, 0 static), X, t_0.5 at the
-    start (s), the recrystallised and the handed-on grain size (m), the retained strain."""
+    start (s), the recrystallised and the handed-on grain size (m), the retained strain,
+    whether X reached 0.95, and the lowest temperature of the history (K): below the set's
+    range (a chilled surface just after the bite) the laws are extrapolated, and reported so
+    (``extrapolated``), not refused."""
 
     eta: np.ndarray
     metadynamic: np.ndarray
@@ -72,6 +75,8 @@ class Softened:
     grain: np.ndarray
     retained_strain: np.ndarray
     finished: np.ndarray
+    coldest: np.ndarray
+    extrapolated: np.ndarray
 
     def rows(self) -> list[dict]:
         return [{"eta": float(e), "mechanism": "metadynamic" if m else "static",
@@ -83,22 +88,17 @@ class Softened:
                                                  self.retained_strain)]
 
 
-def check_range(s: RecrystallisationSet, T, where: str) -> None:
-    lo, hi = s.temperature_range
-    T = np.asarray(T, dtype=float)
-    if np.any(T < lo) or np.any(T > hi):
-        raise KineticsRangeError(
-            f"{where}: temperature {float(np.min(T)):.1f}..{float(np.max(T)):.1f} K outside "
-            f"the recrystallisation set {s.name!r}'s range {lo:.2f}..{hi:.2f} K (austenite); "
-            f"use microstructure.model = \"none\" and strain_retained there")
-
-
 def soften(s: RecrystallisationSet, ps: PassState, times, T, retained_share: float = 1.0,
            where: str = "transport") -> Softened:
     """Recrystallise the pass state ``ps`` over the cooling history T[i, j] (K, point j of
     ``ps.eta`` at ``times[i]``, s from the pass's exit)."""
     T = np.asarray(T, dtype=float)
-    check_range(s, T, where)
+    if T.ndim != 2 or T.shape[1] != ps.eta.size or not np.all(np.isfinite(T)) \
+            or np.any(T <= 0.0):
+        raise KineticsRangeError(f"{where}: the cooling history must be finite temperatures "
+                                 f"> 0 K at the {ps.eta.size} points of the pass state")
+    lo, hi = s.temperature_range
+    coldest, hottest = T.min(axis=0), T.max(axis=0)
     md = ps.dynamic
     strain = np.maximum(ps.strain, 1e-12)
     n = np.where(md, s.mdrx_exponent, s.srx_exponent)
@@ -115,4 +115,5 @@ def soften(s: RecrystallisationSet, ps: PassState, times, T, retained_share: flo
     mixed = X ** (4.0 / 3.0) * d_rex + (1.0 - X) ** 2 * ps.grain
     d_out = np.where(done, s.grown(d_rex, res.W_after), mixed)
     return Softened(ps.eta, md, X, half_time(T[0], 0), d_rex, d_out,
-                    retained_share * (1.0 - X) * ps.strain, done)
+                    retained_share * (1.0 - X) * ps.strain, done, coldest,
+                    (coldest < lo) | (hottest > hi))
