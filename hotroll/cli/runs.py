@@ -62,7 +62,9 @@ def schedule(
         heads.insert(3, "t front MPa")
     flat = any("roll_equivalent_radius" in r for r in rows)
     gaps = any("gap_setting" in r for r in rows)
-    heads[-2:-2] = (["R'/R"] if flat else []) + (["gap mm"] if gaps else [])
+    micro = any("drx_onset_share" in r for r in rows)
+    heads[-2:-2] = (["R'/R"] if flat else []) + (["gap mm"] if gaps else []) + (
+        ["DRX", "X", "d um", "e ret"] if micro else [])
     for h in heads:
         table.add_column(h, justify="left" if h == "pass" else "right")
     for r in rows:
@@ -80,12 +82,22 @@ def schedule(
                          if "roll_equivalent_radius" in r else "-")
         if gaps:
             extra.append(f"{1e3 * r['gap_setting']:.3f}" if "gap_setting" in r else "-")
+        if micro:
+            extra += [f"{r['drx_onset_share']:.2f}" if "drx_onset_share" in r else "-"] + (
+                [f"{r['recrystallised_fraction_mean']:.3f}",
+                 f"{1e6 * r['grain_size_mean']:.1f}", f"{r['retained_strain_mean']:.3f}"]
+                if "recrystallised_fraction_mean" in r else ["-", "-", "-"])
         cells[-2:-2] = extra
         table.add_row(*cells)
     console.print(table)
     if flat or gaps:
         console.print("R'/R: the flattened roll's equivalent radius over its radius; gap: the "
                       "no-load roll gap to set (exit thickness - F/M)")
+    if micro:
+        console.print("DRX: share of the section where dynamic recrystallisation started "
+                      "(strain >= eps_c); after the transport, section means: X recrystallised "
+                      "(-), d grain size (um), e ret the strain handed on (-); figure "
+                      f"{out / 'microstructure.png'}")
     console.print(f"force and torque per roll{', whole width' if width else ''}; exit "
                   f"temperature: mixing-cup mean after the gap; all columns (power, surface "
                   f"temperature, transports) in {out / 'schedule.csv'}; figure "

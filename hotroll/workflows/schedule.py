@@ -26,6 +26,7 @@ from hotroll.config.schedule import Schedule
 from hotroll.model.interpass import cool, enthalpy_mean
 from hotroll.model.microstructure.softening import PassState
 from hotroll.model.profile import ThicknessProfile
+from hotroll.results.figures.microstructure import plot_microstructure
 from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv, write_json
 from hotroll.results.schedule_plot import plot_schedule
@@ -178,7 +179,15 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
         rows, profiles = roll()
     if figure:
         plot_schedule(rows, out / "schedule.png", width=sch.strip.width)
+        plot_microstructure(_profiles(out), out / "microstructure.png")
     return rows
+
+
+def _profiles(out: Path) -> list[dict]:
+    """schedule.json's profiles (what the figures read)."""
+    import json
+
+    return json.loads((out / "schedule.json").read_text())["profiles"]
 
 
 def _previous_tensions(out: Path) -> list[float] | None:

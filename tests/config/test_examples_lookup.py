@@ -23,7 +23,8 @@ def test_a_missing_name_lists_the_known_ones():
         study_path("nope")
     assert str(e.value) == f"no bundled study 'nope' (known: {known})"
     with pytest.raises(FileNotFoundError, match=r"^no bundled schedule 'x' \(known: "
-                                                r"finishing_mill, finishing_mill_elastic\)$"):
+                                                r"finishing_mill, finishing_mill_elastic, "
+                                                r"finishing_mill_microstructure\)$"):
         schedule_path("x")
     with pytest.raises(FileNotFoundError, match=r"^no example case 'x' \(known: .*example1"):
         example_path("x")

@@ -201,3 +201,22 @@ def test_schedule_on_a_mill_shows_the_flattening_the_gap_and_the_tensions(tmp_pa
         "gap mm", "FE", "s"]
     assert _cells(r.output, "F1")[3] == "12.50" and _cells(r.output, "F1")[8:10] == [
         "1.0140", "18.100"]
+
+
+def test_schedule_with_kinetics_shows_the_microstructure(tmp_path, monkeypatch, wide):
+    """finishing_mill_microstructure (the rows faked): where DRX started, and after the
+    transport X, the grain size in um and the retained strain; the last pass (no transport)
+    has dashes there."""
+    rows = [{**ROW, "drx_onset_share": 0.625, "recrystallised_fraction_mean": 0.98765,
+             "grain_size_mean": 31.26e-6, "retained_strain_mean": 0.00432},
+            {**ROW, "name": "F6", "drx_onset_share": 0.0}]
+    monkeypatch.setattr(runs, "run_schedule", lambda *a, **k: rows)
+    r = CliRunner().invoke(app, ["schedule", "finishing_mill_microstructure", "--out",
+                                 str(tmp_path)])
+    assert r.exit_code == 0, r.output
+    head = next(x for x in r.output.splitlines() if "pass" in x and "┃" in x)
+    assert [c.strip() for c in head.strip("┃").split("┃")][-6:] == [
+        "DRX", "X", "d um", "e ret", "FE", "s"]
+    assert _cells(r.output, "F1")[-6:-2] == ["0.62", "0.988", "31.3", "0.004"]
+    assert _cells(r.output, "F6")[-6:-2] == ["0.00", "-", "-", "-"]
+    assert f"{tmp_path / 'microstructure.png'}" in r.output

@@ -135,6 +135,17 @@ def test_outputs_and_units(hot):
     assert (out / rows[1]["case"] / "microstructure.csv").is_file()     # the last pass too
 
 
+def test_the_figure(hot, tmp_path):
+    """microstructure.png from schedule.json's records (a PNG); none without a model."""
+    from hotroll.results.figures.microstructure import plot_microstructure
+
+    _, js, _ = hot
+    assert plot_microstructure(js["profiles"], tmp_path / "m.png")
+    assert (tmp_path / "m.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert not plot_microstructure([{"pass": "P1"}], tmp_path / "none.png")
+    assert not (tmp_path / "none.png").exists()
+
+
 def test_table_columns_are_the_records_means(cold):
     """An identity of the bookkeeping: schedule.csv's means (over eta, trapezoids), surface and
     centre values are those of the per-eta record (microstructure.csv), for both the pass's
