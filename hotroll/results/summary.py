@@ -241,7 +241,8 @@ class Summary(Mapping):
     width: float | None = _f("m", "width", "`[pass] width`")
     temperature: float = _f("K", "plate temperature", "")
     exit_profile: dict | None = _f(None, "exit profile", "the outlet's temperature and strain "
-                                   "profiles over eta")
+                                   "profiles over eta; in a thermal run each streamline's pass "
+                                   "strain and strain-weighted means of ln(edot) and 1/T")
     units: dict = _f(None, "units", "each figure's SI unit")
     exit_code: int = _f(None, "exit code", "see cli.md#exit-codes")
 
