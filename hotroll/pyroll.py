@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import logging
 import math
+import sys
 import tempfile
 from pathlib import Path
 
@@ -78,6 +79,9 @@ class Config:
     #: the pass cases' [roll] (model, youngs_modulus, ...); {}: rigid, or elastic where the
     #: Roll gives its elastic_modulus
     ROLL: dict = {}
+    #: a recrystallisation set's name (e.g. "hodgson_gibbs_cmn") runs hotroll's austenite
+    #: kinetics through the sequence (``hotroll/pyroll_microstructure.py``); None: off
+    MICROSTRUCTURE: str | None = None
 
 
 _LOG = logging.getLogger("hotroll.pyroll")
@@ -267,7 +271,7 @@ def pass_case(rp) -> tuple[Case, dict]:
                  "back_tension": float(_value(rp, "back_tension", 0.0)),
                  "front_tension": float(_value(rp, "front_tension", 0.0))},
         "plate": {"length": Config.PLATE_CONTACT_LENGTHS * lc, "temperature": T0,
-                  "entry_strain": e0},
+                  "entry_strain": e0, **_micro.entry_plate(rp)},
         "material": material,
         "friction": {"law": "coulomb", "mu": float(mu)} if mu is not None
         else dict(Config.FRICTION),
@@ -500,3 +504,7 @@ def transport_temperature(tr) -> float | None:
 
 RollPass.post_processors.append(_after_pass)
 Transport.post_processors.append(_after_transport)
+
+from hotroll import pyroll_microstructure as _micro  # noqa: E402  (it needs the above)
+
+_micro.install(sys.modules[__name__])
