@@ -24,7 +24,7 @@ def test_a_missing_name_lists_the_known_ones():
     assert str(e.value) == f"no bundled study 'nope' (known: {known})"
     with pytest.raises(FileNotFoundError, match=r"^no bundled schedule 'x' \(known: "
                                                 r"finishing_mill, finishing_mill_elastic, "
-                                                r"finishing_mill_microstructure\)$"):
+                                                r"finishing_mill_microstructure, ten_stand_finishing\)$"):
         schedule_path("x")
     with pytest.raises(FileNotFoundError, match=r"^no example case 'x' \(known: .*example1"):
         example_path("x")
