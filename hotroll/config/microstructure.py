@@ -2,7 +2,8 @@
 passes (``model/microstructure``), validated before anything runs.
 
     [microstructure]
-    model = "hodgson_gibbs_cmn"     # or "sellars_cmn"; "none": each transport's strain_retained
+    model = "hodgson_gibbs_cmn"     # a set of model/microstructure; "none": each transport's
+                                    # strain_retained
     grain_size = 100e-6             # m, the austenite grain size entering the first pass
     retained_share = 1.0            # lambda: eps_next = eps_pass + lambda (1 - X) eps_exit
 """
@@ -11,7 +12,7 @@ from __future__ import annotations
 from pydantic import model_validator
 
 from hotroll.config.base import PosFloat, Problems, Section, field
-from hotroll.model.microstructure import SETS, get_set
+from hotroll.model.microstructure import SETS, get_set, sets_for
 
 #: The grain sizes the kinetics accept (m): 1 um to 2 mm.
 GRAIN_RANGE = (1e-6, 2e-3)
@@ -61,7 +62,7 @@ def check_schedule(mic: MicrostructureConfig, grade: str | None, temperatures,
     if s is None:
         return []
     problems = []
-    if grade is not None and grade.lower() not in (g.lower() for g in s.steels):
+    if grade is not None and s.name not in sets_for(grade):
         problems.append(f"microstructure.model: the set {s.name!r} is for {', '.join(s.steels)}; "
                         f"material.grade {grade!r} has none (use microstructure.model = "
                         f"\"none\" and each transport's strain_retained)")

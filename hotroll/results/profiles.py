@@ -5,9 +5,9 @@ Measured where the steady model ends, on its outlet section, where the strip mov
   eta grid), K;
 - strain: the strain field at the same eta (the mechanics' P1 field), -;
 - eta = y / half thickness, 0 centre line, 1 surface;
-- along the streamline ending there (issue 33; with a strain field): the pass strain, and the
+- along the streamline ending there (issue 33; thermal runs): the pass strain, and the
   strain-weighted means of ln(edot) (edot in 1/s) and of 1/T (1/K) that the recrystallisation
-  kinetics' Zener-Hollomon parameter takes (``solvers/streamlines.py``; thermal runs).
+  kinetics' Zener-Hollomon parameter takes (``solvers/streamlines.py``).
 A steady run without a strain field (a law independent of the strain) and without [thermal]
 has no profile (None).
 """
@@ -43,13 +43,6 @@ def exit_profiles(run) -> dict | None:
         means = streamline_means(thermal, eta)
         out.update({k: means[k].tolist() for k in ("pass_strain", "log_rate_mean",
                                                    "inverse_temperature_mean")})
-    return out
-    T = thermal.T if thermal is not None else run.problem.temperature
-    total, log_rate, inv_T = strain.streamline_means(run.form.nonlinear.velocity, T)
-    e, de, a, b = _outlet(run, (strain.gf, total, log_rate, inv_T), eta)
-    safe = np.maximum(de, 1e-300)
-    out.update(strain=e.tolist(), pass_strain=de.tolist(),
-               log_rate_mean=(a / safe).tolist(), inverse_temperature_mean=(b / safe).tolist())
     return out
 
 

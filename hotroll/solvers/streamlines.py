@@ -27,8 +27,8 @@ SUB = 8
 
 def streamline_means(thermal, eta: np.ndarray) -> dict[str, np.ndarray]:
     """At the outlet heights ``eta`` (flux fractions): the pass strain int edot dt, the
-    strain-weighted means of ln(edot) (edot in 1/s) and of 1/T (1/K), and the time from the
-    strip's inlet to its outlet (s), along the streamline through each."""
+    strain-weighted means of ln(edot) (edot in 1/s) and of 1/T (1/K), along the streamline
+    through each."""
     from ngsolve import CF, sqrt, x, y
 
     strip = thermal.strip
@@ -73,5 +73,4 @@ def streamline_means(thermal, eta: np.ndarray) -> dict[str, np.ndarray]:
     strain = integral(edot)
     safe = np.maximum(strain, 1e-300)
     return {"pass_strain": strain, "log_rate_mean": integral(edot * np.log(edot)) / safe,
-            "inverse_temperature_mean": integral(edot / T) / safe,
-            "transit_time": np.sum(dt, axis=1)}
+            "inverse_temperature_mean": integral(edot / T) / safe}

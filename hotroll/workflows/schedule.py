@@ -179,15 +179,8 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
         rows, profiles = roll()
     if figure:
         plot_schedule(rows, out / "schedule.png", width=sch.strip.width)
-        plot_microstructure(_profiles(out), out / "microstructure.png")
+        plot_microstructure(profiles, out / "microstructure.png")
     return rows
-
-
-def _profiles(out: Path) -> list[dict]:
-    """schedule.json's profiles (what the figures read)."""
-    import json
-
-    return json.loads((out / "schedule.json").read_text())["profiles"]
 
 
 def _previous_tensions(out: Path) -> list[float] | None:

@@ -16,8 +16,7 @@ energies in J/mol; the interface (``RecrystallisationSet``'s methods) takes grai
 """
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -87,8 +86,6 @@ class RecrystallisationSet:
     steels: tuple[str, ...]         # grades of model/grades.py the set is for
     temperature_range: tuple[float, float]    # K, where the kinetics may be applied
     validity: str = ""              # the source's own tested ranges, as stated
-    notes: str = ""
-    checked: dict = field(default_factory=dict)   # which constants were read where
 
     def zener(self, rate, T):
         """Z = edot exp(Q_def / (R T)) (1/s)."""
@@ -117,7 +114,3 @@ class RecrystallisationSet:
     def grown(self, d, W):
         """Grain growth from d (m) over temperature-compensated time W (s): m."""
         return self.growth.grown(np.asarray(d) * UM, W) / UM
-
-    def finished(self, n: float) -> float:
-        """t/t_0.5 at X = 0.95 for JMAK exponent n: (ln 0.05 / ln 0.5)^(1/n)."""
-        return (math.log(0.05) / math.log(0.5)) ** (1.0 / n)

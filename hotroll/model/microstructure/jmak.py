@@ -28,9 +28,9 @@ def fraction(tau, n: float):
     return 1.0 - np.exp(LN_HALF * np.asarray(tau, dtype=float) ** n)
 
 
-def tau_at(X: float, n: float) -> float:
-    """The tau at which the fraction reaches X."""
-    return (math.log(1.0 - X) / LN_HALF) ** (1.0 / n)
+def tau_at(X: float, n):
+    """The tau at which the fraction reaches X (n one exponent or an array of them)."""
+    return (math.log(1.0 - X) / LN_HALF) ** (1.0 / np.asarray(n, dtype=float))
 
 
 @dataclass(frozen=True)
@@ -67,7 +67,7 @@ def hold(times, T, half_time: Callable[[np.ndarray, int], np.ndarray], n,
     m = T.shape[1]
     n = np.broadcast_to(np.asarray(n, dtype=float), (m,))
     tau_half = np.ones(m)
-    tau_fin = (math.log(1.0 - FINISHED) / LN_HALF) ** (1.0 / n)
+    tau_fin = tau_at(FINISHED, n)
     tau = np.zeros(m)
     t_half = np.full(m, np.nan)
     t_fin = np.full(m, np.nan)

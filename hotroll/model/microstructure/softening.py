@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hotroll.model.microstructure.base import RecrystallisationSet
+from hotroll.model.microstructure.base import R, RecrystallisationSet
 from hotroll.model.microstructure.jmak import hold
 
 
@@ -52,8 +52,6 @@ def pass_state(s: RecrystallisationSet, eta, strain, grain, log_rate, inverse_T,
     1/s; ``inverse_T`` = <1/T>, 1/K; both strain-weighted along each streamline)."""
     eta, strain, grain = (np.asarray(a, dtype=float) for a in (eta, strain, grain))
     log_rate, inverse_T = np.asarray(log_rate, float), np.asarray(inverse_T, float)
-    from hotroll.model.microstructure.base import R
-
     Z = np.exp(log_rate + s.q_def / R * inverse_T)
     return PassState(eta, strain, grain, np.exp(log_rate), Z, s.critical_strain(grain, Z),
                      np.asarray(temperature, dtype=float))
@@ -77,15 +75,6 @@ class Softened:
     finished: np.ndarray
     coldest: np.ndarray
     extrapolated: np.ndarray
-
-    def rows(self) -> list[dict]:
-        return [{"eta": float(e), "mechanism": "metadynamic" if m else "static",
-                 "recrystallised_fraction": float(x), "half_time": float(t),
-                 "recrystallised_grain_size": float(dr), "grain_size": float(d),
-                 "retained_strain": float(r)}
-                for e, m, x, t, dr, d, r in zip(self.eta, self.metadynamic, self.fraction,
-                                                 self.half_time, self.rex_grain, self.grain,
-                                                 self.retained_strain)]
 
 
 def soften(s: RecrystallisationSet, ps: PassState, times, T, retained_share: float = 1.0,
