@@ -165,7 +165,11 @@ def test_table_columns_are_the_records_means(cold):
     assert r["drx_onset_share"] == pytest.approx(mean(rec["dynamic_onset"]), rel=1e-12)
     assert r["zener_log_mean"] == pytest.approx(mean(np.log(rec["zener"])), rel=1e-12)
     assert r["critical_strain_surface"] == rec["critical_strain"][-1]
+    assert r["critical_strain_centre"] == rec["critical_strain"][0]
     assert r["kinetics_strain_centre"] == rec["strain"][0]
+    assert r["kinetics_strain_surface"] == rec["strain"][-1]
+    assert r["kinetics_extrapolated_share"] == pytest.approx(mean(rec["extrapolated"]),
+                                                             rel=1e-12, abs=1e-15)
     assert r["kinetics_temperature_min"] == min(rec["coldest"])
     assert r["mechanism_surface"] == ("metadynamic" if rec["metadynamic"][-1] else "static")
     assert r["next_entry_strain_mean"] == pytest.approx(r["retained_strain_mean"], rel=1e-12)
