@@ -40,6 +40,8 @@ TRANSIENT_KEYS = ("status", "steps", "neutral_angle", "roll_force", "roll_torque
 
 def one(mesh, threads: int, transient: bool, a_f: str = "estimate") -> dict:
     """Run one mesh in this process and return its row."""
+    from dataclasses import replace
+
     import ngsolve
 
     from hotroll.fem import quantities as Q
@@ -61,7 +63,7 @@ def one(mesh, threads: int, transient: bool, a_f: str = "estimate") -> dict:
     its = res.iterations
     # warm start: the neighbouring case m + 0.01 from the solved state
     mat = model.material
-    run.model.material = NortonHoff(mat.K, mat.m + 0.01, mat.eps0)
+    run.problem = replace(run.problem, material=NortonHoff(mat.K, mat.m + 0.01, mat.eps0))
     t1 = time.perf_counter()
     warm = run.solve(warm=run.warm_start())
     out = {

@@ -43,6 +43,14 @@ class NonlinearSystem(Protocol):
     def max_multiplier(self, vec) -> float: ...
     def pressure_range(self) -> slice: ...
 
+#: a callable (iteration, update, step length, residual before, after) called after every
+#: Newton step, or None (studies of the iteration count: scripts/newton_trace.py)
+TRACE = None
+
+#: ``newton(full_step=True)``: below this update (x the velocity scale) a failed line search
+#: takes the full step once (``newton``)
+WATCHDOG_BELOW = 1e-2
+
 #: Newton steps a contact multiplier may take after the velocity has converged (``newton``).
 MULTIPLIER_EXTRA = 5
 
@@ -184,14 +192,16 @@ def newton(
     ``couple`` (optional) updates data the form depends on (a_f, the free surface) once the
     velocity update is below ``couple_below``; it returns True while that data still moves,
     and the iteration only stops when it returns False and the update is below ``tol``.
-    ``chord``: the Jacobian's kept factors instead of new ones (Newton-chord). The system's
+    ``chord``: the Jacobian's kept factors instead of new ones (Newton-chord). ``full_step``:
+    the steady solver's final solve (a direction below ``tol`` is taken whole; a search that
+    fails below ``WATCHDOG_BELOW`` takes the full step once). The system's
     ``prepare(iteration)``, where it has one, runs first in every iteration and returns True
     when it changed the form (its residual is then evaluated again).
     """
     ws, stats = _Workspace(problem), SolveStats()
     form = problem.a_newton
     prepare = getattr(problem, "prepare", None)
-    residual_ready, extra = False, 0
+    residual_ready, extra, watched = False, 0, False
     for it in range(1, max_it + 1):
         if prepare is not None and prepare(it):
             residual_ready = False
@@ -215,8 +225,22 @@ def newton(
                     or r0 == 0.0):
                 break
             alpha *= 0.5
+        # full_step: a search that found no decrease down to min_step on a small update takes
+        # the full step instead, once (not twice running): near the regularised friction's kink
+        # the residual's norm rises on the way to the solution, and the cut steps stalled for
+        # 10-20 iterations on thin passes where the full steps converged in 2-3 (speed.md)
+        watched = (full_step and search and alpha <= min_step and r0 > 0.0
+                   and r1 > (1.0 - 1e-4 * alpha) * r0 and stats.update <= WATCHDOG_BELOW
+                   and not watched)
+        if watched:
+            alpha = 1.0
+            problem.gf.vec.data = ws.backup - ws.du
+            form.Apply(problem.gf.vec, ws.r)
+            r1 = ws.norm(ws.r)
         stats.iterations = it
         stats.residual = r1
+        if TRACE is not None:
+            TRACE(it, stats.update, alpha, r0, r1)
         residual_ready = True
         if couple is not None and stats.update <= couple_below:
             if couple():

@@ -44,6 +44,7 @@ class RollShape:
         if last is not None:
             self._previous_t = last[1]
         self._lowest: tuple | None = None
+        self.cache: dict = {}      # what a RollPass derives from this shape (its bite angle)
         self._w = CubicSpline(theta, w, bc_type="clamped")
         self._dw = self._w.derivative()
         self._hoop = CubicSpline(theta, hoop, bc_type="clamped")
@@ -157,6 +158,13 @@ class RollPass:
         """The angle of the first touching point: the surface's height there is the entry's."""
         if self.shape is None:
             return math.acos(1.0 - self.draft / self.radius)
+        key = ("bite", self.radius, self.half_entry, self.half_exit)
+        cached = self.shape.cache.get(key)
+        if cached is None:
+            cached = self.shape.cache[key] = self._flattened_bite_angle()
+        return cached
+
+    def _flattened_bite_angle(self) -> float:
         from scipy.optimize import brentq
 
         cy = self.centre[1]

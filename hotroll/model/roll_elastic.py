@@ -201,14 +201,30 @@ class FlatteningRoll:
             circle = RollShape.circle(rp.radius, ratio * rp.radius, grid)
             return grid, circle.w, np.zeros_like(grid)
         out = self.disc.rim(theta, pressure, shear, at=grid)
-        w = out["u_r"]
-        R, c = rp.radius, 0.0
-        for _ in range(20):     # the lowest point at the gap: max (R + w - c) cos t = R
+        return grid, self._at_gap(grid, out["u_r"]), out["hoop"]
+
+    def _at_gap(self, grid, w) -> np.ndarray:
+        """w minus the constant c that puts the lowest point at the gap: max (R + w - c) cos t
+        = R."""
+        R, c = self.rp.radius, 0.0
+        for _ in range(20):
             step = float(np.max((R + w - c) * np.cos(grid))) - R
             c += step
             if abs(step) < 1e-15 * R:
                 break
-        return grid, w - c, out["hoop"]
+        return w - c
+
+    def carry(self, other: "FlatteningRoll") -> None:
+        """Start from ``other``'s settled surface (a similar pass's roll, schedules): its w and
+        hoop strain at the same fraction of the bite angle, the lowest point put at this gap.
+        Only a start: the updates carry the surface to this pass's own."""
+        if other.kind != self.kind:
+            return
+        src, grid = other.shape, self.shape.theta
+        ratio = other.rp.bite_angle / self.rp.bite_angle
+        w = np.interp(grid * ratio, src.theta, src.w)
+        hoop = np.interp(grid * ratio, src.theta, src.hoop)
+        self.shape.set(grid, self._at_gap(grid, w) if self.kind == "elastic" else w, hoop)
 
     def force_per_width(self, theta, pressure, shear) -> float:
         """The roll force per unit width of the tractions: the vertical resultant of the

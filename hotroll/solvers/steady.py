@@ -155,9 +155,10 @@ class SteadyRun:
     # --- the solve ------------------------------------------------------------------------------
     def warm_start(self) -> WarmStart:
         """This run's solved state, to start a neighbouring case from."""
+        roll = self.problem.roll
         return WarmStart(self.solution, self.shape.copy(), self.form.a_f.Get(),
                          self.form.m.Get(), self.problem.rp.u_roll, self.mesh_key,
-                         self.s.free_surface)
+                         self.s.free_surface, roll.shape.copy() if roll is not None else None)
 
     def solve(self, warm: WarmStart | None = None, progress=None) -> SteadyResult:
         """Newton at the target m from the kinematic guess (cold) or from ``warm`` (a neighbour's
@@ -176,6 +177,9 @@ class SteadyRun:
 
         target = self.problem.material.m
         t0 = time.perf_counter()
+        roll = self.problem.roll
+        self._roll_start = ((roll.shape.theta, roll.shape.w, roll.shape.hoop)
+                            if roll is not None else None)
         vec = self.form.nonlinear.gf.vec.FV().NumPy()
         with solver_threads():
             if warm is not None:
@@ -217,6 +221,10 @@ class SteadyRun:
             vec[:nv] = ratio * warm.solution[:nv]
             vec[pr] = ratio**target * warm.solution[pr]
             vec[lr] = ratio * warm.solution[lr]     # the multiplier is scaled to a velocity
+            if warm.roll is not None and self.problem.roll is not None:
+                # the neighbour's flattened roll: a roll started rigid moves the contact, the
+                # free tops and the strain by tens of tolerances at its first update
+                self.problem.roll.shape.set(warm.roll.theta, warm.roll.w, warm.roll.hoop)
             self.shape = warm.shape.copy()
             self._set_shape()
             a_f = warm.a_f
@@ -226,6 +234,9 @@ class SteadyRun:
 
     def _cold_start(self) -> None:
         """Reference strip shape, kinematic velocity guess and a_f (3.15) from it."""
+        roll = self.problem.roll
+        if roll is not None and self._roll_start is not None:   # a warm start's roll undone
+            roll.shape.set(*self._roll_start)
         self.shape = StripShape.flat(self.problem.rp)
         if self.active is not None:
             self.active.reset()

@@ -5,6 +5,7 @@ gap's own coordinates: xi along the strip through the knots (inlet, touching poi
 outlet) and eta = y / (top height). ``SimilarPass.apply`` maps the solved pass onto the new
 pass in those coordinates:
 
+- a flattening roll's surface at the same fraction of the bite angle;
 - the strip shape: the contact start by the knot map, the free tops' sag scaled with the
   thickness (the entry top still ends on the roll);
 - the velocity at every P2 node of the new mesh: the solved velocity at the same (xi, eta),
@@ -85,6 +86,8 @@ class SimilarPass:
     def apply(self, dst, vec: np.ndarray) -> None:
         """Set ``dst``'s shape and its velocity-pressure vector ``vec`` from the solved pass."""
         src, rs, rd = self.run, self.run.problem.rp, dst.problem.rp
+        if src.problem.roll is not None and dst.problem.roll is not None:
+            dst.problem.roll.carry(src.problem.roll)      # before the shape: it lies on the roll
         dst.shape = self.shape_for(dst)
         dst._set_shape()
         nodes = dst.map.nodes
@@ -112,8 +115,19 @@ class SimilarPass:
         factor = _mean_rate(rd) ** m_d / _mean_rate(rs) ** m_s
         press = np.asarray(p(pts), dtype=float).reshape(-1)[:nv]
         vec[n:n + nv] = factor * press
-        # the contact multiplier (exact contact) starts from zero: Newton's first step sets it
-        vec[dst.form.nonlinear.multiplier_range()] = 0.0
+        lr = dst.form.nonlinear.multiplier_range()
+        vec[lr] = 0.0
+        if dst.form.exact and src.form.exact:
+            # the contact pressure at the same point of the arc, times the rate factor (from
+            # zero, Coulomb's friction is nil in Newton's first residual)
+            vs, _ = src.form.multiplier_vertices()
+            xs_arc = src.top.vertex_positions(src.d, vs)[:, 0]
+            order = np.argsort(xs_arc)
+            p_src = src.form.vertex_pressure()[vs][order]
+            vd, dofs = dst.form.multiplier_vertices()
+            x_dst = knot_map(dst.top.vertex_positions(dst.d, vd)[:, 0], a, b)
+            p_dst = factor * np.interp(x_dst, xs_arc[order], p_src, left=0.0, right=0.0)
+            vec[lr.start + dofs] = p_dst / dst.form.lam_scale
 
     def _find(self, xs: np.ndarray, ys: np.ndarray):
         """Mesh points of the solved pass's mesh (searched undeformed, evaluated deformed)."""

@@ -1,0 +1,76 @@
+"""The Newton iterations and coupling updates of every FE solve of a schedule (issue 34's
+study of where the iterations go; docs/validation/speed.md).
+
+    python scripts/newton_trace.py hotroll/examples/schedules/ten_stand_finishing.toml [--passes N]
+
+One line per FE solve: the roll speed, the wall time, the Newton steps as L(update, step
+length) and each coupling update as a two-letter name and its change in tolerances (st
+strain, te temperature, a_ a_f, fr free surface, ro roll).
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import tempfile
+import time
+import tomllib
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("schedule", type=Path)
+    p.add_argument("--passes", type=int, default=None, help="the first N passes only")
+    args = p.parse_args(argv)
+
+    from _common import to_toml
+
+    import hotroll.fem.nonlinear as NL
+    import hotroll.solvers.couplings as C
+    import hotroll.solvers.steady as S
+    from hotroll.cli import app
+
+    log: list[str] = []
+
+    def step(it, update, alpha, r0, r1):
+        log.append(f"L({update:.0e},{alpha:g})")
+
+    NL.TRACE = step
+    for cls in (C.StrainTransport, C.Temperature, C.AfEstimate, C.FreeSurface, C.RollFlattening):
+        def traced(orig, name):
+            def update(self, res):
+                change = orig(self, res)
+                log.append(f"{name[:2]}{change:.2g}")
+                return change
+            return update
+        cls.update = traced(cls.update, cls.name)
+    run = S.SteadyRun.run
+
+    def traced_run(self, *a, **k):
+        log.clear()
+        t0 = time.perf_counter()
+        out = run(self, *a, **k)
+        steps = sum(1 for e in log if e.startswith("L"))
+        print(f"{self.problem.rp.u_roll:.3f} m/s  {time.perf_counter() - t0:.2f} s  "
+              f"{steps} Newton: {' '.join(log)}", flush=True)
+        return out
+
+    S.SteadyRun.run = traced_run
+    data = tomllib.loads(args.schedule.read_text())
+    if args.passes:
+        data["pass"] = data["pass"][: args.passes]
+    data.setdefault("output", {}).update(figures=False, vtk=False)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "schedule.toml"
+        path.write_text(to_toml(data))
+        t0 = time.perf_counter()
+        app(["schedule", str(path), "--out", str(Path(tmp) / "out"), "--no-figures"],
+            standalone_mode=False)
+        print(f"whole schedule: {time.perf_counter() - t0:.1f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
