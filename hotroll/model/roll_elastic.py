@@ -132,6 +132,11 @@ class ElasticDisc:
 ROLL_MODELS = ("rigid", "hitchcock", "elastic")
 
 
+def _rigid_bite(rp) -> float:
+    """The rigid roll's bite angle acos(1 - dh/2R), rad (of the pass's geometry alone)."""
+    return math.acos(1.0 - rp.draft / rp.radius)
+
+
 class FlatteningRoll:
     """The flattening work roll of one pass: its surface (``RollShape``, shared with the
     ``RollPass`` the solver uses) updated in place from the contact tractions of the current
@@ -221,7 +226,7 @@ class FlatteningRoll:
         if other.kind != self.kind:
             return
         src, grid = other.shape, self.shape.theta
-        ratio = other.rp.bite_angle / self.rp.bite_angle
+        ratio = _rigid_bite(other.rp) / _rigid_bite(self.rp)     # the passes' geometry only
         w = np.interp(grid * ratio, src.theta, src.w)
         hoop = np.interp(grid * ratio, src.theta, src.hoop)
         self.shape.set(grid, self._at_gap(grid, w) if self.kind == "elastic" else w, hoop)

@@ -199,3 +199,41 @@ def test_the_rim_displacement_converges_at_second_order_in_the_node_spacing():
     orders = [math.log2(e0 / e1) for e0, e1 in zip(errors, errors[1:])]
     assert all(1.8 < q < 2.2 for q in orders), (errors, orders)
     assert errors[-1] < 1e-3 * float(np.max(np.abs(ref)))
+
+
+def test_a_carried_roll_surface_keeps_its_shape_in_bite_fractions_and_its_gap():
+    """``FlatteningRoll.carry`` (a schedule's next pass starts from the last pass's roll, issue
+    34): onto the same pass the surface is the same; onto a pass with another bite angle, w at
+    the same fraction of the bite differs by one constant, and the lowest point is at the gap,
+    max (R + w) cos t = R (the normalisation ``target`` uses), to rounding."""
+    from hotroll.model.geometry import RollPass
+    from hotroll.model.roll_elastic import FlatteningRoll
+
+    src_rp, src = FlatteningRoll.start(RollPass(0.35, 0.014, 0.010, omega=3.0), "elastic")
+    theta = np.linspace(0.0, src_rp.bite_angle, 60)
+    p = 2e8 * np.sin(np.pi * theta / src_rp.bite_angle) + 1e6
+    src.update(theta, p, 0.05 * p)
+    same_rp, same = FlatteningRoll.start(RollPass(0.35, 0.014, 0.010, omega=5.0), "elastic")
+    same.carry(src)
+    t = same.shape.theta
+    scale = np.ptp(src.shape.w)
+    assert np.allclose(same.shape.offset(t), src.shape.offset(t), rtol=0, atol=1e-3 * scale)
+    assert np.allclose(same.shape.strain(t), src.shape.strain(t), rtol=0,
+                       atol=1e-3 * np.ptp(src.shape.hoop))
+
+    dst_rp, dst = FlatteningRoll.start(RollPass(0.30, 0.005, 0.004, omega=9.0), "elastic")
+    b_src, b_dst = _rigid_bite(src_rp), _rigid_bite(dst_rp)   # the bites carry() maps between
+    dst.carry(src)
+    R = dst_rp.radius
+    t = dst.shape.theta
+    assert float(np.max((R + dst.shape.w) * np.cos(t))) == pytest.approx(R, rel=1e-14)
+    fractions = np.linspace(-0.4, 2.4, 29)
+    shift = dst.shape.offset(fractions * b_dst) - src.shape.offset(fractions * b_src)
+    assert np.ptp(shift) < 1e-3 * np.ptp(src.shape.w)   # splines through linear interpolants
+    assert np.ptp(dst.shape.w) > 0.5 * np.ptp(src.shape.w)   # the surface, not zeros, carried
+
+
+def _rigid_bite(rp) -> float:
+    import math
+
+    return math.acos(1.0 - rp.draft / rp.radius)

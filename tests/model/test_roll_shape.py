@@ -88,3 +88,18 @@ def test_the_exit_is_the_lowest_point_unless_another_is_as_low_and_nearer_the_la
     far._previous_t = -0.001
     assert far.lowest(R)[0] == pytest.approx(-0.004, abs=2e-4)
     assert s.copy().tie == 0.5e-6 and s.copy()._previous_t == s._previous_t
+
+
+def test_the_bite_angle_follows_the_shape_it_is_cached_for():
+    """The flattened bite angle is cached on the shape (issue 34): a new surface (``set``) must
+    give the new circle's angle, not the old one."""
+    theta = np.linspace(-0.1, 0.3, 400)
+    shape = RollShape.circle(R, RP, theta)
+    rp = RollPass(R, H0, H1, omega=10.0, axis_x=0.7, shape=shape)
+    first = rp.bite_angle
+    assert rp.bite_angle == first                               # cached, same value
+    bigger = RollShape.circle(R, 1.5 * RP, theta)
+    shape.set(theta, bigger.w, bigger.hoop)
+    fresh = RollPass(R, H0, H1, omega=10.0, axis_x=0.7, shape=RollShape.circle(R, 1.5 * RP, theta))
+    assert rp.bite_angle == pytest.approx(fresh._flattened_bite_angle(), rel=1e-12)
+    assert rp.bite_angle > first * 1.05                        # a flatter roll bites longer
