@@ -31,11 +31,13 @@ def main(argv=None) -> int:
     import hotroll.solvers.couplings as C
     import hotroll.solvers.steady as S
     from hotroll.cli import app
+    from hotroll.fem.forms import NonlinearProblem
 
     log: list[str] = []
 
-    def step(it, update, alpha, r0, r1):
-        log.append(f"L({update:.0e},{alpha:g})")
+    def step(system, it, update, alpha, r0, r1):
+        if isinstance(system, NonlinearProblem):        # the flow's, not the heat equation's
+            log.append(f"L({update:.0e},{alpha:g})")
 
     NL.TRACE = step
     for cls in (C.StrainTransport, C.Temperature, C.AfEstimate, C.FreeSurface, C.RollFlattening):
@@ -52,7 +54,7 @@ def main(argv=None) -> int:
         log.clear()
         t0 = time.perf_counter()
         out = run(self, *a, **k)
-        steps = sum(1 for e in log if e.startswith("L"))
+        steps = sum(1 for e in log if e[0] == "L")
         print(f"{self.problem.rp.u_roll:.3f} m/s  {time.perf_counter() - t0:.2f} s  "
               f"{steps} Newton: {' '.join(log)}", flush=True)
         return out

@@ -25,11 +25,9 @@ from hotroll.cli.common import (
 from hotroll.config.case import MESH_TABLE, Case, CaseError, load_case
 from hotroll.examples import EXAMPLES, example_path
 from hotroll.results.engineering import display
-from hotroll.results.figures import plot_compare
 from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv
 from hotroll.results.units import UNITS
-from hotroll.workflows.compare import run_compare
 from hotroll.workflows.estimate import ResourceError, check
 from hotroll.workflows.runner import run_case
 from hotroll.workflows.sweep import Sweep
@@ -187,6 +185,8 @@ def compare(
     extra = {"output.figures": False, "solver.method": method or "steady"}
     case = _load(case_file, _overrides(mesh, None, None, **extra))
     console.print(Text(f"comparing {case.name} -> {out}", style="bold"))
+    from hotroll.workflows.compare import run_compare  # slab theory: scipy.integrate
+
     result = run_compare(case, out, progress=_Progress())
     table = Table(title=escape(f"{case.name}: FE and slab theory"))
     for col in ("quantity", "unit", "FE", "slab (Orowan)", "Sims", "Ford-Alexander", "FE/slab"):
@@ -231,6 +231,8 @@ def example(
     for case in cases:
         summaries.append(_run(case, out / case.name, resume, sweep))
         runs[f"m = {case.material.rate_exponent(case.plate.temperature):g}"] = out / case.name
+
+    from hotroll.results.figures import plot_compare
 
     png = plot_compare(runs, out / "compare.png")
     console.print(Text(f"comparison plot: {png or out / 'compare.png'}"))

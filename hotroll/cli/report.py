@@ -9,7 +9,6 @@ from rich.text import Text
 
 from hotroll.cli.common import console, fail
 from hotroll.files import DiskFullError
-from hotroll.results.report import ReportError, kind, write_report
 
 
 def report(
@@ -20,6 +19,8 @@ def report(
 ) -> None:
     """Write DIR/report.html: one self-contained page (inputs, results with units, figures,
     slab theory where compared, warnings); a study's or schedule's page links each run's own."""
+    from hotroll.results.report import ReportError, kind, write_report  # matplotlib, jinja2
+
     try:
         kind(directory)                 # refused before anything is written
     except ReportError as e:
@@ -43,6 +44,8 @@ def report(
 def study_report(out: Path, title: str) -> None:
     """The study's page at the end of ``hotroll study`` (a failure to write it is reported,
     the study's exit code stays the study's)."""
+    from hotroll.results.report import write_report
+
     try:
         console.print(Text(f"report: {write_report(out, title)}"))
     except DiskFullError:

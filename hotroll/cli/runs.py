@@ -11,7 +11,6 @@ from rich.text import Text
 
 from hotroll import examples as sched_examples
 from hotroll.cli.common import OutOpt, ResumeOpt, console, err_console, fail
-from hotroll.cli.report import study_report
 from hotroll.config.case import CaseError
 from hotroll.config.schedule import load_schedule
 from hotroll.config.study import load_study, parse_value
@@ -159,6 +158,8 @@ def study(
     for name in ("study.png", "study_profiles.png"):
         if st.plot is not None and (out / name).is_file():
             console.print(f"figure {out / name}")
+    from hotroll.cli.report import study_report
+
     study_report(out, st.name)
     if failed:
         raise typer.Exit(64 + min(len(failed), 63))

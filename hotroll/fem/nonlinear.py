@@ -43,8 +43,8 @@ class NonlinearSystem(Protocol):
     def max_multiplier(self, vec) -> float: ...
     def pressure_range(self) -> slice: ...
 
-#: a callable (iteration, update, step length, residual before, after) called after every
-#: Newton step, or None (studies of the iteration count: scripts/newton_trace.py)
+#: a callable (system, iteration, update, step length, residual before, after) called after
+#: every Newton step, or None (studies of the iteration count: scripts/newton_trace.py)
 TRACE = None
 
 #: ``newton(full_step=True)``: below this update (x the velocity scale) a failed line search
@@ -240,7 +240,7 @@ def newton(
         stats.iterations = it
         stats.residual = r1
         if TRACE is not None:
-            TRACE(it, stats.update, alpha, r0, r1)
+            TRACE(problem, it, stats.update, alpha, r0, r1)
         residual_ready = True
         if couple is not None and stats.update <= couple_below:
             if couple():

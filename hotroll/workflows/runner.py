@@ -13,7 +13,6 @@ from pathlib import Path
 from typing import Callable
 
 from hotroll.config.case import Case, flat
-from hotroll.results.figures import plot_all
 from hotroll.results.outcome import CONSERVATION_TOL, conservation_problem, exit_code, leak_to_slip  # noqa: F401 (API)
 from hotroll.results.output import (
     write_text,
@@ -97,6 +96,8 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
     wall = time.perf_counter() - t0
     summary = write_results(case, run, out, wall, extra)
     if case.output.figures:
+        from hotroll.results.figures import plot_all  # matplotlib only when drawing
+
         plot_all(out)
     return summary
 

@@ -26,10 +26,8 @@ from hotroll.config.schedule import Schedule
 from hotroll.model.interpass import cool, enthalpy_mean
 from hotroll.model.microstructure.softening import PassState
 from hotroll.model.profile import ThicknessProfile
-from hotroll.results.figures.microstructure import plot_microstructure
 from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv, write_json
-from hotroll.results.schedule_plot import plot_schedule
 from hotroll.results.units import UNITS
 from hotroll.workflows import microstructure as MS
 from hotroll.workflows.runner import finished_summary, run_case
@@ -178,6 +176,9 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
     else:
         rows, profiles = roll()
     if figure:
+        from hotroll.results.figures.microstructure import plot_microstructure
+        from hotroll.results.schedule_plot import plot_schedule  # matplotlib only when drawing
+
         plot_schedule(rows, out / "schedule.png", width=sch.strip.width)
         plot_microstructure(profiles, out / "microstructure.png")
     return rows

@@ -34,7 +34,6 @@ from hotroll.fem.free_surface import StripShape
 from hotroll.files import DiskFullError, atomic
 from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv, write_json, write_text
-from hotroll.results.study_plot import plot_profiles, plot_table
 from hotroll.results.units import UNITS
 from hotroll.solvers.steady import SteadyRun
 from hotroll.solvers.steady_settings import WarmStart
@@ -320,6 +319,7 @@ def figures(study: Study, out: Path, rows: list[dict], units: dict[str, str]) ->
     """The study's figures drawn from its table (``[plot]``): study.png, study_profiles.png."""
     if study.plot is None:
         return []
+    from hotroll.results.study_plot import plot_profiles, plot_table  # matplotlib when drawing
 
     made = []
     try:
