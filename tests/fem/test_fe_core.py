@@ -174,3 +174,31 @@ def test_solve_runs_the_method_it_is_given(monkeypatch):
     assert ran == [("picard", 1e-8, 7), ("newton", 1e-9, 5)]
     with pytest.raises(ValueError, match="solver.nonlinear must be 'newton' or 'picard', got 'x'"):
         N.solve(None, "x", 1e-8, 7)
+
+
+def test_a_steady_mesh_made_again_is_an_independent_copy_of_the_same_mesh():
+    """``build_steady_mesh`` keeps its last meshes (issue 34: a tandem stand's mass-flow
+    re-solve meshes the same strip again): the second mesh has the same vertices, elements and
+    boundaries, and deforming it leaves the first where it was."""
+    import ngsolve
+
+    from hotroll.fem.mesh import MeshSpec, build_steady_mesh
+    from hotroll.model.geometry import RollPass
+
+    rp = RollPass(0.3, 0.004, 0.0032, omega=10.0, axis_x=0.0)
+    spec = MeshSpec(h=0.0004, fine_length=0.0, core_factor=4.0)
+    a = build_steady_mesh(rp, 0.02, 0.02, spec, margin=0.004)
+    b = build_steady_mesh(rp, 0.02, 0.02, spec, margin=0.004)
+    pa = np.array([v.point for v in a.vertices])
+    pb = np.array([v.point for v in b.vertices])
+    assert np.array_equal(pa, pb) and a.ne == b.ne
+    assert sorted(a.GetBoundaries()) == sorted(b.GetBoundaries())
+    assert a.ngmesh is not b.ngmesh
+    disp = ngsolve.GridFunction(ngsolve.VectorH1(b, order=1))
+    disp.vec[:] = 1e-3
+    b.SetDeformation(disp)
+    b.ngmesh.Coordinates()[:, 0] += 1.0          # a change to the copy's own points
+    assert np.array_equal(np.array([v.point for v in a.vertices]), pa)
+    faster = build_steady_mesh(RollPass(0.3, 0.004, 0.0032, omega=20.0, axis_x=0.0), 0.02,
+                               0.02, spec, margin=0.004)      # the roll speed is not geometry
+    assert np.array_equal(np.array([v.point for v in faster.vertices]), pa)
