@@ -32,6 +32,21 @@ from hotroll.workflows.estimate import ResourceError, check
 from hotroll.workflows.runner import run_case
 from hotroll.workflows.sweep import Sweep
 
+
+def run_compare(*args, **kwargs):
+    """``workflows.compare.run_compare``, imported when a comparison runs (the slab theory
+    brings scipy.integrate: 0.4 s of every command's start otherwise)."""
+    from hotroll.workflows.compare import run_compare as run
+
+    return run(*args, **kwargs)
+
+
+def plot_compare(*args, **kwargs):
+    """``results.figures.plot_compare``, imported when drawn (matplotlib)."""
+    from hotroll.results.figures import plot_compare as plot
+
+    return plot(*args, **kwargs)
+
 SUMMARY_KEYS = ["status", "free_surface", "h_contact", "neutral_point", "neutral_angle",
                 "neutral_angle_reason", "sticking_zone",
                 "roll_force", "roll_torque", "roll_power", "forward_slip", "mean_pressure",
@@ -185,8 +200,6 @@ def compare(
     extra = {"output.figures": False, "solver.method": method or "steady"}
     case = _load(case_file, _overrides(mesh, None, None, **extra))
     console.print(Text(f"comparing {case.name} -> {out}", style="bold"))
-    from hotroll.workflows.compare import run_compare  # slab theory: scipy.integrate
-
     result = run_compare(case, out, progress=_Progress())
     table = Table(title=escape(f"{case.name}: FE and slab theory"))
     for col in ("quantity", "unit", "FE", "slab (Orowan)", "Sims", "Ford-Alexander", "FE/slab"):
@@ -231,8 +244,6 @@ def example(
     for case in cases:
         summaries.append(_run(case, out / case.name, resume, sweep))
         runs[f"m = {case.material.rate_exponent(case.plate.temperature):g}"] = out / case.name
-
-    from hotroll.results.figures import plot_compare
 
     png = plot_compare(runs, out / "compare.png")
     console.print(Text(f"comparison plot: {png or out / 'compare.png'}"))

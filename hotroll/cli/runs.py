@@ -20,6 +20,13 @@ from hotroll.workflows.study import FAILED, run_study
 from hotroll.workflows.tandem import TensionError
 
 
+def study_report(out: Path, title: str) -> None:
+    """``cli.report.study_report``, imported when a study ends (the report: matplotlib, jinja2)."""
+    from hotroll.cli.report import study_report as report
+
+    report(out, title)
+
+
 def schedule(
     schedule_file: Annotated[Path, typer.Argument(
         help="Schedule file (TOML) or a bundled schedule's name (finishing_mill, ...).")],
@@ -158,8 +165,6 @@ def study(
     for name in ("study.png", "study_profiles.png"):
         if st.plot is not None and (out / name).is_file():
             console.print(f"figure {out / name}")
-    from hotroll.cli.report import study_report
-
     study_report(out, st.name)
     if failed:
         raise typer.Exit(64 + min(len(failed), 63))

@@ -315,11 +315,24 @@ def _scheduler_workers(address: str) -> int | None:
     return sum(int(w.get("nthreads", 1)) for w in info.values()) or None
 
 
+def plot_table(*args, **kwargs):
+    """``results.study_plot.plot_table``, imported when drawn (matplotlib)."""
+    from hotroll.results.study_plot import plot_table as plot
+
+    return plot(*args, **kwargs)
+
+
+def plot_profiles(*args, **kwargs):
+    """``results.study_plot.plot_profiles``, imported when drawn (matplotlib)."""
+    from hotroll.results.study_plot import plot_profiles as plot
+
+    return plot(*args, **kwargs)
+
+
 def figures(study: Study, out: Path, rows: list[dict], units: dict[str, str]) -> list[Path]:
     """The study's figures drawn from its table (``[plot]``): study.png, study_profiles.png."""
     if study.plot is None:
         return []
-    from hotroll.results.study_plot import plot_profiles, plot_table  # matplotlib when drawing
 
     made = []
     try:
