@@ -5,7 +5,7 @@ study of where the iterations go; docs/validation/speed.md).
 
 One line per FE solve: the roll speed, the wall time, the Newton steps as L(update, step
 length) and each coupling update as a two-letter name and its change in tolerances (st
-strain, te temperature, a_ a_f, fr free surface, ro roll).
+strain, te temperature, a_ a_f, fr free surface, ro roll, sp a tandem stand's speed).
 """
 from __future__ import annotations
 
@@ -40,7 +40,8 @@ def main(argv=None) -> int:
             log.append(f"L({update:.0e},{alpha:g})")
 
     NL.TRACE = step
-    for cls in (C.StrainTransport, C.Temperature, C.AfEstimate, C.FreeSurface, C.RollFlattening):
+    for cls in (C.StrainTransport, C.Temperature, C.AfEstimate, C.FreeSurface, C.RollFlattening,
+                C.TandemSpeed):
         def traced(orig, name):
             def update(self, res):
                 change = orig(self, res)

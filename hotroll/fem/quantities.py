@@ -60,7 +60,7 @@ def contact_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: fl
         pressure = pen.at_nodes(xy[:, 0], rp.soft_zone) * np.sum(vel * n, -1)
     k = _nodal_k(form, top, contact_only=True)
     k = None if k is None else k[order]
-    shear = K * np.asarray(form.friction.shear(slip, a_f=form.a_f.Get(), m=form.m.Get(),
+    shear = K * np.asarray(form.law.shear(slip, a_f=form.a_f.Get(), m=form.m.Get(),
                                                pressure=pressure, k=k))
     out = {"x": xy[:, 0], "y": xy[:, 1], "angle": ang, "v_slip": slip,
            "normal_stress": -K * pressure, "shear_stress": shear, "vertex": vertex.astype(int)}

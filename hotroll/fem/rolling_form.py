@@ -33,7 +33,7 @@ tops (3.2d)) scale with the same mu_ref / h (``ScaledPenalties``): unit-free.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from hotroll.fem.forms import NonlinearProblem, norton_hoff_tangent, norton_hoff_volume, one_sided, strain_rate
 from hotroll.fem.spaces import taylor_hood
@@ -91,7 +91,8 @@ class ScaledPenalties:
     def at_nodes(self, x, zone):
         import numpy as np
 
-        return np.full(np.shape(x), self.hard * self.mu_ref / self.h)
+        mu = self.mu_ref.Get() if hasattr(self.mu_ref, "Get") else self.mu_ref
+        return np.full(np.shape(x), self.hard * mu / self.h)
 
 
 #: Contact methods of the steady solver: the exact one (default) and the report's penalty.
@@ -138,12 +139,20 @@ class RollingForm:
         self.mesh, self.rp = mesh, rp
         self.free_surface = free_surface
         self.contact = contact
+        # what follows the roll speed is a Parameter (``set_roll_speed``: a tandem stand's speed
+        # found inside the solve, issue 34): the surface speed U, the friction's v_reg, the
+        # viscosity scale mu_ref of the penalties, and the multiplier's scale
         self.mu_ref = reference_viscosity(material, rp)
+        self._mu = Parameter(self.mu_ref)
         if contact == "multiplier":
-            penalties = ScaledPenalties(penalties.h, self.mu_ref)
+            penalties = ScaledPenalties(penalties.h, self._mu)
         # p_c = lam_scale * lambda~ (reduced): lambda~ is a velocity, of the order of U where
         # the pressure is of the order of the reference stress mu_ref U / l_c
-        self.lam_scale = self.mu_ref / rp.contact_length
+        self._lam = Parameter(self.mu_ref / rp.contact_length)
+        self.U = Parameter(rp.u_roll)
+        self.v_reg = Parameter(friction.v_reg)
+        self.law = friction                           # its floats (numpy evaluations)
+        friction = replace(friction, v_reg=self.v_reg)   # the forms' (v_reg a Parameter)
         self.material, self.friction, self.penalties = material, friction, penalties
         # K(strain, T) / K_ref of a strain-dependent flow stress (a CF of the strain field,
         # fem/strain.py), 1 for Norton-Hoff
@@ -175,6 +184,29 @@ class RollingForm:
                                         jacobian=self.jacobian,
                                         pressure_row_scale=self.mu_ref)
 
+    @property
+    def lam_scale(self) -> float:
+        """s = mu_ref / l_c: the contact pressure (reduced) per unit of lambda~."""
+        return self._lam.Get()
+
+    def set_roll_speed(self, rp: RollPass, v_reg: float) -> None:
+        """The same pass at another roll speed (``rp``; the friction's regularisation speed
+        ``v_reg``, m/s): the Parameters that follow U, as a form built for ``rp`` has them;
+        the multiplier's DOFs rescaled so that the pressure they carry stays."""
+        old = self._lam.Get()
+        self.rp = rp
+        self.mu_ref = reference_viscosity(self.material, rp)
+        self._mu.Set(self.mu_ref)
+        self._lam.Set(self.mu_ref / rp.contact_length)
+        self.U.Set(rp.u_roll)
+        self.v_reg.Set(v_reg)
+        self.law = replace(self.law, v_reg=v_reg)
+        nl = self.nonlinear
+        nl.velocity_scale, nl.pressure_row_scale = rp.u_roll, self.mu_ref
+        if self.exact:
+            r = nl.multiplier_range()
+            nl.gf.vec.FV().NumPy()[r] *= old / self._lam.Get()
+
     def set_roll_shape(self, vertices) -> None:
         """The flattened roll's tilt and hoop strain at the mesh vertices ``vertices`` (their
         current positions, m; one row per vertex)."""
@@ -203,8 +235,8 @@ class RollingForm:
     def roll_speed(self):
         """|U_roll|: omega R, times (1 + e_tt) on a flattened roll's rim."""
         if self.roll_hoop is None:
-            return self.rp.u_roll
-        return self.rp.u_roll * (1.0 + self.roll_hoop)
+            return self.U
+        return self.U * (1.0 + self.roll_hoop)
 
     def free_normal(self, u):
         """u.n on the free top for (3.2d): the mesh normal before the gap, the normal of the
@@ -263,7 +295,7 @@ class RollingForm:
         from ngsolve import x
 
         if self.exact:
-            return self.lam_scale * (self.multiplier if lam is None else lam)
+            return self._lam * (self.multiplier if lam is None else lam)
         n, _ = self.roll_frame()
         return self.penalties.surface(x, self.rp.soft_zone) * (u * n)
 
@@ -307,12 +339,12 @@ class RollingForm:
 
     def inlet_penalty(self, u, w):
         """(3.2a) per unit test v_x: gamma_in [v_x - |U_roll|]_+, active set taken at w."""
-        U = self.rp.u_roll
+        U = self.U
         return self.penalties.inlet_outlet(self.m) * one_sided(u[0] - U, w[0] - U)
 
     def outlet_penalty(self, u, w):
         """(3.2b) per unit test v_x: -gamma_out [|U_roll| - v_x]_+, active set taken at w."""
-        U = self.rp.u_roll
+        U = self.U
         return -self.penalties.inlet_outlet(self.m) * one_sided(U - u[0], U - w[0])
 
     # --- the form ---------------------------------------------------------------------------
@@ -332,9 +364,9 @@ class RollingForm:
         from ngsolve import ds
 
         n, _ = self.roll_frame()
-        term = self.lam_scale * (lam * (v * n) + xi * (u * n))
+        term = self._lam * (lam * (v * n) + xi * (u * n))
         if regularise:
-            term = term - regularise * self.lam_scale * lam * xi
+            term = term - regularise * self._lam * lam * xi
         return term * ds("arc", bonus_intorder=2)
 
     def jacobian(self, w, u, p, v, q, lam=None, xi=None, lam_w=None):

@@ -111,6 +111,28 @@ class FreeSurface(Coupling):
         return moved / self.tol
 
 
+class TandemSpeed(Coupling):
+    """A tandem stand's roll speed found inside the solve: the speed at which the strip's
+    inlet passes the mill's mass flux (``target``, m^2/s, half model). Each update measures
+    the inlet flux (``flux``) and moves the speed by the miss, omega / (1 + miss)
+    (``set_speed``); the change is |miss| in units of ``tol``. The forward slip hardly
+    depends on the speed, so this settles in 1-3 updates."""
+
+    name = "speed"
+    #: moved once the others are within 10 tolerances, as the roll (a far-off flow's flux)
+    after_others = 10.0
+
+    def __init__(self, flux: Callable[[], float], target: float, omega: Callable[[], float],
+                 set_speed: Callable[[float], None], tol: float):
+        self.flux, self.target, self.omega, self.set_speed, self.tol = (flux, target, omega,
+                                                                        set_speed, tol)
+
+    def update(self, result) -> float:
+        miss = self.flux() / self.target - 1.0
+        self.set_speed(self.omega() / (1.0 + miss))
+        return abs(miss) / self.tol
+
+
 class RollFlattening(Coupling):
     """The flattening work roll (``model/roll_elastic.py``): its surface moved by the contact
     tractions of the current flow (``loads``: angles, pressure, shear in Pa), then the strip's

@@ -37,6 +37,8 @@ class Problem:
                                    # process.profile.ThicknessProfile; steady solver), or None
     roll: object = None            # a flattening roll (model/roll_elastic.FlatteningRoll) whose
                                    # shape rp holds, or None: the rigid roll
+    v_reg_per_speed: float | None = None   # v_reg / U where the regularisation follows the
+                                           # roll speed (the laws' default), None: v_reg given
 
     @property
     def v_reg(self) -> float:

@@ -93,6 +93,9 @@ class SteadyRun:
         self._set_shape()
         self._top_part = self._top_parts()
         self.mesh_key = mesh_key(self.mesh)
+        #: (target inlet flux m^2/s half model, tolerance): a tandem stand whose speed the
+        #: solve finds (``TandemSpeed``), or None: the case's speed
+        self.mass_flux: tuple[float, float] | None = None
         self.mesh_time = time.perf_counter() - t0
         self.record = True    # measure after every solve (history.csv); off in benchmarks
 
@@ -308,7 +311,31 @@ class SteadyRun:
         if self.problem.roll is not None:
             out.append(C.RollFlattening(self.problem.roll, self._roll_loads, self._set_shape,
                                         s.roll_tol * self.problem.rp.half_exit))
+        if self.mass_flux is not None:
+            out.append(C.TandemSpeed(lambda: Q.face_flow(self.form, "in")["flux"],
+                                     self.mass_flux[0], lambda: self.problem.rp.omega,
+                                     self.set_roll_speed, self.mass_flux[1]))
         return out
+
+    def set_roll_speed(self, omega: float) -> None:
+        """The same pass at the roll speed ``omega`` (rad/s): the form's speed Parameters
+        (``RollingForm.set_roll_speed``), the problem's RollPass and friction law, and the
+        current solution scaled to it as a neighbour's start is (velocity x U ratio, reduced
+        pressure x ratio^m)."""
+        pb = self.problem
+        rp = replace(pb.rp, omega=float(omega))
+        ratio = rp.u_roll / pb.rp.u_roll
+        v_reg = (pb.friction.v_reg if pb.v_reg_per_speed is None
+                 else pb.v_reg_per_speed * rp.u_roll)
+        nl = self.form.nonlinear
+        vec = nl.gf.vec.FV().NumPy()
+        vec[:nl.n_velocity_dofs()] *= ratio
+        vec[nl.pressure_range()] *= ratio**pb.material.m
+        self.form.set_roll_speed(rp, v_reg)      # keeps the multiplier's pressure ...
+        vec[nl.multiplier_range()] *= ratio**pb.material.m     # ... then scales it
+        self.problem = replace(pb, rp=rp, friction=replace(pb.friction, v_reg=v_reg))
+        if pb.roll is not None:
+            pb.roll.rp = rp
 
     def _roll_loads(self) -> tuple:
         """The contact tractions on the roll (angles increasing; pressure and shear, Pa) and

@@ -56,7 +56,9 @@ def build_model(case: Case):
                                   case.thermal.boundary(case.plate.temperature, t_profile),
                                   case.thermal.mesh_refinement)
                          if case.thermal else None,
-                         strain_profile=e_profile)
+                         strain_profile=e_profile,
+                         v_reg_per_speed=None if case.friction.v_reg is not None
+                         else case.friction.regularisation_velocity(1.0))
     if case.roll.model != "rigid":
         shaped, roll = FlatteningRoll.start(
             rp, case.roll.model, RollElasticity(case.roll.youngs_modulus, case.roll.poissons_ratio),

@@ -51,11 +51,15 @@ def finished_summary(case: Case, out: Path) -> dict | None:
 
 
 def run_case(case: Case, out: Path, *, resume: bool = True,
-             progress: Callable[[dict], None] | None = None, sweep=None) -> dict:
+             progress: Callable[[dict], None] | None = None, sweep=None,
+             mass_flux: tuple[float, float] | None = None) -> dict:
     """Run one case and write summary.json, contact.csv, top.csv, history.csv, fields, figures.
 
     ``sweep`` (an ``app.sweep.Sweep``): a steady case starts from the nearest case the sweep
-    has solved on the same mesh (``warm_start_from`` in the summary)."""
+    has solved on the same mesh (``warm_start_from`` in the summary). ``mass_flux`` (steady
+    only): (inlet flux m^2/s of the half strip, relative tolerance) of a tandem stand whose
+    roll speed the solve finds (``solvers/couplings.TandemSpeed``); the case's speed is the
+    start, the speed found is written (case.toml, summary.json)."""
     import ngsolve
 
     if case.pass_.roll_gap is not None:      # the exit thickness follows from the gap
@@ -84,7 +88,12 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
         else:
             run = sweep.steady_run(case, model)
             near, warm = sweep.nearest(case, run)
+        run.mass_flux = mass_flux
         run.run(progress, warm=warm)
+        omega = run.problem.rp.omega
+        if omega != case.pass_.roll_angular_velocity:      # a tandem speed found in the solve
+            case = case.with_overrides(**{"pass.roll_angular_velocity": omega})
+            write_text(out / "case.toml", case.to_toml())
         if sweep is not None:
             sweep.add(case, run)
         extra["warm_start_from"] = near

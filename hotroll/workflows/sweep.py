@@ -63,6 +63,8 @@ class Sweep:
         if self._kept is not None and self._kept[0] == key:
             run = self._kept[1]
             run.problem, run.s, run.plate_length = model, settings, case.plate.length
+            # a tandem stand's solve may have moved its speed Parameters (TandemSpeed)
+            run.form.set_roll_speed(model.rp, model.friction.v_reg)
             run.mesh_time = 0.0
         else:
             run = SteadyRun(model, settings, case.plate.length)
