@@ -159,3 +159,44 @@ def test_warm_start_never_crosses_free_surface_models():
     assert sweep.nearest(case, run) == (None, None)
     with pytest.raises(ValueError, match="free tops"):
         run.solve(warm=traced.warm_start())
+
+
+@pytest.mark.parametrize("friction", [{"friction.a_f": 3.0},
+                                      {"friction.law": "coulomb", "friction.mu": 0.3}])
+def test_a_form_moved_to_another_roll_speed_is_the_form_built_for_it(friction):
+    """``RollingForm.set_roll_speed`` (a tandem stand's speed found inside its solve, issue 34):
+    the form built at omega and moved to 1.3 omega has the residual and the Jacobian of the
+    form built at 1.3 omega, at the same velocity, pressure and contact pressure, to rounding
+    (the roll speed, v_reg, the penalties' viscosity scale and the multiplier's scale)."""
+    cases = [_case(**{"solver.method": "steady", **friction, "pass.roll_angular_velocity": w})
+             for w in (10.0, 13.0)]
+    runs = []
+    for case in cases:
+        model, _ = build_model(case)
+        runs.append(SteadyRun(model, steady_settings(case), case.plate.length))
+    moved, built = runs
+    assert moved.mesh_key == built.mesh_key
+    moved.form.set_roll_speed(built.problem.rp, built.problem.friction.v_reg)
+    assert moved.form.lam_scale == pytest.approx(built.form.lam_scale, rel=1e-14)
+    built._kinematic_guess()
+    nl_b, nl_m = built.form.nonlinear, moved.form.nonlinear
+    state = nl_b.gf.vec.FV().NumPy()
+    rng = np.random.default_rng(1)
+    state[nl_b.pressure_range()] = rng.uniform(-1.0, 1.0, len(state[nl_b.pressure_range()]))
+    lam = nl_b.multiplier_range()
+    state[lam] = built.problem.rp.u_roll * rng.uniform(0.0, 1.0, len(state[lam]))
+    nl_m.gf.vec.FV().NumPy()[:] = state
+    r_b, r_m = nl_b.gf.vec.CreateVector(), nl_m.gf.vec.CreateVector()
+    nl_b.a_newton.Apply(nl_b.gf.vec, r_b)
+    nl_m.a_newton.Apply(nl_m.gf.vec, r_m)
+    a, b = r_b.FV().NumPy(), r_m.FV().NumPy()
+    assert np.linalg.norm(a - b) <= 1e-12 * np.linalg.norm(a)
+    nl_b.a_jacobian.Assemble()
+    nl_m.a_jacobian.Assemble()
+    x = rng.uniform(-1.0, 1.0, len(state))
+    xb, xm = nl_b.gf.vec.CreateVector(), nl_m.gf.vec.CreateVector()
+    xb.FV().NumPy()[:] = x
+    xm.FV().NumPy()[:] = x
+    jb, jm = (nl_b.a_jacobian.mat * xb).Evaluate(), (nl_m.a_jacobian.mat * xm).Evaluate()
+    jb, jm = jb.FV().NumPy(), jm.FV().NumPy()
+    assert np.linalg.norm(jb - jm) <= 1e-12 * np.linalg.norm(jb)
