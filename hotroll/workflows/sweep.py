@@ -4,7 +4,8 @@ A ``Sweep`` remembers the states it has solved. For a new steady case on the sam
 geometry and mesh sizes: the vertex coordinates are compared) it starts Newton from the nearest
 of them, the velocity scaled to the new roll speed (``SteadyRun._warm``); where only m, K, a_f or
 the solver's tolerances differ, the previous run itself is kept, with its mesh, compiled forms
-and factorisation. Cases on other meshes, and transient ones, start cold.
+and factorisation; on an isothermal pass with rigid rolls also where the roll speed differs
+(a form Parameter). Cases on other meshes, and transient ones, start cold.
 
 Nearest = smallest sum of relative differences in m, roll surface speed, eps0 and v_reg (and a_f
 when it is given as a number).
@@ -19,7 +20,8 @@ from hotroll.solvers.steady import SteadyRun
 from hotroll.solvers.transfer import SimilarPass
 from hotroll.workflows.build import steady_settings
 
-#: Keys a kept SteadyRun may differ in: they enter as parameters or settings, not in the form.
+#: Keys a kept SteadyRun may differ in: they enter as parameters or settings, not in the form
+#: (and the roll speed, for an isothermal pass with rigid rolls: ``form_key``).
 _RUN_FREE = ("name", "material.m", "material.K", "friction.a_f", "friction.a_f_max",
              "plate.length")
 
@@ -27,8 +29,13 @@ _RUN_FREE = ("name", "material.m", "material.K", "friction.a_f", "friction.a_f_m
 def form_key(case: Case) -> str:
     """Hash of what the steady mesh and form are built from (everything but ``_RUN_FREE``,
     the solver's tolerances and the outputs)."""
+    free = _RUN_FREE
+    if not case.thermal and case.roll.model == "rigid":
+        # the roll speed is a form Parameter (RollingForm.set_roll_speed); the temperature's
+        # strip mesh depends on it (its first row), a flattening roll's surface is the run's
+        free = free + ("pass.roll_angular_velocity",)
     d = {k: v for k, v in flat(case.to_dict()).items()
-         if k not in _RUN_FREE and not k.startswith(("output.", "solver."))}
+         if k not in free and not k.startswith(("output.", "solver."))}
     d["solver.steady_entry_length"] = case.solver.steady_entry_length
     d["solver.steady_exit_length"] = case.solver.steady_exit_length
     return hashlib.sha256(repr(sorted(d.items())).encode()).hexdigest()[:16]
