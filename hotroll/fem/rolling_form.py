@@ -131,7 +131,8 @@ class RollingForm:
 
     def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: FrictionLaw,
                  penalties: PenaltyTable, free_surface: str, tensions: tuple = (0.0, 0.0),
-                 consistency=1.0, rate_offset=None, contact: str = "penalty"):
+                 consistency=1.0, rate_offset=None, contact: str = "penalty",
+                 contact_regions: str = TOP):
         from ngsolve import FacetFESpace, GridFunction, Parameter
 
         if contact not in CONTACT_METHODS:
@@ -170,7 +171,10 @@ class RollingForm:
         self.chi = GridFunction(FacetFESpace(mesh, order=0))  # 1 on contact edges
         # back / front tension over K (reduced, like every stress in the form)
         self.tension_back, self.tension_front = Parameter(tensions[0]), Parameter(tensions[1])
-        self.top_elements = _elements_on(mesh, TOP) if friction.uses_k else None
+        # the elements a law with k integrates its friction on (element boundaries): those
+        # along the boundary the contact can be on (the steady strip's: its arc only; a third
+        # of the Jacobian's assembly was the rest of the top's, multiplied by chi = 0)
+        self.top_elements = _elements_on(mesh, contact_regions) if friction.uses_k else None
         # a flattened roll (rp.shape): its normal's tilt from the radius and its rim's hoop
         # strain at the mesh vertices (P1; set_roll_shape), read on the arc
         self.roll_tilt = self.roll_hoop = None

@@ -73,7 +73,7 @@ class SteadyRun:
                                 tensions=problem.reduced_tensions, consistency=consistency,
                                 rate_offset=self.thermal.rate_offset()
                                 if self.thermal is not None else None,
-                                contact=settings.contact)
+                                contact=settings.contact, contact_regions="arc")
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.d = self.disp.vec.FV().NumPy()
