@@ -65,8 +65,7 @@ def continuation_path(m: float) -> list[float]:
 @dataclass
 class WarmStart:
     """A solved steady state that a neighbouring case on the same mesh can start from: its
-    velocity-pressure vector, strip shape, a_f, the m and roll speed it was solved for and a
-    flattening roll's surface."""
+    velocity-pressure vector, strip shape, a_f, and the m and roll speed it was solved for."""
 
     solution: np.ndarray
     shape: StripShape
@@ -75,7 +74,6 @@ class WarmStart:
     u_roll: float
     mesh_key: str
     free_surface: str = "traced"
-    roll: object = None      # a flattening roll's settled surface (model/geometry.RollShape)
 
 
 def mesh_key(mesh) -> str:

@@ -9,7 +9,8 @@ and radiation) and the strain is kept (``strain_retained`` of it). With
 U_k = Q / ((h_k/2) (1 + f_k)) that passes the first stand's flux Q, with its own forward slip
 f_k: the previous stand's slip is the start, the stand's solve moves its speed until its
 inlet passes Q (``solvers/couplings.TandemSpeed``, to a quarter of ``mass_flow_tolerance``);
-where that does not settle, the stand is solved again, warm, until the fluxes agree.
+where that does not settle, or for a stand set by its roll gap (whose gauge solves do not take
+it), the stand is solved again, warm, until the fluxes agree.
 
 Each pass is a ``hotroll run`` into ``DIR/NN_name/`` (its own summary, profiles, figures); a
 finished pass whose case file is unchanged is not solved again (resume). Output:
