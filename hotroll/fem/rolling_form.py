@@ -78,7 +78,7 @@ class ScaledPenalties:
     roll speed, time or length unit they scale as the stresses do; no soft zone."""
 
     h: float
-    mu_ref: float
+    mu_ref: object       # a number or a Parameter (RollingForm: it follows the roll speed)
     hard: float = 25.0
     inout: float = 2.0
 
@@ -143,8 +143,7 @@ class RollingForm:
         # what follows the roll speed is a Parameter (``set_roll_speed``: a tandem stand's speed
         # found inside the solve, issue 34): the surface speed U, the friction's v_reg, the
         # viscosity scale mu_ref of the penalties, and the multiplier's scale
-        self.mu_ref = reference_viscosity(material, rp)
-        self._mu = Parameter(self.mu_ref)
+        self._mu = Parameter(reference_viscosity(material, rp))
         if contact == "multiplier":
             penalties = ScaledPenalties(penalties.h, self._mu)
         # p_c = lam_scale * lambda~ (reduced): lambda~ is a velocity, of the order of U where
@@ -189,6 +188,11 @@ class RollingForm:
                                         pressure_row_scale=self.mu_ref)
 
     @property
+    def mu_ref(self) -> float:
+        """The reduced secant viscosity at the strain rate U / l_c (``reference_viscosity``)."""
+        return self._mu.Get()
+
+    @property
     def lam_scale(self) -> float:
         """s = mu_ref / l_c: the contact pressure (reduced) per unit of lambda~."""
         return self._lam.Get()
@@ -199,8 +203,7 @@ class RollingForm:
         the multiplier's DOFs rescaled so that the pressure they carry stays."""
         old = self._lam.Get()
         self.rp = rp
-        self.mu_ref = reference_viscosity(self.material, rp)
-        self._mu.Set(self.mu_ref)
+        self._mu.Set(reference_viscosity(self.material, rp))
         self._lam.Set(self.mu_ref / rp.contact_length)
         self.U.Set(rp.u_roll)
         self.v_reg.Set(v_reg)

@@ -154,10 +154,15 @@ class RollPass:
         return self.axis_x - self.x_touch
 
     @property
+    def rigid_bite_angle(self) -> float:
+        """acos(1 - dh / 2R): the bite angle of the rigid roll (the pass's geometry alone)."""
+        return math.acos(1.0 - self.draft / self.radius)
+
+    @property
     def bite_angle(self) -> float:
         """The angle of the first touching point: the surface's height there is the entry's."""
         if self.shape is None:
-            return math.acos(1.0 - self.draft / self.radius)
+            return self.rigid_bite_angle
         key = ("bite", self.radius, self.half_entry, self.half_exit)
         cached = self.shape.cache.get(key)
         if cached is None:
@@ -168,7 +173,7 @@ class RollPass:
         from scipy.optimize import brentq
 
         cy = self.centre[1]
-        rigid = math.acos(1.0 - self.draft / self.radius)
+        rigid = self.rigid_bite_angle
 
         def above_entry(t):
             return cy - float(self.surface_radius(t)) * math.cos(t) - self.half_entry

@@ -132,10 +132,6 @@ class ElasticDisc:
 ROLL_MODELS = ("rigid", "hitchcock", "elastic")
 
 
-def _rigid_bite(rp) -> float:
-    """The rigid roll's bite angle acos(1 - dh/2R), rad (of the pass's geometry alone)."""
-    return math.acos(1.0 - rp.draft / rp.radius)
-
 
 class FlatteningRoll:
     """The flattening work roll of one pass: its surface (``RollShape``, shared with the
@@ -226,7 +222,7 @@ class FlatteningRoll:
         if other.kind != self.kind:
             return
         src, grid = other.shape, self.shape.theta
-        ratio = _rigid_bite(other.rp) / _rigid_bite(self.rp)     # the passes' geometry only
+        ratio = other.rp.rigid_bite_angle / self.rp.rigid_bite_angle
         w = np.interp(grid * ratio, src.theta, src.w)
         hoop = np.interp(grid * ratio, src.theta, src.hoop)
         self.shape.set(grid, self._at_gap(grid, w) if self.kind == "elastic" else w, hoop)

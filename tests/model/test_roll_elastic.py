@@ -222,7 +222,7 @@ def test_a_carried_roll_surface_keeps_its_shape_in_bite_fractions_and_its_gap():
                        atol=1e-3 * np.ptp(src.shape.hoop))
 
     dst_rp, dst = FlatteningRoll.start(RollPass(0.30, 0.005, 0.004, omega=9.0), "elastic")
-    b_src, b_dst = _rigid_bite(src_rp), _rigid_bite(dst_rp)   # the bites carry() maps between
+    b_src, b_dst = src_rp.rigid_bite_angle, dst_rp.rigid_bite_angle   # carry()'s bites
     dst.carry(src)
     R = dst_rp.radius
     t = dst.shape.theta
@@ -232,8 +232,3 @@ def test_a_carried_roll_surface_keeps_its_shape_in_bite_fractions_and_its_gap():
     assert np.ptp(shift) < 1e-3 * np.ptp(src.shape.w)   # splines through linear interpolants
     assert np.ptp(dst.shape.w) > 0.5 * np.ptp(src.shape.w)   # the surface, not zeros, carried
 
-
-def _rigid_bite(rp) -> float:
-    import math
-
-    return math.acos(1.0 - rp.draft / rp.radius)
