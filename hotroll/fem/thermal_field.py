@@ -189,7 +189,7 @@ class TemperatureField:
         system = self._system
         if system is None or system.a is not a or system.freedofs is not free:
             system = self._system = HeatSystem(self, a, f, free)
-        stats = newton(system, tol, max_iter, min_step=1.0, chord=chord)
+        stats = newton(system, tol, max_iter, min_step=1.0, chord=chord, last_residual=False)
         return SolveInfo(stats.iterations, stats.update)
 
     # --- solves --------------------------------------------------------------------------------
