@@ -260,6 +260,37 @@ def test_newton_reports_the_update_it_took():
     assert info.change < 1e-10 and info.iterations < 30
 
 
+def test_one_step_without_the_residual_after_it_is_the_same_step():
+    """A coupling update's one heat-equation step (``newton(last_residual=False)``, issue 34)
+    skips only the residual after the step: the temperature is bit for bit that of the step
+    with it, and the skipped residual is reported as NaN, not as a stale number."""
+    import math
+
+    from ngsolve import IfPos, x, y
+
+    import hotroll.fem.nonlinear as NL
+    from hotroll.fem.thermal_field import HeatSystem
+
+    v = sink_flow(0.01)
+    contact = IfPos(x - 0.035, 1.0, 0.0)
+    q, qf = 3e8 * contact * (1.0 + 10.0 * y), 2e6 * contact
+    bc = boundary(1400.0, 350.0, 300.0, htc_contact=2e4, htc_air=50.0, emissivity=0.8)
+    out = {}
+    for last in (True, False):
+        field = TemperatureField(wedge(48, 12), TABLES, bc, top="top")
+        field.values[:] = 1400.0
+        field.values[field._fixed] = field._inlet_values
+        a, f = field._steady_forms(v, q, qf, contact)
+        stats = NL.newton(HeatSystem(field, a, f, field._free), 0.0, 1, min_step=1.0,
+                          last_residual=last)
+        out[last] = (field.values.copy(), stats)
+    assert np.max(np.abs(out[True][0] - 1400.0)) > 1.0          # a real step was taken
+    assert np.array_equal(out[False][0], out[True][0])
+    assert out[False][1].iterations == out[True][1].iterations == 1
+    assert out[False][1].update == out[True][1].update
+    assert math.isnan(out[False][1].residual) and math.isfinite(out[True][1].residual)
+
+
 # =================================================================================================
 # 4. The moving-mesh step: implicit Euler
 # =================================================================================================
