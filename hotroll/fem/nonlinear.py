@@ -196,7 +196,8 @@ def newton(
     ``chord``: the Jacobian's kept factors instead of new ones (Newton-chord). ``full_step``:
     the steady solver's final solve (a direction below ``tol`` is taken whole; a search that
     fails below ``WATCHDOG_BELOW`` takes the full step once). ``last_residual=False`` (no
-    line search only): the residual after the ``max_it``-th step is not evaluated (its
+    line search and no ``couple`` only: neither the coupling nor the multiplier's test runs
+    then): the residual after the ``max_it``-th step is not evaluated (its
     ``stats.residual`` is NaN): the heat equation's one step per coupling update, whose
     residual nobody reads, saved an evaluation as costly as the step's assembly. The system's
     ``prepare(iteration)``, where it has one, runs first in every iteration and returns True
@@ -221,7 +222,8 @@ def newton(
         # whose viscosity is eps0^(m-1): a velocity change of 1e-7 U moves it), and the test
         # r1 < r0 refused full steps of 1e-7 U for up to five iterations on the finishing pass
         alpha, search = 1.0, not (full_step and stats.update <= tol)
-        if not last_residual and it == max_it and (min_step >= 1.0 or not search):
+        if (not last_residual and it == max_it and couple is None
+                and (min_step >= 1.0 or not search)):
             problem.gf.vec.data = ws.backup - ws.du
             stats.iterations, stats.residual = it, float("nan")
             stats.converged = stats.update <= tol

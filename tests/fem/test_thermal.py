@@ -281,13 +281,15 @@ def test_one_step_without_the_residual_after_it_is_the_same_step():
         field.values[:] = 1400.0
         field.values[field._fixed] = field._inlet_values
         a, f = field._steady_forms(v, q, qf, contact)
-        stats = NL.newton(HeatSystem(field, a, f, field._free), 0.0, 1, min_step=1.0,
+        stats = NL.newton(HeatSystem(field, a, f, field._free), 0.5, 1, min_step=1.0,
                           last_residual=last)
         out[last] = (field.values.copy(), stats)
     assert np.max(np.abs(out[True][0] - 1400.0)) > 1.0          # a real step was taken
     assert np.array_equal(out[False][0], out[True][0])
     assert out[False][1].iterations == out[True][1].iterations == 1
     assert out[False][1].update == out[True][1].update
+    # converged by the update test (0.5: any first step passes it) in both
+    assert out[False][1].converged and out[True][1].converged
     assert math.isnan(out[False][1].residual) and math.isfinite(out[True][1].residual)
 
 
