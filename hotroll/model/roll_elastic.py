@@ -132,7 +132,6 @@ class ElasticDisc:
 ROLL_MODELS = ("rigid", "hitchcock", "elastic")
 
 
-
 class FlatteningRoll:
     """The flattening work roll of one pass: its surface (``RollShape``, shared with the
     ``RollPass`` the solver uses) updated in place from the contact tractions of the current

@@ -224,9 +224,10 @@ class SteadyRun:
             vec[:nv] = ratio * warm.solution[:nv]
             vec[pr] = ratio**target * warm.solution[pr]
             vec[lr] = ratio * warm.solution[lr]     # the multiplier is scaled to a velocity
-            # a flattening roll starts rigid, not from the neighbour's surface: on a heavily
-            # flattened pass (R'/R = 1.3) a start from a flattened surface settled on another
-            # fixed point, 3.4 % above the cold solve's force (docs/validation/speed.md)
+            # a flattening roll starts rigid, not from the neighbour's surface, as a cold solve
+            # does: on a heavily flattened pass (R'/R = 1.3) the two starts stopped 3.4 % apart,
+            # the rigid one at a false stop of the roll / free-top iteration 4 % below the
+            # pass's solution (docs/validation/speed.md, issue 34 session 4: open)
             self.shape = warm.shape.copy()
             self._set_shape()
             a_f = warm.a_f
