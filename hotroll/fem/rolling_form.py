@@ -36,6 +36,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from hotroll.fem.forms import NonlinearProblem, norton_hoff_tangent, norton_hoff_volume, one_sided, strain_rate
+from hotroll.fem.primal_dual import NortonHoffDual
 from hotroll.fem.spaces import taylor_hood
 from hotroll.model.friction import FrictionLaw
 from hotroll.model.geometry import RollPass
@@ -132,7 +133,7 @@ class RollingForm:
     def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: FrictionLaw,
                  penalties: PenaltyTable, free_surface: str, tensions: tuple = (0.0, 0.0),
                  consistency=1.0, rate_offset=None, contact: str = "penalty",
-                 contact_regions: str = TOP):
+                 contact_regions: str = TOP, primal_dual: bool = True):
         from ngsolve import FacetFESpace, GridFunction, Parameter
 
         if contact not in CONTACT_METHODS:
@@ -183,9 +184,16 @@ class RollingForm:
             P1 = H1(mesh, order=1)
             self.roll_tilt, self.roll_hoop = GridFunction(P1), GridFunction(P1)
             self.roll_cx = Parameter(rp.centre[0])     # moves with the lowest point
+        # Newton's tangent: primal-dual (fem/primal_dual.py) or the primal one; the volume
+        # terms of both forms are integrated on the dual's quadrature points either way
+        self.dual = NortonHoffDual(mesh, material.eps0)
+        self._dual_cf = self.dual.cf if primal_dual else None
         self.nonlinear = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll,
-                                        jacobian=self.jacobian,
-                                        pressure_row_scale=self.mu_ref)
+                                          jacobian=self.jacobian,
+                                          pressure_row_scale=self.mu_ref)
+        if primal_dual:
+            self.dual.attach(self.nonlinear.velocity)
+            self.nonlinear.prepare = self.dual.prepare
 
     @property
     def mu_ref(self) -> float:
@@ -362,7 +370,7 @@ class RollingForm:
 
         vol = norton_hoff_volume(self.material, self.m_material, u, p, w, v, q,
                                  K=self.consistency)
-        out = vol * dx + self.boundary(u, w, v, lam=lam)
+        out = vol * dx(intrules=self.dual.intrules) + self.boundary(u, w, v, lam=lam)
         return out + self.constraint(u, v, lam, xi) if self.exact else out
 
     def constraint(self, u, v, lam, xi, regularise: float = 0.0):
@@ -384,8 +392,9 @@ class RollingForm:
         from ngsolve import dx
 
         vol = norton_hoff_tangent(self.material, self.m_material, w, u, p, v, q,
-                                  K=self.consistency)
-        out = (vol * dx + self.friction_tangent(w, u, v, lam, lam_w) * self.friction_measure()
+                                  K=self.consistency, dual=self._dual_cf)
+        out = (vol * dx(intrules=self.dual.intrules)
+               + self.friction_tangent(w, u, v, lam, lam_w) * self.friction_measure()
                + self.boundary(w, w, v, friction=False).Diff(w, u))
         if self.exact:
             out = out + self.constraint(u, v, lam, xi, regularise=MATRIX_REGULARISATION)

@@ -1,7 +1,10 @@
-"""The re-cut into layers changes no result: bundled Example 2 against the summary the code
-wrote before it (commit 88591b2, ``scripts/summary_diff.py run``; the other before-summaries in
-tests/data/before_recut serve the typed summary's test). [snap] A snapshot: a
-guard against an unintended change, not an independent reference.
+"""No unintended result change: bundled Example 2 against its golden summary
+(tests/data/golden, ``scripts/summary_diff.py run``). [snap] A snapshot: a guard against an
+unintended change, not an independent reference. Re-taken only where a change of the solver's
+path is intended and measured: the recut into layers changed nothing (against the summary of
+88591b2, kept in tests/data/before_recut for the typed summary's test); the primal-dual
+Newton tangent (issue 34, session 5) moved it within the solver's tolerance (force 5e-8,
+torque 3.2e-7, a_f 4.3e-7; docs/validation/speed.md), and the golden summary is its.
 
 The whole set (every bundled example, the schedule and a study) is compared by
 ``python scripts/summary_diff.py run DIR`` on two commits and ``... compare BEFORE AFTER``
@@ -18,6 +21,7 @@ import pytest
 
 HERE = Path(__file__).resolve().parents[1]
 BEFORE = HERE / "data" / "before_recut"
+GOLDEN = HERE / "data" / "golden"
 SCRIPT = HERE.parent / "scripts" / "summary_diff.py"
 
 
@@ -29,7 +33,7 @@ def _script():
 
 
 @pytest.mark.parametrize("name", ["2"])
-def test_bundled_example_summary_is_the_one_before_the_recut(name, tmp_path):
+def test_bundled_example_summary_is_the_golden_one(name, tmp_path):
     """Keys and units identical, every number to 1e-8 (relative, or of its unit's largest
     figure for rounding-level ones such as the horizontal force): NGSolve's threaded assembly
     sums in a different order from run to run, which moved the torque of the same code by
@@ -38,7 +42,7 @@ def test_bundled_example_summary_is_the_one_before_the_recut(name, tmp_path):
     proc = subprocess.run([sys.executable, "-m", "hotroll.cli", "example", name, "--out", str(out)],
                           capture_output=True, text=True)
     assert proc.returncode == 0, proc.stderr[-2000:]
-    problems = _script().compare(BEFORE / "example" / name, out, 1e-8)
+    problems = _script().compare(GOLDEN / "example" / name, out, 1e-8)
     assert not problems, "\n".join(problems)
 
 

@@ -437,7 +437,8 @@ def test_newton_jacobian_is_the_exact_linearisation(hand, law):
     """The assembled Jacobian (Norton-Hoff and friction tangents by hand + the other boundary
     terms by symbolic differentiation, or the whole residual differentiated) equals NGSolve's
     automatic linearisation of the residual, at a state with contact, friction and active
-    penalties, for each friction law."""
+    penalties, for each friction law (the primal-dual tangent with nu = eps/E at the iterate,
+    where it is Newton's: fem/primal_dual.py)."""
     import numpy as np
 
     import hotroll.fem.rolling_form as RF
@@ -464,6 +465,8 @@ def test_newton_jacobian_is_the_exact_linearisation(hand, law):
     vec[:] = form.nonlinear.gf.vec.FV().NumPy()
     vec[:] *= 1.0 + 0.3 * rng.standard_normal(vec.size)   # both signs of slip, inlet/outlet active
     assert np.sum(form.chi.vec.FV().NumPy()) > 5
+    if hasattr(prob, "prepare"):     # the primal-dual tangent's nu = eps/E at the iterate
+        prob.prepare(1)
     prob.a_newton.AssembleLinearization(prob.gf.vec)
     prob.a_jacobian.Assemble()
     x = prob.gf.vec.CreateVector()
