@@ -159,6 +159,7 @@ class FlatteningRoll:
         self.points = points
         self.shape: RollShape = rp.shape
         self.updates = 0
+        self.last_move = 0.0          # the last update's largest move of the surface (m)
 
     @classmethod
     def start(cls, rp, kind: str, elasticity: RollElasticity = RollElasticity(),
@@ -243,4 +244,5 @@ class FlatteningRoll:
         old_hoop = self.shape.strain(grid)
         self.shape.set(grid, new, old_hoop + self.relaxation * (hoop - old_hoop))
         self.updates += 1
-        return float(np.max(np.abs(new - old)))
+        self.last_move = float(np.max(np.abs(new - old)))
+        return self.last_move

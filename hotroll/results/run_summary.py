@@ -154,7 +154,7 @@ def roll_figures(case: Case, run, prof: dict) -> dict:
     return {"roll_model": case.roll.model,
             "roll_flattening": flattening(rp, float(np.min(X)) + rp.centre[0]),
             "roll_equivalent_radius": float(np.sqrt(c[2] + (c[0] / 2) ** 2 + (c[1] / 2) ** 2)),
-            "roll_updates": roll.updates}
+            "roll_updates": roll.updates, "roll_last_move": roll.last_move}
 
 
 def flattening(rp, x_start: float) -> float:

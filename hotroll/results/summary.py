@@ -226,6 +226,9 @@ class Summary(Mapping):
                                        group="Pass", when="roll")
     roll_updates: int = _f("-", "roll updates", "the surface's updates in the fixed point",
                            when="roll")
+    roll_last_move: float = _f("m", "roll's last move", "the surface's largest move in its "
+                               "last update: below roll.tolerance x h1/2 once settled; how far "
+                               "from settled an unsettled run stopped", when="roll")
     estimated_dofs: int = _f(None, "estimated unknowns", "the estimate made before meshing",
                              when="run")
     estimated_memory: float = _f("B", "estimated memory", "the estimate made before meshing",
