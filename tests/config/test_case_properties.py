@@ -691,15 +691,16 @@ def test_forward_slip_does_not_depend_on_the_roll_speed():
     Table 1 did not scale: the slip 13 % low at 0.1 rad/s); exact contact (issue 30): equal to
     1e-9 with the primal Newton tangent; the primal-dual tangent (issue 34) amplifies the
     rounding of the two runs' first step (7e-13) along the globalised path, and the slips end
-    4.8e-7 apart, inside the Newton tolerance (1e-5). eps0 left unscaled (a hidden unit) moves
-    the slip by 1.6e-4 (measured): caught at the 1e-6 asked here."""
+    4.8e-7 apart, inside the Newton tolerance (1e-5), which is asked here (the rounding and
+    its amplification differ between machines). eps0 left unscaled (a hidden unit) moves the
+    slip by 1.6e-4 (measured): caught."""
     runs = []
     for omega in (0.1, 10.0):
         d = pass_case(16.6, 0.33, 0.05, omega, 1e5, {"law": "tresca", "factor": 0.3})
         d["material"]["eps0"] = 1e-4 * omega
         runs.append(solve(d)[1])
     assert runs[0]["exit_code"] == runs[1]["exit_code"]
-    assert runs[0]["forward_slip"] == pytest.approx(runs[1]["forward_slip"], rel=1e-6)
+    assert runs[0]["forward_slip"] == pytest.approx(runs[1]["forward_slip"], rel=1e-5)
 
 
 def test_a_failing_linear_solve_ends_a_steady_run_with_its_reason(monkeypatch):

@@ -81,6 +81,68 @@ def test_with_nu_at_eps_over_e_the_tangent_is_newtons():
     assert not hasattr(primal.nonlinear, "prepare")
 
 
+def test_with_another_nu_the_tangent_is_the_documented_one_and_symmetric():
+    """nu after a step (not eps/E): the primal-dual Jacobian minus the primal one is the
+    documented difference mu (m-1)(2/3) [((eps:d)(nu:v) + (nu:d)(eps:v)) / 2E - (eps:d)(eps:v)
+    / E^2] (written out here on its own), and that change is symmetric (the LDL^T factorisation
+    of the flow's matrix relies on it)."""
+    from ngsolve import BilinearForm, InnerProduct, sqrt
+
+    from hotroll.fem.forms import strain_rate
+    from hotroll.fem.rolling_form import RollingForm
+    from hotroll.model.material import edot_squared
+
+    run = _run()
+    f = run.form
+    rng = _perturbed(run)
+    nl = f.nonlinear
+    nl.prepare(1)
+    nv = nl.n_velocity_dofs()
+    nl.gf.vec.FV().NumPy()[:nv] *= 1.0 + 0.2 * rng.standard_normal(nv)
+    nl.prepare(2)                                   # nu now lags eps/E by a step
+    primal = RollingForm(run.mesh, f.rp, f.material, run.problem.friction, f.penalties,
+                         free_surface=f.free_surface, consistency=f.consistency,
+                         contact=f.contact, contact_regions="arc", primal_dual=False)
+    primal.nonlinear.gf.vec.data = nl.gf.vec
+    primal.chi.vec.data = f.chi.vec
+    primal.a_f.Set(f.a_f.Get())
+    primal.x_split.Set(f.x_split.Get())
+    (u, _, *_), (v, _, *_) = f.fes.TnT()
+    w = nl.velocity
+    ew, eu, ev, nu = strain_rate(w), strain_rate(u), strain_rate(v), f.dual.cf
+    E2 = f.material.eps0**2 + edot_squared(ew)
+    mu = f.material.viscosity(edot_squared(ew), m=f.m_material, K=f.consistency)
+    diff = BilinearForm(f.fes)
+    diff += (mu * (f.m_material - 1.0) * (2.0 / 3.0)
+             * (0.5 * (InnerProduct(ew, eu) * InnerProduct(nu, ev)
+                       + InnerProduct(nu, eu) * InnerProduct(ew, ev)) / sqrt(E2)
+                - InnerProduct(ew, eu) * InnerProduct(ew, ev) / E2)) * dx_on(f)
+    out = []
+    for a in (nl.a_jacobian, primal.nonlinear.a_jacobian, diff):
+        a.Assemble()
+    x, y = nl.gf.vec.CreateVector(), nl.gf.vec.CreateVector()
+    x.FV().NumPy()[:] = rng.standard_normal(x.size)
+    y.FV().NumPy()[:] = rng.standard_normal(y.size)
+    for a in (nl.a_jacobian, primal.nonlinear.a_jacobian, diff):
+        out.append((a.mat * x).Evaluate().FV().NumPy().copy())
+    assert np.linalg.norm(out[2]) > 1e-3 * np.linalg.norm(out[0])   # nu is not eps/E
+    assert np.linalg.norm(out[0] - out[1] - out[2]) <= 1e-10 * np.linalg.norm(out[0])
+    # the code's change of the tangent, J_pd - J_primal, is symmetric (the Coulomb and
+    # boundary terms the two share are not, and cancel)
+    xd = out[0] - out[1]
+    yd = ((nl.a_jacobian.mat * y).Evaluate().FV().NumPy()
+          - (primal.nonlinear.a_jacobian.mat * y).Evaluate().FV().NumPy())
+    xv, yv = x.FV().NumPy(), y.FV().NumPy()
+    assert np.dot(yv, xd) == pytest.approx(np.dot(xv, yd), rel=1e-9)
+
+
+def dx_on(form):
+    """The volume measure on the dual's quadrature points."""
+    from ngsolve import dx
+
+    return dx(intrules=form.dual.intrules)
+
+
 def test_the_duals_update_is_second_order_accurate():
     """After a step t du from u0 with nu = eps0/E0, nu+ is the linearisation of eps/E about
     eps0: its distance from eps(u0 + t du)/E falls as t^2 (ratio 4 per halving), where a wrong

@@ -192,6 +192,9 @@ def test_a_form_moved_to_another_roll_speed_is_the_form_built_for_it(friction):
     nl_m.a_newton.Apply(nl_m.gf.vec, r_m)
     a, b = r_b.FV().NumPy(), r_m.FV().NumPy()
     assert np.linalg.norm(a - b) <= 1e-12 * np.linalg.norm(a)
+    nl_b.prepare(1)      # the primal-dual tangent's nu = eps/E at the state (its rank-one
+    nl_m.prepare(1)      # term is then in both matrices, not zero)
+    assert np.abs(built.form.dual.gf.vec.FV().NumPy()).max() > 0.1
     nl_b.a_jacobian.Assemble()
     nl_m.a_jacobian.Assemble()
     x = rng.uniform(-1.0, 1.0, len(state))
