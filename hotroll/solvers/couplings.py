@@ -119,8 +119,11 @@ class TandemSpeed(Coupling):
     depends on the speed, so this settles in 1-3 updates."""
 
     name = "speed"
-    #: moved once the others are within 10 tolerances, as the roll (a far-off flow's flux)
-    after_others = 10.0
+    #: moved with the others from the first update (the flux of a flow converged to
+    #: ``couple_below`` is already that close): waiting for the others to come within 10
+    #: tolerances cost a round whose temperature change the speed then undid (finishing_mill
+    #: 57 -> 53 Newton iterations, F5 and F6 from 6 to 5; figures 5e-6 apart; session 5)
+    after_others = None
 
     def __init__(self, flux: Callable[[], float], target: float, omega: Callable[[], float],
                  set_speed: Callable[[float], None], tol: float):
