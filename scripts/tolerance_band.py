@@ -20,7 +20,7 @@ FIGURES = ("roll_force", "roll_torque", "forward_slip", "neutral_angle", "exit_t
            "exit_temperature_surface")
 
 
-def solve(name: str, tighter: float) -> tuple[dict, int]:
+def solve(name: str, tighter: float) -> tuple[dict, int, bool]:
     from hotroll.config.case import load_case
     from hotroll.examples import HERE
     from hotroll.solvers.steady import SteadyRun
