@@ -197,6 +197,36 @@ def test_the_thin_strips_elastic_roll_dominates_and_an_unsettled_end_is_reported
     assert elastic["roll_force"] > 1.15 * rigid["roll_force"]
 
 
+def test_the_roll_last_move_is_the_surfaces_last_change(tmp_path, monkeypatch):
+    """summary.json's roll_last_move (m) is the largest change of the roll's surface in its
+    last update, measured here on its own: the surface before and after each update compared
+    on the new surface's angles (a slow lab pass with an elastic roll; an identity, not an
+    independent reference). Settled, the move is below the roll's tolerance x h1/2."""
+    import hotroll.model.roll_elastic as RE
+
+    moves, real = [], RE.FlatteningRoll.update
+
+    def spied(self, *args, **kw):
+        before = self.shape.copy()
+        out = real(self, *args, **kw)
+        t = self.shape.theta
+        moves.append(float(np.max(np.abs(self.shape.offset(t) - before.offset(t)))))
+        return out
+
+    monkeypatch.setattr(RE.FlatteningRoll, "update", spied)
+    case = case_from_dict({
+        "name": "lab", "pass": {"roll_radius": 0.1, "entry_thickness": 0.01,
+                                "exit_thickness": 0.008, "roll_angular_velocity": 0.5},
+        "plate": {"length": 0.1}, "material": {"K": 50e6, "m": 0.15},
+        "friction": {"law": "coulomb", "mu": 0.3}, "mesh": {"h_contact": 5e-4},
+        "roll": {"model": "elastic"}, "solver": {"method": "steady", "threads": 1},
+        "output": {"figures": False, "vtk": False}})
+    s = run_case(case, tmp_path / "lab", resume=False)
+    assert s["exit_code"] == 0 and s["roll_updates"] == len(moves) >= 2
+    assert s["roll_last_move"] == pytest.approx(moves[-1], rel=1e-9)
+    assert 0.0 < s["roll_last_move"] <= case.roll.tolerance * 0.008 / 2
+
+
 def test_the_flattening_roll_keeps_the_exact_scalings(tmp_path):
     """A slow lab pass (R 0.1 m, 10 -> 8 mm, 0.05 m/s, Norton-Hoff, Coulomb, elastic roll):
     K x 1000 with the roll's E x 1000 scales force and torque by 1000 and leaves slip, the
