@@ -67,11 +67,16 @@ def test_a_kept_run_is_reused_without_meshing():
 
 def test_a_sweep_with_a_flattening_roll_solves_each_case_on_its_own_roll(tmp_path):
     """The bundled hot strip finishing pass with an elastic roll and a Norton-Hoff strip,
-    K = 120 then 150 MPa (a key a kept run may differ in), through one sweep: the second case
+    K = 120 then 130 MPa (a key a kept run may differ in), through one sweep: the second case
     is not solved on the first case's kept run, whose strip map held the first roll's surface
     while the form took the new case's (found in the review of issue 34: 15.5 against 14.3
     MN/m on a variant of Example 1). [self] Its figures are a cold run's, to the couplings'
-    tolerances."""
+    tolerances (measured 1e-6 apart). K = 150 MPa was this test's second case until session 6:
+    both runs "settled" at 28.87 MN/m, a false stop 4 % below the pass's 30.09 that the roll's
+    change measure hid (it did not see the arc move with the roll's axis); measured where the
+    strip sees it, that pass ends unsettled after its 30 updates at 30.05-30.14 MN/m, the last
+    roll move 1-1.6 tolerances (an open problem of the heavily flattened pass,
+    docs/validation/speed.md)."""
     from hotroll.config.case import load_case
     from hotroll.examples import example_path
 
@@ -79,7 +84,7 @@ def test_a_sweep_with_a_flattening_roll_solves_each_case_on_its_own_roll(tmp_pat
         **{"roll.model": "elastic", "output.figures": False, "output.vtk": False,
            "material.law": "norton-hoff", "material.grade": None, "material.K": 1.2e8,
            "material.m": 0.15})
-    harder = base.with_overrides(name="harder", **{"material.K": 1.5e8})
+    harder = base.with_overrides(name="harder", **{"material.K": 1.3e8})
     sweep = Sweep()
     run_case(base, tmp_path / "base", sweep=sweep)
     warm = run_case(harder, tmp_path / "warm", sweep=sweep)
