@@ -1,5 +1,6 @@
-"""The primal-dual Newton tangent of the Norton-Hoff law (Chan, Golub & Mulet 1999, their
-method for total variation, the m -> 0 limit of this law; docs/theory.md 3.2b).
+"""The primal-dual Newton tangents of the Norton-Hoff law and of the friction laws (Chan, Golub
+& Mulet 1999, their method for total variation, the m -> 0 limit of these laws; docs/theory.md
+3.2b).
 
 The law s = mu(E) eps, E^2 = eps0^2 + 2/3 eps:eps, mu ~ E^(m-1) (2.21), is written with its
 dual nu = eps / E ((2/3) nu:nu < 1) as s = mu E nu and nu E - eps = 0. Newton on the pair,
@@ -22,6 +23,21 @@ factor 1/m within a step and its full steps overshoot; nu keeps the last step's 
 
 nu lives at the quadrature points of the volume integrals (an ``IntegrationRuleSpace``): the
 residual's and the Jacobian's volume terms are integrated on the same points (``intrules``).
+
+The friction laws are the same power law in the slip s (a scalar along the roll's tangent),
+T = -k_f(s^2) s with k_f ~ S^(q-1), S^2 = s^2 + v_reg^2 (q = m viscoplastic, q = 0 Coulomb and
+Tresca: ``model/friction/base.py``). Where the slip passes through v_reg (the neutral point,
+which moves from one iterate to the next) Newton's tangent k_f (1 + (q-1) s^2/S^2) changes by
+1/q within a step. ``FrictionDual`` keeps z ~ s/S (|z| <= 1) with the same update,
+
+    z+ = (s + ds) / S - z s ds / S^2,
+
+and the tangent k_f (1 + (q-1) z s / S) (its other terms, the pressure's and k's, as
+Newton's). z is stored as its departure d = z - s/S from the primal value, a P2 field on the
+top (a projection; z itself has a kink at the neutral point that a P2 field would round): at a
+converged iterate d = 0 exactly and the tangent is Newton's, so the last steps converge
+quadratically (a stored z projected onto P2 converged linearly: 24 against 10 iterations,
+docs/validation/speed.md, issue 34 session 6).
 """
 from __future__ import annotations
 
@@ -73,5 +89,67 @@ class NortonHoffDual:
         """nu for the Jacobian at the current iterate; False: the residual is unchanged."""
         self._next.Interpolate(self._primal if iteration == 1 else self._step)
         self.gf.vec.data = self._next.vec
+        self._previous.vec.data = self.velocity.vec
+        return False
+
+
+class FrictionDual:
+    """z = s/S + d of the friction's slip on the top boundaries ``region`` of ``mesh`` (module
+    docstring); ``prepare(iteration)`` is the flow's Newton hook: d = 0 at the first iterate
+    (z the primal value) and after a ``restart``, then the update above."""
+
+    def __init__(self, mesh, region: str):
+        from ngsolve import H1, GridFunction
+
+        self.region = mesh.Boundaries(region)
+        space = H1(mesh, order=2)
+        self.d, self._next = GridFunction(space), GridFunction(space)
+        self.velocity = self._previous = self._step = None
+        self._restart = False
+
+    def restart(self) -> None:
+        """The form's data changed (a coupling update: the mesh, the roll, the speed): the
+        slip's change to the next iterate is not a Newton step to follow, and d starts again
+        at 0 there (on finishing_mill's warm passes 51 Newton iterations against 55 without
+        the restart and 53 with Newton's friction tangent; speed.md, session 6)."""
+        self._restart = True
+
+    def z(self, slip, v_reg):
+        """z at the iterate whose slip is the CF ``slip``, held inside |z| <= 1."""
+        from ngsolve import IfPos, sqrt
+
+        z = slip / sqrt(slip * slip + v_reg * v_reg) + self.d
+        size = IfPos(z, z, -z)
+        return z / IfPos(size - 1.0, size, 1.0)
+
+    def attach(self, velocity, slip, v_reg) -> None:
+        """The iterate's velocity (a GridFunction component), the slip of a velocity
+        (``slip(u)``, a CF) and v_reg (m/s, a Parameter or a number)."""
+        from ngsolve import GridFunction, sqrt
+
+        self.velocity = velocity
+        self._previous = GridFunction(velocity.space)
+        s, sp = slip(velocity), slip(self._previous)
+        Sp2 = sp * sp + v_reg * v_reg
+        z_next = (s / sqrt(Sp2) - self.z(sp, v_reg) * sp * (s - sp) / Sp2)
+        self._step = (self._capped(z_next) - s / sqrt(s * s + v_reg * v_reg)).Compile()
+
+    @staticmethod
+    def _capped(z):
+        from ngsolve import IfPos
+
+        size = IfPos(z, z, -z)
+        return z / IfPos(size - 1.0, size, 1.0)
+
+    def prepare(self, iteration: int) -> bool:
+        """d for the Jacobian at the current iterate; False: the residual is unchanged."""
+        from ngsolve import BND
+
+        if iteration == 1 or self._restart:
+            self._restart = False
+            self._next.vec[:] = 0.0
+        else:
+            self._next.Set(self._step, BND, definedon=self.region)
+        self.d.vec.data = self._next.vec
         self._previous.vec.data = self.velocity.vec
         return False

@@ -36,7 +36,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from hotroll.fem.forms import NonlinearProblem, norton_hoff_tangent, norton_hoff_volume, one_sided, strain_rate
-from hotroll.fem.primal_dual import NortonHoffDual
+from hotroll.fem.primal_dual import FrictionDual, NortonHoffDual
 from hotroll.fem.spaces import taylor_hood
 from hotroll.model.friction import FrictionLaw
 from hotroll.model.geometry import RollPass
@@ -188,12 +188,21 @@ class RollingForm:
         # terms of both forms are integrated on the dual's quadrature points either way
         self.dual = NortonHoffDual(mesh, material.eps0)
         self._dual_cf = self.dual.cf if primal_dual else None
+        # ... and the friction's slip (FrictionDual) where the law has a tangent in the slip
+        self.friction_dual = FrictionDual(mesh, contact_regions) if primal_dual else None
         self.nonlinear = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll,
                                           jacobian=self.jacobian,
                                           pressure_row_scale=self.mu_ref)
         if primal_dual:
             self.dual.attach(self.nonlinear.velocity)
-            self.nonlinear.prepare = self.dual.prepare
+            self.friction_dual.attach(self.nonlinear.velocity, self.slip, self.v_reg)
+            self.nonlinear.prepare = self._prepare_duals
+
+    def _prepare_duals(self, iteration: int) -> bool:
+        """Newton's hook (``nonlinear.newton``): the two duals at the current iterate."""
+        self.dual.prepare(iteration)
+        self.friction_dual.prepare(iteration)
+        return False
 
     @property
     def mu_ref(self) -> float:
@@ -412,7 +421,15 @@ class RollingForm:
         kf = law.coefficient(s * s, **kw)
         d_s2, d_p, d_k = law.coefficient_partials(s * s, **kw)
         k = kw["k"]
-        d_kf = d_s2 * 2.0 * s * s_u
+        # Newton: d k_f = 2 k_f' s ds; primal-dual: one factor s/S replaced by the dual z
+        # (fem/primal_dual.py: FrictionDual)
+        if self.friction_dual is None:
+            d_kf = d_s2 * 2.0 * s * s_u
+        else:
+            from ngsolve import sqrt
+
+            S = sqrt(s * s + self.v_reg * self.v_reg)
+            d_kf = d_s2 * 2.0 * S * self.friction_dual.z(s, self.v_reg) * s_u
         if law.uses_pressure:      # p = gamma (w.n) or s lambda~
             d_kf = d_kf + d_p * self.pressure(u, lam)
         if law.uses_k:             # k ~ (eps0^2 + e2)^(m/2), e2 = 2/3 eps(w):eps(w)

@@ -283,6 +283,8 @@ class SteadyRun:
                 return False
             state["updates"] += 1
             state["settled"] = self._update_coupled(res) <= 1.0
+            if f.friction_dual is not None:      # the form's data moved (fem/primal_dual.py)
+                f.friction_dual.restart()
             record(SolveStats(iterations=0, converged=False))
             return True
 

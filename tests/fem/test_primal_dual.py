@@ -1,10 +1,12 @@
-"""The primal-dual Newton tangent of the Norton-Hoff law (fem/primal_dual.py, docs/theory.md 3.2b).
+"""The primal-dual Newton tangents of the Norton-Hoff law and of the friction laws
+(fem/primal_dual.py, docs/theory.md 3.2b).
 
 Independent checks: the residual on the dual's quadrature points is NGSolve's default one; with
-nu = eps/E the tangent is Newton's (the assembled matrices agree); nu's update is the first-order
-Taylor expansion of eps/E, so its error falls as the step squared (a convergence rate); the
-coupled solve with it reaches the primal Newton's solution (tightened tolerances: the same
-fixed point to 1e-6 asked, 3e-9 measured) in fewer iterations.
+nu = eps/E (and the friction's z = s/S) the tangent is Newton's (the assembled matrices agree,
+here and in test_rolling's exact-Jacobian test for every friction law); each dual's update is
+the first-order Taylor expansion of its primal value, so its error falls as the step squared
+(a convergence rate); the coupled solve with them reaches the primal Newton's solution
+(tightened tolerances: the same fixed point to 1e-6 asked, 3e-9 measured) in fewer iterations.
 """
 from __future__ import annotations
 
@@ -98,10 +100,11 @@ def test_with_nu_at_eps_over_e_the_tangent_is_newtons():
 
 
 def test_with_another_nu_the_tangent_is_the_documented_one_and_symmetric():
-    """nu after a step (not eps/E): the primal-dual Jacobian minus the primal one is the
-    documented difference mu (m-1)(2/3) [((eps:d)(nu:v) + (nu:d)(eps:v)) / 2E - (eps:d)(eps:v)
-    / E^2] (written out here on its own), and that change is symmetric (the LDL^T factorisation
-    of the flow's matrix relies on it)."""
+    """nu and the friction's z after a step (not eps/E, s/S): the primal-dual Jacobian minus
+    the primal one is the documented difference mu (m-1)(2/3) [((eps:d)(nu:v) + (nu:d)(eps:v))
+    / 2E - (eps:d)(eps:v) / E^2] plus the friction's chi s 2 k_f' (S z - s) (d.t)(v.t) (written
+    out here on their own, k_f' = dk_f/d(s^2) the law's), and that change is symmetric (the
+    LDL^T factorisation of the flow's matrix relies on it)."""
     from ngsolve import BilinearForm, InnerProduct, sqrt
 
     from hotroll.fem.forms import strain_rate
@@ -126,6 +129,17 @@ def test_with_another_nu_the_tangent_is_the_documented_one_and_symmetric():
              * (0.5 * (InnerProduct(ew, eu) * InnerProduct(nu, ev)
                        + InnerProduct(nu, eu) * InnerProduct(ew, ev)) / sqrt(E2)
                 - InnerProduct(ew, eu) * InnerProduct(ew, ev) / E2)) * _dual_dx(f)
+    _, t = f.roll_frame()
+    slip = f.slip(w)
+    kw = f.friction_arguments(w, lam=nl.gf.components[2] if f.exact else None)
+    d_s2 = f.friction.coefficient_partials(slip * slip, **kw)[0]
+    S = sqrt(slip * slip + f.v_reg * f.v_reg)
+    friction = BilinearForm(f.fes)
+    friction += (f.chi * slip * 2.0 * d_s2 * (S * f.friction_dual.z(slip, f.v_reg) - slip)
+                 * (u * t) * (v * t)) * f.friction_measure()
+    diff += (f.chi * slip * 2.0 * d_s2 * (S * f.friction_dual.z(slip, f.v_reg) - slip)
+             * (u * t) * (v * t)) * f.friction_measure()
+    friction.Assemble()
     out = []
     for a in (nl.a_jacobian, primal.nonlinear.a_jacobian, diff):
         a.Assemble()
@@ -135,6 +149,9 @@ def test_with_another_nu_the_tangent_is_the_documented_one_and_symmetric():
     for a in (nl.a_jacobian, primal.nonlinear.a_jacobian, diff):
         out.append((a.mat * x).Evaluate().FV().NumPy().copy())
     assert np.linalg.norm(out[2]) > 1e-3 * np.linalg.norm(out[0])   # nu is not eps/E
+    # ... nor z s/S: the friction's part of the difference is there too
+    assert np.linalg.norm((friction.mat * x).Evaluate().FV().NumPy()) > 1e-6 * np.linalg.norm(
+        out[0])
     assert np.linalg.norm(out[0] - out[1] - out[2]) <= 1e-10 * np.linalg.norm(out[0])
     # the code's change of the tangent, J_pd - J_primal, is symmetric (the Coulomb and
     # boundary terms the two share are not, and cancel)
@@ -201,3 +218,59 @@ def test_the_primal_dual_solve_reaches_the_primal_solution_in_fewer_iterations(m
     for key in ("roll_force", "roll_torque", "forward_slip"):
         assert a[key] == pytest.approx(b[key], rel=1e-6), key
     assert ia < ib
+
+
+def test_the_friction_duals_update_is_second_order_accurate():
+    """After a step t du from u0 with z = s0/S0 (d = 0), the stored departure d = z+ - s/S of
+    the friction's dual from the primal value is the linearisation's error: it falls as t^2
+    (ratio 4 per halving), where a wrong update (its second term x 1.1) leaves it first order.
+    Coulomb friction: q = 0, the steepest of the laws at the neutral point."""
+    run = _run()
+    f = run.form
+    rng = _perturbed(run, size=0.05)
+    gf = f.nonlinear.gf
+    u0 = gf.vec.FV().NumPy().copy()
+    du = np.zeros_like(u0)
+    nv = f.nonlinear.n_velocity_dofs()
+    du[:nv] = rng.standard_normal(nv) * np.abs(u0[:nv]).max()
+    errors = []
+    for t in (4e-6, 2e-6, 1e-6):
+        gf.vec.FV().NumPy()[:] = u0
+        f.nonlinear.prepare(1)
+        assert not np.any(f.friction_dual.d.vec.FV().NumPy())       # d = 0: z = s/S
+        gf.vec.FV().NumPy()[:] = u0 + t * du
+        f.nonlinear.prepare(2)
+        errors.append(np.abs(f.friction_dual.d.vec.FV().NumPy()).max())
+    rates = [errors[i] / errors[i + 1] for i in range(2)]
+    assert errors[0] > 0.0
+    assert rates == pytest.approx([4.0, 4.0], rel=0.1)
+
+
+def test_the_friction_dual_reaches_the_same_solution_in_fewer_iterations(monkeypatch):
+    """Viscoplastic friction (q = m = 0.2, a_f fixed) on the flat-topped strip from the slab
+    guess: with the friction's dual and with it held at the primal value (d = 0 at every
+    iterate: Newton's friction tangent), Newton's tolerance 1000 times tighter: the same force,
+    torque and forward slip (asked 1e-6) and fewer iterations with the dual (a guard: measured
+    8 against 18 on Example 1 with a_f = 14.5; here see the assertion's message)."""
+    from hotroll.fem.primal_dual import FrictionDual
+
+    out = {}
+    keep = FrictionDual.prepare
+    for dual in (True, False):
+        if not dual:
+            def primal(self, iteration):
+                keep(self, 1)
+                return False
+            monkeypatch.setattr(FrictionDual, "prepare", primal)
+        run = _run(**{"friction.law": "viscoplastic", "friction.mu": None, "friction.a_f": 3.0,
+                      "plate.free_surface": "constrained"})
+        run.s.tol /= 1000.0
+        run.record = False
+        res = run.solve()
+        row = run.measure(res.stats[-1], 0)
+        out[dual] = (row, res.iterations, res.converged)
+    (a, ia, ca), (b, ib, cb) = out[True], out[False]
+    assert ca and cb
+    for key in ("roll_force", "roll_torque", "forward_slip"):
+        assert a[key] == pytest.approx(b[key], rel=1e-6), key
+    assert ia < ib, (ia, ib)

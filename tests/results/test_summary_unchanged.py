@@ -4,7 +4,10 @@ unintended change, not an independent reference. Re-taken only where a change of
 path is intended and measured: the recut into layers changed nothing (against the summary of
 88591b2, kept in tests/data/before_recut for the typed summary's test); the primal-dual
 Newton tangent (issue 34, session 5) moved it within the solver's tolerance (force 5e-8,
-torque 3.2e-7, a_f 4.3e-7; docs/validation/speed.md), and the golden summary is its.
+torque 3.2e-7, a_f 4.3e-7; docs/validation/speed.md); the friction's primal-dual tangent
+(session 6: 24 -> 17 Newton iterations) moved it within Example 2's tolerance band (force
+3.2e-6, torque 8.1e-6, slip 3.3e-6 against 9e-6, 2.1e-5, 4.9e-6; a_f 4.6e-5 of its 1e-2
+tolerance), and the golden summary is that run's.
 
 The whole set (every bundled example, the schedule and a study) is compared by
 ``python scripts/summary_diff.py run DIR`` on two commits and ``... compare BEFORE AFTER``
