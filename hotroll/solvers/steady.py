@@ -170,7 +170,7 @@ class SteadyRun:
         s, res = self.s, SteadyResult(mesh_time=self.mesh_time)
         # built for this solve: a run kept by a sweep gets each case's settings (a_f given or
         # estimated, the free-surface model) before it solves
-        self.couplings = self._couplings()
+        self.couplings = self._couplings(warm=warm is not None)
 
         def record(st):
             if self.record:
@@ -240,6 +240,9 @@ class SteadyRun:
         roll = self.problem.roll
         if roll is not None and self._roll_start is not None:   # a warm start's roll undone
             roll.shape.set(*self._roll_start)
+        for c in getattr(self, "couplings", ()):      # ... and its roll waits again (cold)
+            if isinstance(c, C.RollFlattening):
+                c.after_others = C.RollFlattening.after_others
         self.shape = StripShape.flat(self.problem.rp)
         if self.active is not None:
             self.active.reset()
@@ -296,9 +299,10 @@ class SteadyRun:
         res.settled = state["settled"] or not coupled
         record(st)
 
-    def _couplings(self) -> list[C.Coupling]:
+    def _couplings(self, warm: bool = False) -> list[C.Coupling]:
         """The run's couplings in their update order (``solvers/couplings.py``): the active set
-        (unilateral contact), the strain, the temperature, a_f (3.15), the traced free tops."""
+        (unilateral contact), the strain, the temperature, a_f (3.15), the traced free tops,
+        the flattening roll (from the first round after a warm start), the tandem speed."""
         s, out = self.s, []
         if self.active is not None:
             out.append(C.ActiveSet(self.active, self._set_contact))
@@ -312,7 +316,9 @@ class SteadyRun:
             out.append(C.FreeSurface(self.update_surface, s.surface_tol * self.problem.h))
         if self.problem.roll is not None:
             out.append(C.RollFlattening(self.problem.roll, self._roll_loads, self._set_shape,
-                                        s.roll_tol * self.problem.rp.half_exit))
+                                        s.roll_tol * self.problem.rp.half_exit,
+                                        after_others=None if warm
+                                        else C.RollFlattening.after_others))
         if self.mass_flux is not None:
             out.append(C.TandemSpeed(lambda: Q.face_flow(self.form, "in")["flux"],
                                      self.mass_flux[0], lambda: self.problem.rp.omega,

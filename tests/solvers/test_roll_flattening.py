@@ -284,3 +284,35 @@ def test_the_roll_couplings_change_is_the_arcs_move_where_the_strip_sees_it():
         assert change == pytest.approx(arc, rel=1e-3)
         assert arc > 1.05 * roll.last_move / tol          # the axis's shift counts
         p = 1.02 * p
+
+
+def test_the_roll_moves_from_the_first_round_only_after_a_warm_start():
+    """``SteadyRun._couplings``: a solve started from a solved pass moves its roll from the
+    first coupling round (the roll is that pass's, the flow close); a cold solve's roll waits
+    until the others are within 10 tolerances (the thin strip from the slab guess did not
+    settle without the wait), and so does a warm start that failed and is solved again from
+    cold (session 6)."""
+    import hotroll.solvers.couplings as C
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.runner import build_model, steady_settings
+
+    case = case_from_dict({
+        "name": "lab", "pass": {"roll_radius": 0.1, "entry_thickness": 0.01,
+                                "exit_thickness": 0.008, "roll_angular_velocity": 0.5},
+        "plate": {"length": 0.1}, "material": {"K": 50e6, "m": 0.15},
+        "friction": {"law": "coulomb", "mu": 0.3}, "mesh": {"h_contact": 1e-3},
+        "roll": {"model": "elastic"}, "solver": {"method": "steady"},
+        "output": {"figures": False, "vtk": False}})
+    model, _ = build_model(case)
+    run = SteadyRun(model, steady_settings(case), case.plate.length)
+
+    def roll_wait():
+        (roll,) = [c for c in run.couplings if isinstance(c, C.RollFlattening)]
+        return roll.after_others
+
+    run.couplings = run._couplings(warm=False)
+    assert roll_wait() == C.RollFlattening.after_others == 10.0
+    run.couplings = run._couplings(warm=True)
+    assert roll_wait() is None
+    run._cold_start()                     # the warm start failed: solved again from cold
+    assert roll_wait() == 10.0
