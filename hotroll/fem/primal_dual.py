@@ -34,10 +34,11 @@ which moves from one iterate to the next) Newton's tangent k_f (1 + (q-1) s^2/S^
 
 and the tangent k_f (1 + (q-1) z s / S) (its other terms, the pressure's and k's, as
 Newton's). z is stored as its departure d = z - s/S from the primal value, a P2 field on the
-top (a projection; z itself has a kink at the neutral point that a P2 field would round): at a
-converged iterate d = 0 exactly and the tangent is Newton's, so the last steps converge
-quadratically (a stored z projected onto P2 converged linearly: 24 against 10 iterations,
-docs/validation/speed.md, issue 34 session 6).
+top (a projection; z itself has a kink at the neutral point that a P2 field would round): d
+is the linearisation's error, of the order of the step squared, so it vanishes as Newton
+converges and the tangent becomes Newton's: the last steps converge quadratically (a stored z
+projected onto P2 converged linearly: 24 against 10 iterations, docs/validation/speed.md,
+issue 34 session 6).
 """
 from __future__ import annotations
 
@@ -116,11 +117,9 @@ class FrictionDual:
 
     def z(self, slip, v_reg):
         """z at the iterate whose slip is the CF ``slip``, held inside |z| <= 1."""
-        from ngsolve import IfPos, sqrt
+        from ngsolve import sqrt
 
-        z = slip / sqrt(slip * slip + v_reg * v_reg) + self.d
-        size = IfPos(z, z, -z)
-        return z / IfPos(size - 1.0, size, 1.0)
+        return self._capped(slip / sqrt(slip * slip + v_reg * v_reg) + self.d)
 
     def attach(self, velocity, slip, v_reg) -> None:
         """The iterate's velocity (a GridFunction component), the slip of a velocity

@@ -226,9 +226,11 @@ class Summary(Mapping):
                                        group="Pass", when="roll")
     roll_updates: int = _f("-", "roll updates", "the surface's updates in the fixed point",
                            when="roll")
-    roll_last_move: float = _f("m", "roll's last move", "the surface's largest move in its "
-                               "last update: below roll.tolerance x h1/2 once settled; how far "
-                               "from settled an unsettled run stopped", when="roll")
+    roll_last_move: float = _f("m", "roll's last move", "the largest move of the arc the strip "
+                               "lies on (its height at fixed x, the roll's axis shift included) "
+                               "in the roll's last update: below roll.tolerance x h1/2 once "
+                               "settled; how far from settled an unsettled run stopped",
+                               when="roll")
     estimated_dofs: int = _f(None, "estimated unknowns", "the estimate made before meshing",
                              when="run")
     estimated_memory: float = _f("B", "estimated memory", "the estimate made before meshing",

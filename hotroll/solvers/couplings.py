@@ -13,6 +13,7 @@ solver builds its list (``SteadyRun.couplings``, ``TransientRun.couplings``).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Callable
 
 import numpy as np
@@ -149,31 +150,34 @@ class RollFlattening(Coupling):
     #: point: the tractions of an unsettled flow (a_f far off) would throw the roll far off
     #: (the thin strip from the slab guess: unsettled after 30 roll updates when the roll
     #: moved from the first round, settled after 13 with the wait). A solve started from a
-    #: solved pass moves it from the first round (``SteadyRun``: ``after_others=None``): its
-    #: roll is that pass's, its flow close (ten stands 131 -> 108 Newton iterations, the
-    #: figures as close to a solve with every tolerance / 10 as before; session 6)
+    #: solved similar pass, whose roll it carries (``SteadyRun``: ``wait=False``), moves it
+    #: from the first round (ten stands 131 -> 110-111 Newton iterations, the figures as close
+    #: to a solve with every tolerance / 10 as before; session 6)
     after_others = 10.0
     #: points along the arc where the surface's move is measured
     PROBES = 200
 
     def __init__(self, roll, loads: Callable[[], tuple], apply: Callable[[], None], tol: float,
-                 after_others: float | None = 10.0):
+                 wait: bool = True):
         self.roll, self.loads, self.apply, self.tol = roll, loads, apply, tol
-        self.after_others = after_others
+        self.after_others = type(self).after_others if wait else None
         self.moves: list[float] = []
 
     def update(self, result) -> float:
-        # the change where the strip sees it: the surface's height over the arc at fixed x. The
-        # roll's axis follows the surface's lowest point (the gap), which on a thin strip's
-        # flat-bottomed roll wanders with the contact pressure near the exit: on the ten stands'
-        # F10 a surface move of 0.3-1 tolerance in w(theta) shifted the axis by 0.01-0.03 mm and
-        # the arc at the bite by 2-8 tolerances, round after round in the same direction, while
-        # w's own change called the roll settled (issue 34 session 6)
-        rp = self.roll.rp
-        x = np.linspace(rp.x_touch, rp.axis_x, self.PROBES)
-        before = rp.height(x)
+        # the change where the strip sees it: the surface's height over the arc at fixed x
+        # (from the earlier of the old and the new touching point to the gap). The roll's axis
+        # follows the surface's lowest point (the gap), which on a thin strip's flat-bottomed
+        # roll wanders with the contact pressure near the exit: on the ten stands' F10 a
+        # surface move of 0.3-1 tolerance in w(theta) shifted the axis by 0.01-0.03 mm and the
+        # arc at the bite by 2-8 tolerances, round after round in the same direction, while
+        # w's own change called the roll settled (issue 34 session 6). The roll's last_move
+        # (the summary's roll_last_move) is this change.
+        before = replace(self.roll.rp, shape=self.roll.rp.shape.copy())
         moved = self.roll.update(*self.loads())
         self.moves.append(moved)
         self.apply()
-        shifted = float(np.max(np.abs(self.roll.rp.height(x) - before)))
-        return max(moved, shifted) / self.tol
+        rp = self.roll.rp
+        x = np.linspace(min(before.x_touch, rp.x_touch), rp.axis_x, self.PROBES)
+        change = max(moved, float(np.max(np.abs(rp.height(x) - before.height(x)))))
+        self.roll.last_move = change
+        return change / self.tol

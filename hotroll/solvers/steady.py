@@ -170,7 +170,9 @@ class SteadyRun:
         s, res = self.s, SteadyResult(mesh_time=self.mesh_time)
         # built for this solve: a run kept by a sweep gets each case's settings (a_f given or
         # estimated, the free-surface model) before it solves
-        self.couplings = self._couplings(warm=warm is not None)
+        # a similar pass's start carries its roll (``transfer.SimilarPass``); a neighbour's on
+        # the same mesh (a sweep's ``WarmStart``) starts from a fresh roll
+        self.couplings = self._couplings(warm=hasattr(warm, "apply"))
 
         def record(st):
             if self.record:
@@ -302,7 +304,8 @@ class SteadyRun:
     def _couplings(self, warm: bool = False) -> list[C.Coupling]:
         """The run's couplings in their update order (``solvers/couplings.py``): the active set
         (unilateral contact), the strain, the temperature, a_f (3.15), the traced free tops,
-        the flattening roll (from the first round after a warm start), the tandem speed."""
+        the flattening roll (from the first round when ``warm``: started from a solved similar
+        pass and its roll), the tandem speed."""
         s, out = self.s, []
         if self.active is not None:
             out.append(C.ActiveSet(self.active, self._set_contact))
@@ -317,8 +320,7 @@ class SteadyRun:
         if self.problem.roll is not None:
             out.append(C.RollFlattening(self.problem.roll, self._roll_loads, self._set_shape,
                                         s.roll_tol * self.problem.rp.half_exit,
-                                        after_others=None if warm
-                                        else C.RollFlattening.after_others))
+                                        wait=not warm))
         if self.mass_flux is not None:
             out.append(C.TandemSpeed(lambda: Q.face_flow(self.form, "in")["flux"],
                                      self.mass_flux[0], lambda: self.problem.rp.omega,

@@ -198,19 +198,26 @@ def test_the_thin_strips_elastic_roll_dominates_and_an_unsettled_end_is_reported
 
 
 def test_the_roll_last_move_is_the_surfaces_last_change(tmp_path, monkeypatch):
-    """summary.json's roll_last_move (m) is the largest change of the roll's surface in its
-    last update, measured here on its own: the surface before and after each update compared
-    on the new surface's angles (a slow lab pass with an elastic roll; an identity, not an
-    independent reference). Settled, the move is below the roll's tolerance x h1/2."""
+    """summary.json's roll_last_move (m) is the largest move of the arc in the roll's last
+    update, measured here on its own: the arc's height at fixed x (1001 points over the
+    earlier touching point to the gap) and w on the new surface's angles, before and after
+    each update (a slow lab pass with an elastic roll; an identity, not an independent
+    reference: equal to 1e-3, the coupling's 200 points against these). Settled, the move is
+    below the roll's tolerance x h1/2."""
+    from dataclasses import replace
+
     import hotroll.model.roll_elastic as RE
 
     moves, real = [], RE.FlatteningRoll.update
 
     def spied(self, *args, **kw):
         before = self.shape.copy()
+        old = replace(self.rp, shape=before)
         out = real(self, *args, **kw)
         t = self.shape.theta
-        moves.append(float(np.max(np.abs(self.shape.offset(t) - before.offset(t)))))
+        x = np.linspace(min(old.x_touch, self.rp.x_touch), self.rp.axis_x, 1001)
+        moves.append(max(float(np.max(np.abs(self.shape.offset(t) - before.offset(t)))),
+                         float(np.max(np.abs(self.rp.height(x) - old.height(x))))))
         return out
 
     monkeypatch.setattr(RE.FlatteningRoll, "update", spied)
@@ -223,7 +230,7 @@ def test_the_roll_last_move_is_the_surfaces_last_change(tmp_path, monkeypatch):
         "output": {"figures": False, "vtk": False}})
     s = run_case(case, tmp_path / "lab", resume=False)
     assert s["exit_code"] == 0 and s["roll_updates"] == len(moves) >= 2
-    assert s["roll_last_move"] == pytest.approx(moves[-1], rel=1e-9)
+    assert s["roll_last_move"] == pytest.approx(moves[-1], rel=1e-3)
     assert 0.0 < s["roll_last_move"] <= case.roll.tolerance * 0.008 / 2
 
 
@@ -233,7 +240,8 @@ def test_the_flattening_roll_keeps_the_exact_scalings(tmp_path):
     neutral angle, the contact and R_eq (the equations are linear in K and E together); moving
     the roll axis changes nothing (measured 1e-15 and 0). A power of two, so that the scaled
     run's arithmetic is the base run's bit for bit: with x 1000 the two runs' roundings differ
-    at 1e-16 and the primal-dual path amplified that to 5.8e-8 (session 6). A hidden unit
+    at 1e-16 and the primal-dual paths amplified that to 6e-8-1.6e-7 (session 6; one thread,
+    so that the assembly's summation order is the same in both runs). A hidden unit
     (the disc's shear modulus + 1 MPa) moves the ratio by 1.3e-7 and is caught."""
     def lab(name, K=50e6, E=210e9, axis=1.0):
         return case_from_dict({
@@ -263,10 +271,13 @@ def test_the_roll_couplings_change_is_the_arcs_move_where_the_strip_sees_it():
     """``couplings.RollFlattening``: the roll's axis is put above its surface's lowest point,
     which moves with the loads, so an update moves the arc the strip lies on by more than the
     surface moves in the roll's own frame. The change the fixed point's settle test reads is
-    the arc's largest move at fixed x (measured here on a finer grid of its own, 1001 points
-    against the coupling's 200: equal to 1e-3), not w's (which it exceeds by 10-45 % on this
+    the arc's largest move at fixed x, from the earlier of the two touching points to the gap
+    (measured here on a finer grid of its own, 1001 points against the coupling's 200: equal
+    to 1e-3), not w's (which it exceeds by 10-70 % on this
     thin pass, R 0.3 m, 3.4 -> 2.9 mm: w's alone called the ten stands' F10 settled while its
     arc still drifted 2-8 tolerances per update, a force 2.3e-3 low; session 6)."""
+    from dataclasses import replace
+
     import hotroll.solvers.couplings as C
     from hotroll.model.geometry import RollPass
     from hotroll.model.roll_elastic import FlatteningRoll
@@ -277,18 +288,19 @@ def test_the_roll_couplings_change_is_the_arcs_move_where_the_strip_sees_it():
     tol = 1e-4 * rp.half_exit
     coupling = C.RollFlattening(roll, lambda: (theta, p, 0.3 * p, None), lambda: None, tol)
     for _ in range(3):
-        x = np.linspace(roll.rp.x_touch, roll.rp.axis_x, 1001)
-        before = roll.rp.height(x)
+        before = replace(roll.rp, shape=roll.rp.shape.copy())
         change = coupling.update(None)
-        arc = float(np.max(np.abs(roll.rp.height(x) - before))) / tol
+        # from the earlier touching point (the flattened roll touches further upstream)
+        x = np.linspace(min(before.x_touch, roll.rp.x_touch), roll.rp.axis_x, 1001)
+        arc = float(np.max(np.abs(roll.rp.height(x) - before.height(x)))) / tol
         assert change == pytest.approx(arc, rel=1e-3)
-        assert arc > 1.05 * roll.last_move / tol          # the axis's shift counts
+        assert arc > 1.05 * coupling.moves[-1] / tol     # w's move: the axis's shift counts
         p = 1.02 * p
 
 
 def test_the_roll_moves_from_the_first_round_only_after_a_warm_start():
-    """``SteadyRun._couplings``: a solve started from a solved pass moves its roll from the
-    first coupling round (the roll is that pass's, the flow close); a cold solve's roll waits
+    """``SteadyRun._couplings``: a solve started from a solved similar pass moves its roll from
+    the first coupling round (the roll is that pass's, the flow close); a cold solve's roll waits
     until the others are within 10 tolerances (the thin strip from the slab guess did not
     settle without the wait), and so does a warm start that failed and is solved again from
     cold (session 6)."""
@@ -312,7 +324,7 @@ def test_the_roll_moves_from_the_first_round_only_after_a_warm_start():
 
     run.couplings = run._couplings(warm=False)
     assert roll_wait() == C.RollFlattening.after_others == 10.0
-    run.couplings = run._couplings(warm=True)
+    run.couplings = run._couplings(warm=True)        # a similar pass's start, its roll carried
     assert roll_wait() is None
     run._cold_start()                     # the warm start failed: solved again from cold
     assert roll_wait() == 10.0
