@@ -74,8 +74,8 @@ def test_a_sweep_with_a_flattening_roll_solves_each_case_on_its_own_roll(tmp_pat
     tolerances (measured 1e-6 apart). K = 150 MPa was this test's second case until session 6:
     both runs "settled" at 28.87 MN/m, a false stop 4 % below the pass's 30.09 that the roll's
     change measure hid (it did not see the arc move with the roll's axis); measured where the
-    strip sees it, that pass ends unsettled after its 30 updates at 30.05-30.14 MN/m, the last
-    roll move 1-1.6 tolerances (an open problem of the heavily flattened pass,
+    strip sees it, that pass ends unsettled after its 30 updates at 30.05-30.14 MN/m, the arc's
+    last move 1.4-6.7 tolerances (an open problem of the heavily flattened pass,
     docs/validation/speed.md)."""
     from hotroll.config.case import load_case
     from hotroll.examples import example_path
