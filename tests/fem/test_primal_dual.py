@@ -162,13 +162,8 @@ def test_with_another_nu_the_tangent_is_the_documented_one_and_symmetric():
     assert np.dot(yv, xd) == pytest.approx(np.dot(xv, yd), rel=1e-9)
 
 
-def test_the_duals_update_is_second_order_accurate():
-    """After a step t du from u0 with nu = eps0/E0, nu+ is the linearisation of eps/E about
-    eps0: its distance from eps(u0 + t du)/E falls as t^2 (ratio 4 per halving), where a wrong
-    term (its second term x 1.1) leaves it first order."""
-    from hotroll.fem.primal_dual import NortonHoffDual
-
-    run = _run()
+def _state_and_step(run):
+    """(form, iterate, its vector u0, a random velocity step du) at a perturbed state."""
     f = run.form
     rng = _perturbed(run, size=0.05)
     gf = f.nonlinear.gf
@@ -176,6 +171,17 @@ def test_the_duals_update_is_second_order_accurate():
     du = np.zeros_like(u0)
     nv = f.nonlinear.n_velocity_dofs()
     du[:nv] = rng.standard_normal(nv) * np.abs(u0[:nv]).max()
+    return f, gf, u0, du
+
+
+def test_the_duals_update_is_second_order_accurate():
+    """After a step t du from u0 with nu = eps0/E0, nu+ is the linearisation of eps/E about
+    eps0: its distance from eps(u0 + t du)/E falls as t^2 (ratio 4 per halving), where a wrong
+    term (its second term x 1.1) leaves it first order."""
+    from hotroll.fem.primal_dual import NortonHoffDual
+
+    run = _run()
+    f, gf, u0, du = _state_and_step(run)
     exact = NortonHoffDual(run.mesh, f.material.eps0)
     exact.attach(f.nonlinear.velocity)
     errors = []
@@ -189,6 +195,23 @@ def test_the_duals_update_is_second_order_accurate():
     rates = [errors[i] / errors[i + 1] for i in range(2)]
     assert errors[0] > 0.0
     assert rates == pytest.approx([4.0, 4.0], rel=0.1)
+
+
+def _solved(run) -> tuple[dict, int, bool]:
+    """(figures, Newton iterations, converged) of the run's solve."""
+    run.record = False
+    res = run.solve()
+    return run.measure(res.stats[-1], 0), res.iterations, res.converged
+
+
+def _same_solution_in_fewer_iterations(out: dict) -> None:
+    """out[True] (with the dual) and out[False]: both converged, force, torque and slip equal
+    to 1e-6, fewer iterations with the dual."""
+    (a, ia, ca), (b, ib, cb) = out[True], out[False]
+    assert ca and cb
+    for key in ("roll_force", "roll_torque", "forward_slip"):
+        assert a[key] == pytest.approx(b[key], rel=1e-6), key
+    assert ia < ib, (ia, ib)
 
 
 def test_the_primal_dual_solve_reaches_the_primal_solution_in_fewer_iterations(monkeypatch):
@@ -209,15 +232,8 @@ def test_the_primal_dual_solve_reaches_the_primal_solution_in_fewer_iterations(m
         for key in ("tol", "a_f_rtol", "surface_tol"):        # every tolerance / 1000
             setattr(run.s, key, getattr(run.s, key) / 1000.0)
         run.s.max_outer *= 3
-        run.record = False
-        res = run.solve()
-        row = run.measure(res.stats[-1], 0)
-        out[dual] = (row, res.iterations, res.converged)
-    (a, ia, ca), (b, ib, cb) = out[True], out[False]
-    assert ca and cb
-    for key in ("roll_force", "roll_torque", "forward_slip"):
-        assert a[key] == pytest.approx(b[key], rel=1e-6), key
-    assert ia < ib
+        out[dual] = _solved(run)
+    _same_solution_in_fewer_iterations(out)
 
 
 def test_the_friction_duals_update_is_second_order_accurate():
@@ -226,13 +242,7 @@ def test_the_friction_duals_update_is_second_order_accurate():
     (ratio 4 per halving), where a wrong update (its second term x 1.1) leaves it first order.
     Coulomb friction: q = 0, the steepest of the laws at the neutral point."""
     run = _run()
-    f = run.form
-    rng = _perturbed(run, size=0.05)
-    gf = f.nonlinear.gf
-    u0 = gf.vec.FV().NumPy().copy()
-    du = np.zeros_like(u0)
-    nv = f.nonlinear.n_velocity_dofs()
-    du[:nv] = rng.standard_normal(nv) * np.abs(u0[:nv]).max()
+    f, gf, u0, du = _state_and_step(run)
     errors = []
     for t in (4e-6, 2e-6, 1e-6):
         gf.vec.FV().NumPy()[:] = u0
@@ -265,12 +275,5 @@ def test_the_friction_dual_reaches_the_same_solution_in_fewer_iterations(monkeyp
         run = _run(**{"friction.law": "viscoplastic", "friction.mu": None, "friction.a_f": 3.0,
                       "plate.free_surface": "constrained"})
         run.s.tol /= 1000.0
-        run.record = False
-        res = run.solve()
-        row = run.measure(res.stats[-1], 0)
-        out[dual] = (row, res.iterations, res.converged)
-    (a, ia, ca), (b, ib, cb) = out[True], out[False]
-    assert ca and cb
-    for key in ("roll_force", "roll_torque", "forward_slip"):
-        assert a[key] == pytest.approx(b[key], rel=1e-6), key
-    assert ia < ib, (ia, ib)
+        out[dual] = _solved(run)
+    _same_solution_in_fewer_iterations(out)
