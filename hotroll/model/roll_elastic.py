@@ -159,7 +159,9 @@ class FlatteningRoll:
         self.points = points
         self.shape: RollShape = rp.shape
         self.updates = 0
-        self.last_move = 0.0          # the last update's largest move of the surface (m)
+        #: the last update's largest move of the arc the strip lies on (m), set by the roll's
+        #: coupling (``solvers/couplings.py: RollFlattening``, which measures it)
+        self.last_move = 0.0
 
     @classmethod
     def start(cls, rp, kind: str, elasticity: RollElasticity = RollElasticity(),
@@ -244,5 +246,4 @@ class FlatteningRoll:
         old_hoop = self.shape.strain(grid)
         self.shape.set(grid, new, old_hoop + self.relaxation * (hoop - old_hoop))
         self.updates += 1
-        self.last_move = float(np.max(np.abs(new - old)))
-        return self.last_move
+        return float(np.max(np.abs(new - old)))

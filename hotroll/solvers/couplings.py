@@ -172,12 +172,13 @@ class RollFlattening(Coupling):
         # arc at the bite by 2-8 tolerances, round after round in the same direction, while
         # w's own change called the roll settled (issue 34 session 6). The roll's last_move
         # (the summary's roll_last_move) is this change.
+        x_before = self.roll.rp.x_touch        # cached with the shape (the copy's would not be)
         before = replace(self.roll.rp, shape=self.roll.rp.shape.copy())
         moved = self.roll.update(*self.loads())
         self.moves.append(moved)
         self.apply()
         rp = self.roll.rp
-        x = np.linspace(min(before.x_touch, rp.x_touch), rp.axis_x, self.PROBES)
+        x = np.linspace(min(x_before, rp.x_touch), rp.axis_x, self.PROBES)
         change = max(moved, float(np.max(np.abs(rp.height(x) - before.height(x)))))
         self.roll.last_move = change
         return change / self.tol
