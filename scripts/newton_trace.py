@@ -2,6 +2,7 @@
 study of where the iterations go; docs/validation/speed.md).
 
     python scripts/newton_trace.py hotroll/examples/schedules/ten_stand_finishing.toml [--passes N]
+    python scripts/newton_trace.py --example 2
 
 One line per FE solve: the roll speed, the wall time, the Newton steps as L(update, step
 length) and each coupling update as a two-letter name and its change in tolerances (st
@@ -21,7 +22,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("schedule", type=Path)
+    p.add_argument("schedule", type=Path, nargs="?", default=None)
+    p.add_argument("--example", default=None, help="a bundled example's name instead")
     p.add_argument("--passes", type=int, default=None, help="the first N passes only")
     args = p.parse_args(argv)
 
@@ -61,6 +63,10 @@ def main(argv=None) -> int:
         return out
 
     S.SteadyRun.run = traced_run
+    if args.example is not None:
+        with tempfile.TemporaryDirectory() as tmp:
+            app(["example", args.example, "--out", str(Path(tmp) / "out")], standalone_mode=False)
+        return 0
     data = tomllib.loads(args.schedule.read_text())
     if args.passes:
         data["pass"] = data["pass"][: args.passes]

@@ -190,7 +190,7 @@ class SteadyRun:
             if warm is not None:
                 self._warm(warm, vec, target)
                 try:
-                    self._follow([target], res, record)
+                    self._follow([target], res, record, s.couple_below_warm)
                 except LinearSolveError:
                     res.stats.append(SolveStats())
                 # a neighbour too far off (or a broken state): start again from cold
@@ -269,9 +269,11 @@ class SteadyRun:
             res.stats.append(SolveStats())
             res.failure = f"m = {self.form.m.Get():.4g}: {e}"
 
-    def _follow(self, path: list[float], res: SteadyResult, record) -> None:
+    def _follow(self, path: list[float], res: SteadyResult, record,
+                couple_below: float | None = None) -> None:
         """Loose Newton solves at the intermediate m of ``path``, then the coupled Newton at the
-        last: a_f and the surface updated inside it until they settle (or ``max_outer``)."""
+        last: a_f and the surface updated inside it until they settle (or ``max_outer``), from
+        the first Newton update below ``couple_below`` (default: the settings')."""
         f, s = self.form, self.s
         for m in path[:-1]:
             f.m.Set(m)
@@ -295,7 +297,8 @@ class SteadyRun:
 
         coupled = any(c.in_fixed_point for c in self.couplings)
         st = newton(f.nonlinear, s.tol, s.max_it + 3 * s.max_outer,
-                    couple=couple if coupled else None, couple_below=s.couple_below,
+                    couple=couple if coupled else None,
+                    couple_below=s.couple_below if couple_below is None else couple_below,
                     full_step=True)
         res.stats.append(st)
         res.settled = state["settled"] or not coupled

@@ -34,6 +34,8 @@ class SteadySettings:
     max_outer: int = 30              # a_f / free-surface updates at the target m
     couple_below: float = 1e-2       # update them once the Newton update (at the P2 nodes) is
                                      # below this x U
+    couple_below_warm: float = 0.1   # ... after a warm start (a neighbour's or a similar
+                                     # pass's solution: its couplings are near their own)
     contact: str = "multiplier"      # exact contact (a multiplier on the arc) or "penalty"
     unilateral: bool = False         # exact contact: the strip may leave the roll (active set)
 
