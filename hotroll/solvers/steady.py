@@ -235,7 +235,10 @@ class SteadyRun:
             a_f = warm.a_f
         self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else a_f)
         self._update_strain()
-        self._update_thermal()
+        # one Newton step of the heat equation, as in every coupling round after it: a full
+        # solve here (3-4 steps, 96 ms a pass) gave the ten stands the same Newton iterations
+        # per pass (issue 34 session 7)
+        self._update_thermal(newton_steps=1)
 
     def _cold_start(self) -> None:
         """Reference strip shape, kinematic velocity guess and a_f (3.15) from it."""
