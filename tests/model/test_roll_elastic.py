@@ -232,3 +232,61 @@ def test_a_carried_roll_surface_keeps_its_shape_in_bite_fractions_and_its_gap():
     assert np.ptp(shift) < 1e-3 * np.ptp(src.shape.w)   # splines through linear interpolants
     assert np.ptp(dst.shape.w) > 0.5 * np.ptp(src.shape.w)   # the surface, not zeros, carried
 
+
+
+def _rim_by_fft(disc, theta, p, q, at, N):
+    """The rim's series summed the way hotroll did before issue 34 session 7: the load
+    sampled on a uniform grid of N points, an FFT, the responses a_n, b_n, the inverse FFT
+    and linear interpolation at ``at`` (first order in the grid: the load's ends are jumps)."""
+    grid = -math.pi + 2.0 * math.pi * np.arange(N) / N
+    P = np.fft.rfft(np.interp(grid, theta, p, left=0.0, right=0.0))
+    Q = np.fft.rfft(np.interp(grid, theta, q, left=0.0, right=0.0))
+    n = np.arange(len(P))
+    a, b = disc.responses(n)
+    c = disc.radius / disc.elasticity.shear_modulus
+    Ur, Ut = -c * (a * P + 1j * b * Q), c * (-1j * b * P + a * Q)
+    Ur[0] = -c * 0.5 * (1.0 - 2.0 * disc.elasticity.nu) * P[0]
+    out = {}
+    for key, spec in (("u_r", Ur), ("u_t", Ut), ("hoop", (Ur + 1j * n * Ut) / disc.radius)):
+        values = np.fft.irfft(spec, N)
+        out[key] = np.interp(at, np.append(grid, math.pi), np.append(values, values[0]))
+    return out
+
+
+def test_the_closed_form_sum_is_the_limit_of_the_fft_sum():
+    """An independent summation of the same series (the FFT on a uniform grid) converges to
+    the closed form at first order in the grid spacing, for u_r, u_t and the hoop strain, on
+    a load with jumps at both ends and a kink (a pressure hill, a shear changing sign)."""
+    R, bite = 0.3, 0.05
+    disc = ElasticDisc(R, STEEL)
+    th = np.linspace(0.0, bite, 41)
+    p = 1e9 * np.sqrt(np.sin(np.pi * th / bite)) + 1e8
+    q = 0.1 * p * np.where(th < 0.3 * bite, -1.0, 1.0)
+    at = np.linspace(-0.5 * bite, 2.5 * bite, 124)     # none at a node
+    exact = disc.rim(th, p, q, at=at)
+    for key in ("u_r", "u_t", "hoop"):
+        scale = float(np.max(np.abs(exact[key])))
+        err = [float(np.max(np.abs(_rim_by_fft(disc, th, p, q, at, N)[key] - exact[key])))
+               / scale for N in (2**16, 2**18, 2**20)]
+        assert err[2] < 1e-4, (key, err)
+        assert err[2] < 0.5 * err[1] < 0.25 * err[0], (key, err)
+    # at the load's own nodes (a jump at each end): finite, the hoop strain's log taken at
+    # half the node spacing there
+    at_nodes = disc.rim(th, p, q)
+    assert all(np.all(np.isfinite(v)) for v in at_nodes.values())
+
+
+@pytest.mark.parametrize("psi", [1e-3, 0.3, 2.0, -1.0, 3.1])
+def test_the_series_sums_term_by_term(psi):
+    """The closed forms of sum_{n>=2} a_n e^(i n psi) / n^2 and b_n's (Li1, Li2 on the unit
+    circle, Clausen's series) against the series summed term by term to n = 2e6 (tail below
+    1 / 2e6)."""
+    from hotroll.model.roll_elastic import _series
+
+    disc = ElasticDisc(0.3, STEEL)
+    n = np.arange(2, 2_000_001, dtype=float)
+    a, b = disc.responses(n)
+    e = np.exp(1j * n * psi)
+    _, _, _, _, re_a2, im_b2 = _series(np.array([psi]), STEEL.nu)
+    assert re_a2[0] == pytest.approx(np.sum(a * e.real / n**2), abs=1e-6)
+    assert im_b2[0] == pytest.approx(np.sum(b * e.imag / n**2), abs=1e-6)

@@ -178,8 +178,10 @@ def test_the_thin_strips_elastic_roll_dominates_and_an_unsettled_end_is_reported
     times tighter and 200 updates the same pass ended settled at 7.153 in one run and
     unsettled at 7.050 in another (docs/validation/speed.md, issue 34 session 5). Asked here:
     a settled end or an unsettled one said so and close to settling (the roll's last move
-    below 5 of its tolerances: measured 0.7; without the tie 17-40, caught), and the
-    dominance."""
+    below 10 of its tolerances: measured 6.4 with the disc's series summed exactly, 0.7 with
+    the FFT grid of sessions 4-6, whose 1e-5 error in u_r steered this path: the same FFT on
+    a 16 x finer grid ends where the exact sum does, unsettled at 7.417 MN/m; without the tie
+    32, caught), and the dominance."""
     from hotroll.api import example_case
 
     base = example_case("thin_strip").with_overrides(**{
@@ -193,7 +195,7 @@ def test_the_thin_strips_elastic_roll_dominates_and_an_unsettled_end_is_reported
     assert elastic["fixed_point_settled"] == (elastic["exit_code"] == 0)
     assert elastic["status"] == ("steady" if elastic["exit_code"] == 0 else "unsettled")
     tolerance = base.roll.tolerance * base.pass_.exit_thickness / 2     # m
-    assert 0.0 < elastic["roll_last_move"] < 5.0 * tolerance
+    assert 0.0 < elastic["roll_last_move"] < 10.0 * tolerance
     assert elastic["roll_force"] > 1.15 * rigid["roll_force"]
 
 
