@@ -26,7 +26,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import solve_banded
 
 from hotroll.model.heat_transfer import ConvectionRadiation, HeatTransferLaw
 from hotroll.model.thermal_properties import ThermalInputError, ThermalProperties, finite_number
@@ -111,15 +110,23 @@ def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
     dt = t_end / int(steps)
     lost = 0.0
     history = [temp.copy()] if record else None
+    # the tridiagonal solve: LAPACK's gtsv, which scipy.linalg.solve_banded((1, 1), ...)
+    # calls, without its per-call checks (2900 small solves in a ten-stand schedule);
+    # imported here: scipy.linalg only where a strip cools
+    from scipy.linalg.lapack import dgtsv
+
     for _ in range(int(steps)):
         old_H = props.enthalpy_values(temp)
         new = temp.copy()
-        for _ in range(50):                  # Newton on the step's residual
+        H_new = old_H                        # H(new) = H(temp) in the first iteration
+        for it in range(50):                 # Newton on the step's residual
+            if it:
+                H_new = props.enthalpy_values(new)
             k = props.k_values(new)
             kf = 0.5 * (k[1:] + k[:-1]) / dy          # face conductances, W/(m^2 K)
             q_s = surface.flux(new[-1], T_amb)
             flux = kf * (new[1:] - new[:-1])          # into node i from node i+1
-            res = w * (props.enthalpy_values(new) - old_H) / dt
+            res = w * (H_new - old_H) / dt
             res[:-1] -= flux
             res[1:] += flux
             res[-1] += q_s
@@ -128,11 +135,11 @@ def cool(y: np.ndarray, T: np.ndarray, half_thickness: float, duration: float,
             diag[:-1] += kf
             diag[1:] += kf
             diag[-1] += surface.dflux(new[-1], T_amb)
-            band = np.zeros((3, n + 1))
-            band[0, 1:] = -kf
-            band[1] = diag
-            band[2, :-1] = -kf
-            d = solve_banded((1, 1), band, -res)
+            off = -kf
+            _, _, _, d, info = dgtsv(off, diag, off, -res)
+            if info:
+                raise np.linalg.LinAlgError(f"interpass cooling: singular Jacobian "
+                                            f"(gtsv info {info})")
             new += d
             if np.max(np.abs(d)) <= 1e-11 * np.max(new):
                 break
