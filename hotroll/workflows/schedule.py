@@ -20,6 +20,7 @@ units and the profiles handed on) and ``schedule.png``.
 from __future__ import annotations
 
 import time
+from functools import lru_cache
 from pathlib import Path
 from typing import Callable
 
@@ -29,6 +30,7 @@ from hotroll.config.schedule import Schedule
 from hotroll.model.interpass import cool, enthalpy_mean
 from hotroll.model.microstructure.softening import PassState
 from hotroll.model.profile import ThicknessProfile
+from hotroll.model.thermal_properties import ThermalProperties
 from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv, write_json
 from hotroll.results.units import UNITS
@@ -78,7 +80,14 @@ def _enthalpy_mean(sch: Schedule, T: ThicknessProfile) -> float:
     """The profile's mean temperature by its heat content (K)."""
     if T.is_uniform:
         return T.values[0]
-    return enthalpy_mean(sch.material.thermal_properties(), np.asarray(T.values), T.weights())
+    return _profile_enthalpy_mean(sch.material.thermal_properties(), T)
+
+
+@lru_cache(maxsize=64)
+def _profile_enthalpy_mean(props: ThermalProperties, T: ThicknessProfile) -> float:
+    """``enthalpy_mean`` of a profile (both frozen: the same profile's mean is asked for two to
+    four times a pass, by its case, its row and the next pass's, each a 40-step bisection)."""
+    return enthalpy_mean(props, np.asarray(T.values), T.weights())
 
 
 def exit_state(sch: Schedule, case, summary: dict,
