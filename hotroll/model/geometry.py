@@ -91,8 +91,14 @@ class RollShape:
         return self._lowest[1], self._lowest[2]
 
     def copy(self) -> "RollShape":
-        out = RollShape(self.theta, self.w, self.hoop, self.tie)
-        out._previous_t = self._previous_t
+        """The same surface, on its own (``set`` on either leaves the other): it shares the
+        splines, which ``set`` replaces and nothing changes in place (a copy is taken at every
+        roll update; building the splines again cost as much as the update's own)."""
+        out = RollShape.__new__(RollShape)
+        out.tie, out._previous_t = self.tie, self._previous_t
+        out.theta, out.w, out.hoop = self.theta.copy(), self.w.copy(), self.hoop.copy()
+        out._lowest, out.cache = None, {}
+        out._w, out._dw, out._hoop = self._w, self._dw, self._hoop
         return out
 
     @property
@@ -145,8 +151,15 @@ class RollPass:
         cy = self.centre[1]
         if self.shape is None:
             return self.axis_x - math.sqrt(self.radius**2 - (cy - self.half_entry) ** 2)
-        t = self.bite_angle
-        return self.centre[0] - float(self.surface_radius(t)) * math.sin(t)
+        # cached with the shape, as the bite angle (asked for thousands of times a pass: the
+        # soft zone, the contact length)
+        key = ("touch", self.radius, self.half_entry, self.half_exit, self.axis_x)
+        cached = self.shape.cache.get(key)
+        if cached is None:
+            t = self.bite_angle
+            cached = self.shape.cache[key] = self.centre[0] - float(self.surface_radius(t)) \
+                * math.sin(t)
+        return cached
 
     @property
     def contact_length(self) -> float:

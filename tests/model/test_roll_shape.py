@@ -103,3 +103,22 @@ def test_the_bite_angle_follows_the_shape_it_is_cached_for():
     fresh = RollPass(R, H0, H1, omega=10.0, axis_x=0.7, shape=RollShape.circle(R, 1.5 * RP, theta))
     assert rp.bite_angle == pytest.approx(fresh._flattened_bite_angle(), rel=1e-12)
     assert rp.bite_angle > first * 1.05                        # a flatter roll bites longer
+
+
+def test_a_copy_is_its_own_surface_and_the_touching_point_follows_set():
+    """``copy`` shares the splines: setting a new surface on the copy leaves the original's
+    values; the cached touching point follows a new surface (``set``) like the bite angle."""
+    theta = np.linspace(-0.1, 0.3, 400)
+    shape = RollShape.circle(R, RP, theta)
+    rp = RollPass(R, H0, H1, omega=10.0, axis_x=0.7, shape=shape)
+    x0, t = rp.x_touch, np.linspace(0.0, 0.2, 7)
+    before = shape.offset(t)
+    twin = shape.copy()
+    assert np.array_equal(twin.offset(t), before) and np.array_equal(twin.w, shape.w)
+    bigger = RollShape.circle(R, 1.5 * RP, theta)
+    twin.set(theta, bigger.w, bigger.hoop)
+    assert np.array_equal(shape.offset(t), before) and rp.x_touch == x0
+    shape.set(theta, bigger.w, bigger.hoop)
+    fresh = RollPass(R, H0, H1, omega=10.0, axis_x=0.7,
+                     shape=RollShape.circle(R, 1.5 * RP, theta))
+    assert rp.x_touch == fresh.x_touch < x0                    # a flatter roll bites longer
