@@ -16,7 +16,6 @@ heats).
 from __future__ import annotations
 
 import numpy as np
-from scipy.interpolate import RegularGridInterpolator
 
 from hotroll.fem.forms import strain_rate
 from hotroll.model.material import edot_squared
@@ -29,7 +28,10 @@ def streamline_means(thermal, eta: np.ndarray) -> dict[str, np.ndarray]:
     """At the outlet heights ``eta`` (flux fractions): the pass strain int edot dt, the
     strain-weighted means of ln(edot) (edot in 1/s) and of 1/T (1/K), along the streamline
     through each."""
+    # scipy here, not at the top: this module comes with the results writer, and
+    # scipy.interpolate took 0.3-0.6 s of every command's start
     from ngsolve import CF, sqrt, x, y
+    from scipy.interpolate import RegularGridInterpolator
 
     strip = thermal.strip
     eta = np.asarray(eta, dtype=float)
