@@ -86,11 +86,27 @@ def _nodal_k(form: RollingForm, top: TopBoundary, contact_only: bool):
     the form evaluates k at its quadrature points."""
     if not form.friction.uses_k:
         return None
-    from ngsolve import H1, GridFunction
+    from ngsolve import GridFunction
 
-    k = GridFunction(H1(form.mesh, order=1))
+    k = GridFunction(p1_space(form.mesh))
     k.Set(form.shear_flow_stress(form.nonlinear.velocity))
     return at_top_nodes(k.vec.FV().NumPy(), top, contact_only)
+
+
+#: The last mesh given to ``p1_space`` and its space (the mesh held: identity stays valid).
+_P1: list = [None, None]
+
+
+def p1_space(mesh):
+    """The P1 space (H1, order 1) of ``mesh``, made once for the last mesh asked for: every
+    contact profile (each roll update's loads, the measures, the results) made its own before,
+    NGSolve's parallel set-up each time (86 in the ten-stand schedule; 35 ms each when another
+    process shares the cores). A GridFunction set on it is the same as on a new space."""
+    if _P1[0] is not mesh:
+        from ngsolve import H1
+
+        _P1[:] = [mesh, H1(mesh, order=1)]
+    return _P1[1]
 
 
 def top_profile(form: RollingForm, top: TopBoundary, disp: np.ndarray,

@@ -12,6 +12,7 @@ import numpy as np
 
 from hotroll.fem.forms import strain_rate
 from hotroll.fem.mesh import mesh_triangles
+from hotroll.fem.quantities import p1_space
 from hotroll.files import DiskFullError, atomic, disk_full  # noqa: F401  (the app's writers use them)
 from hotroll.model.material import edot_squared
 
@@ -83,7 +84,7 @@ def vertex_fields(run) -> dict:
     tris = mesh_triangles(mesh)
     vel = np.stack([sol[:nv], sol[ns:ns + nv]], -1)
     pressure = K * form.nonlinear.pressure.vec.FV().NumPy()[:nv]
-    g = ngsolve.GridFunction(ngsolve.H1(mesh, order=1))
+    g = ngsolve.GridFunction(p1_space(mesh))
     g.Set(ngsolve.sqrt(edot_squared(strain_rate(form.nonlinear.velocity)) + 1e-300))
     edot = np.maximum(g.vec.FV().NumPy()[:nv].copy(), 0.0)
     rows = np.nonzero(run.top.edge_contact)[0]

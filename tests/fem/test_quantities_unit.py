@@ -748,3 +748,21 @@ def test_the_contact_files_vertex_column_is_integer(solved_example1):
     assert set(column) == {"0", "1"}
     # (the bilateral default: the summary says so)
     assert json.loads((solved_example1 / "summary.json").read_text())["unilateral"] is False
+
+
+def test_the_p1_space_is_made_once_per_mesh_and_sets_as_a_new_one():
+    """``p1_space``: the same space for the same mesh, a new one for another mesh; a field set
+    on it has the values a field on a space of its own gets."""
+    from netgen.geom2d import unit_square
+    from ngsolve import H1, GridFunction, Mesh, x, y
+
+    from hotroll.fem.quantities import p1_space
+
+    a, b = Mesh(unit_square.GenerateMesh(maxh=0.3)), Mesh(unit_square.GenerateMesh(maxh=0.2))
+    fa = p1_space(a)
+    assert p1_space(a) is fa and p1_space(b) is not fa and p1_space(b).mesh.nv == b.nv
+    cf = x * x + 3 * y
+    kept, own = GridFunction(p1_space(a)), GridFunction(H1(a, order=1))
+    kept.Set(cf)
+    own.Set(cf)
+    assert np.array_equal(kept.vec.FV().NumPy(), own.vec.FV().NumPy())
