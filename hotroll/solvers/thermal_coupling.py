@@ -107,11 +107,13 @@ class ThermalCoupling(FlowStressFeedback):
         self._chi = IfPos(x - self._lo, IfPos(self._hi - x, 1.0, 0.0), 0.0)
         self._mech_logical = self.strip.logical(top.X0)   # the mechanics' vertices
         # the strip's vertices and its columns' flux points, found once in the mechanics'
-        # reference mesh; the top row's vertices
+        # reference mesh; the top row's vertices. Every SUBSAMPLES-th row of flux points is
+        # a row of strip vertices (the same reference coordinates, bit for bit): one search
+        # finds both, and one evaluation gives the vertices' positions and the columns' flux
         strip = self.strip
-        self._pts = self._find(strip.reference)
         self._fine, col_ref = self._column_points()
         self._col_pts = self._find(col_ref)
+        self._pts = self._col_pts.reshape(len(self._fine), -1)[::SUBSAMPLES].ravel()
         self._top_row = np.arange(strip.nv - strip.shape[1], strip.nv)
         # the mechanics element of each strip vertex; the elements with none take the
         # temperature at their centroid
@@ -119,12 +121,16 @@ class ThermalCoupling(FlowStressFeedback):
         self._empty = np.setdiff1d(np.arange(self.mesh.ne), self._owner)
         centroids = top.X0[mesh_triangles(self.mesh)[self._empty]].mean(axis=1)
         self._empty_logical = self.strip.logical(centroids)
+        # where those are in the strip mesh: searched once (its logical coordinates do not
+        # move; NGSolve's point search ignores the deformation)
+        smesh = self.strip.mesh
+        self._mech_strip_pts = smesh(*self._mech_logical)
+        self._empty_strip_pts = smesh(*self._empty_logical) if len(self._empty) else None
         self._strip_tris = mesh_triangles(self.strip.mesh)
         # the CFs evaluated at every update, built and compiled once (they read GridFunctions
         # and Parameters): 2-3x faster to evaluate than the plain expression trees
         u = form.nonlinear.velocity
         plastic, friction = self.sources()
-        self._position_cf = CF((x, y)).Compile()
         self._column_cf = CF((x, y, u[0], u[1])).Compile()
         self._plastic_cf, self._friction_cf = plastic.Compile(), friction.Compile()
 
@@ -169,18 +175,24 @@ class ThermalCoupling(FlowStressFeedback):
         eta = strip.eta
         fine = np.concatenate([np.linspace(a, b, SUBSAMPLES + 1)[:-1]
                                for a, b in zip(eta[:-1], eta[1:])] + [eta[-1:]])
+        # each SUBSAMPLES-th is the row's eta itself (attach takes the vertices from them)
+        assert np.array_equal(fine[::SUBSAMPLES], eta)
         Xg, Eg = np.meshgrid(strip.X, fine)
         return fine, np.stack([Xg.ravel(), Eg.ravel() * strip.top_height(Xg.ravel())], -1)
 
-    def _column_flux(self) -> np.ndarray:
-        """The flux below each strip vertex along its column (ny+1, nx+1), m^2/s: int v.n ds
-        over the column's current (deformed) line, SUBSAMPLES points per row interval."""
-        return self.fine_column_flux()[::SUBSAMPLES]
-
-    def fine_column_flux(self) -> np.ndarray:
-        """The flux below every fine column point (``_fine`` eta, all columns), m^2/s."""
+    def _column_values(self) -> np.ndarray:
+        """(x, y, v_x, v_y) at every fine column point, (len(_fine), nx+1, 4): current
+        positions (m) and the mechanics' velocity (m/s)."""
         shape = (len(self._fine), len(self.strip.X), 4)
-        both = self._at(self._column_cf, self._col_pts).reshape(shape)
+        return self._at(self._column_cf, self._col_pts).reshape(shape)
+
+    def fine_column_flux(self, both: np.ndarray | None = None) -> np.ndarray:
+        """The flux below every fine column point (``_fine`` eta, all columns), m^2/s: int v.n
+        ds over the column's current (deformed) line; ``both``: ``_column_values()`` if the
+        caller has them."""
+        if both is None:
+            both = self._column_values()
+        shape = both.shape
         pos, vel = both[..., :2], both[..., 2:]
         dx, dy = np.diff(pos[..., 0], axis=0), np.diff(pos[..., 1], axis=0)
         vm = 0.5 * (vel[1:] + vel[:-1])
@@ -191,8 +203,11 @@ class ThermalCoupling(FlowStressFeedback):
     def _transfer(self) -> None:
         """Place the strip, and carry the flow, the heat sources and the contact over."""
         strip, top = self.strip, self._top
-        strip.place(self._at(self._position_cf, self._pts))
-        flux = self._column_flux()
+        both = self._column_values()
+        # the strip vertices' positions: the rows of column points that are vertex rows
+        strip.place(both[::SUBSAMPLES, :, :2].reshape(-1, 2))
+        # the flux below each strip vertex along its column (ny+1, nx+1), m^2/s
+        flux = self.fine_column_flux(both)[::SUBSAMPLES]
         strip.set_stream_function(flux, total=float(flux[-1, 0]))
         self._qs.vec.FV().NumPy()[:] = self._at(self._plastic_cf, self._pts)[:, 0]
         qf = np.zeros(strip.nv)
@@ -227,12 +242,12 @@ class ThermalCoupling(FlowStressFeedback):
         chord = max_iter == 1 and self._change < CHORD_BELOW
         self.last = self.field.solve_steady(*self.strip_sources(), tol=tol, max_iter=max_iter,
                                             chord=chord)
-        smesh, vals = self.strip.mesh, self.field.values
+        vals = self.field.values
 
-        def at(logical):
-            return np.asarray(self.field.gf(smesh(*logical)), dtype=float).reshape(-1)
+        def at(pts):
+            return np.asarray(self.field.gf(pts), dtype=float).reshape(-1)
 
-        self.T.vec.FV().NumPy()[:] = at(self._mech_logical)
+        self.T.vec.FV().NumPy()[:] = at(self._mech_strip_pts)
         # element means: the strip vertices' lumped areas (current positions) as weights
         p, t = self.strip.physical, self._strip_tris
         e1, e2 = p[t[:, 1]] - p[t[:, 0]], p[t[:, 2]] - p[t[:, 0]]
@@ -240,7 +255,7 @@ class ThermalCoupling(FlowStressFeedback):
         w = np.bincount(t.ravel(), np.repeat(area / 3.0, 3), minlength=len(vals))
         mean = self._element_means(vals, w)
         if len(self._empty):
-            mean[self._empty] = at(self._empty_logical)
+            mean[self._empty] = at(self._empty_strip_pts)
         old = self.T_mean.vec.FV().NumPy().copy()
         self.T_mean.vec.FV().NumPy()[:] = mean
         self._set_ratio()
