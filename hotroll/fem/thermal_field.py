@@ -79,6 +79,7 @@ class TemperatureField:
         self._tau_cf = None
         self._steady = None          # (inputs, forms, tau) of the last steady solve: reused
         self._system = None          # the HeatSystem of the last solve (its kept factors)
+        self._f_assembled = None     # the load form assembled by the last solve (balance)
         # quadrature: T^4 w on the top and the piecewise (IfPos) properties in the volume;
         # ``volume_bonus = 0`` where the volume terms are polynomials the default rule
         # integrates exactly (P1, constant properties, P1 sources: the strip mesh; 1.8x faster)
@@ -200,6 +201,7 @@ class TemperatureField:
         max |T|); not converged if the change is still above ``tol``."""
         self.values[self._fixed] = self._inlet_values
         a, f = self._steady_forms(velocity, heat_density, friction_flux, contact)
+        self._f_assembled = None
         return self._newton(a, f, self._free, tol, max_iter, chord=chord)
 
     @cached_property
@@ -238,10 +240,15 @@ class TemperatureField:
         self._tau_cf = self._steady[2]          # (step() clears it)
         return self._steady[1]
 
-    def _residual_sum(self, a, f, rows: np.ndarray) -> float:
-        """Sum of the assembled residual a(T; w_i) - f(w_i) over ``rows`` at the current T."""
-        self._refresh(tau=not self.props.is_constant())
-        f.Assemble()
+    def _residual_sum(self, a, f, rows: np.ndarray, sources_unchanged: bool = False) -> float:
+        """Sum of the assembled residual a(T; w_i) - f(w_i) over ``rows`` at the current T.
+        ``sources_unchanged``: the caller has not changed the sources since the last solve;
+        with constant properties f (sources and tau, not T) is then the one that solve
+        assembled, and is not assembled again."""
+        constant = self.props.is_constant()
+        self._refresh(tau=not constant)
+        if not (sources_unchanged and constant and self._f_assembled is f):
+            f.Assemble()
         res = self.gf.vec.CreateVector()
         a.Apply(self.gf.vec, res)
         res.data -= f.vec
@@ -256,6 +263,7 @@ class TemperatureField:
         if not dt > 0.0:
             raise ValueError(f"dt = {dt!r}: must be > 0 (s)")
         self._old.vec.data = self.gf.vec
+        self._f_assembled = None
         a, f = self._forms(velocity, heat_density, friction_flux, contact, dt=float(dt))
         return self._newton(a, f, self._all, tol, max_iter)
 
@@ -268,7 +276,8 @@ class TemperatureField:
         return float(Integrate(cf, self.mesh, BND, order=2 * self.order + self._bonus_ds,
                                definedon=self.mesh.Boundaries(region)))
 
-    def balance(self, velocity, heat_density, friction_flux, contact) -> dict:
+    def balance(self, velocity, heat_density, friction_flux, contact,
+                sources_unchanged: bool = False) -> dict:
         """Heat flows in W/m (per unit width, over the mesh as given) and the relative error
         |out - in - (plastic + friction - roll - air)| / max(plastic + friction, |roll| + |air|).
 
@@ -283,7 +292,9 @@ class TemperatureField:
         heated right from the inlet corner) plus the discrete div v and v.n of the velocity
         given and the Newton tolerance; with ``conducted_in`` added the tests close to 1e-12.
         ``advected_in`` is 0 after ``solve_steady`` (T = T_entry on the inlet). These are the
-        steady equations: the storage term of ``step`` is not in them."""
+        steady equations: the storage term of ``step`` is not in them. ``sources_unchanged``:
+        the sources (their values too) are those of the last ``solve_steady``, whose load
+        vector is then reused (``_residual_sum``)."""
         from ngsolve import CF, specialcf
 
         p, bc, T = self.props, self.bc, self.gf
@@ -293,7 +304,8 @@ class TemperatureField:
         out.update(
             advected_in=-self._integrate(H * (vel * n), self.inlet),
             advected_out=self._integrate(H * (vel * n), self.outlet),
-            conducted_in=self._inlet_reaction(velocity, heat_density, friction_flux, contact))
+            conducted_in=self._inlet_reaction(velocity, heat_density, friction_flux, contact,
+                                              sources_unchanged))
         gain = out["plastic_heat"] + out["friction_heat_to_strip"]
         net = gain - out["heat_to_roll"] - out["heat_to_air"]
         scale = max(gain, abs(out["heat_to_roll"]) + abs(out["heat_to_air"]), 1e-300)
@@ -315,11 +327,12 @@ class TemperatureField:
             heat_to_air=self._integrate((1.0 - chi) * bc.surface.flux(T, bc.ambient_temperature),
                                         self.top))
 
-    def _inlet_reaction(self, velocity, heat_density, friction_flux, contact) -> float:
+    def _inlet_reaction(self, velocity, heat_density, friction_flux, contact,
+                        sources_unchanged: bool = False) -> float:
         """Sum of the steady residual over the inlet (Dirichlet) dofs, W/m: the heat the
         discrete solution conducts in through the inlet face."""
         a, f = self._steady_forms(velocity, heat_density, friction_flux, contact)
-        return self._residual_sum(a, f, self._fixed)
+        return self._residual_sum(a, f, self._fixed, sources_unchanged)
 
     def face_mean(self, face: str, velocity) -> float:
         """Mixing-cup (flux-weighted) mean temperature int T v.n / int v.n over ``face`` (the
@@ -368,6 +381,7 @@ class HeatSystem:
         self.field._refresh(tau=fresh)
         if fresh:
             self.f.Assemble()
+            self.field._f_assembled = self.f
         return fresh
 
     def Apply(self, vec, out) -> None:            # noqa: N802 - NGSolve's form interface

@@ -320,8 +320,10 @@ class ThermalCoupling(FlowStressFeedback):
                 "temperature": self.field.values.copy()}
 
     def balance(self) -> dict:
-        """Heat flows (W/m) and the balance error of ``TemperatureField.balance``."""
-        return self.field.balance(*self.strip_sources())
+        """Heat flows (W/m) and the balance error of ``TemperatureField.balance``; the
+        sources are those of the last update (only ``_transfer`` changes them, and a solve
+        follows it): its load vector is reused."""
+        return self.field.balance(*self.strip_sources(), sources_unchanged=True)
 
     def section_means(self, x0: float, band: float) -> tuple[float, float]:
         """(mixing-cup mean int T v_x / int v_x over the strip between x0 and x0 + band, the
