@@ -32,6 +32,10 @@ that layer near the top. ``step`` has the same issue with the consistent mass (a
 9 K with rows of H/32); ``lumped_mass=True`` (vertex quadrature, an M-matrix on non-obtuse
 meshes) keeps T within its bounds at some cost in accuracy (7.1 K against 5.2 K error there).
 
+The SUPG parameter is the L2 projection of its CF onto P0; a caller whose velocity is constant
+on each triangle and whose properties are constant may give it instead (``element_tau``:
+``p1_supg_tau``, the same formula in numpy, 1e-15 apart and ~10x cheaper; the coupling's strip).
+
 Nonlinearity (radiation, T-dependent rho c and k): Newton's method with the exact Jacobian of
 NGSolve's symbolic linearisation (tau frozen per iteration; 5 iterations to 1e-12 with tables and
 radiation), direct solves (UMFPACK).
@@ -77,6 +81,10 @@ class TemperatureField:
         self._all.Set()
         self._tau_gf = GridFunction(L2(mesh, order=0))   # SUPG tau, one value per element
         self._tau_cf = None
+        #: None, or a callable giving tau per element (numpy, element order) in place of the
+        #: projection of the tau CF: only for a velocity constant on each element and constant
+        #: properties (the coupling's strip: ``p1_supg_tau``)
+        self.element_tau = None
         self._steady = None          # (inputs, forms, tau) of the last steady solve: reused
         self._system = None          # the HeatSystem of the last solve (its kept factors)
         self._f_assembled = None     # the load form assembled by the last solve (balance)
@@ -181,7 +189,10 @@ class TemperatureField:
         """Freeze the current iterate for tau; tau's element means (steady forms only)."""
         self._frozen.vec.data = self.gf.vec
         if self._tau_cf is not None and tau:
-            self._tau_gf.Set(self._tau_cf)
+            if self.element_tau is not None:
+                self._tau_gf.vec.FV().NumPy()[:] = self.element_tau()
+            else:
+                self._tau_gf.Set(self._tau_cf)
 
     def _newton(self, a, f, free, tol, max_iter, chord: bool = False) -> SolveInfo:
         """The one Newton (``fem/nonlinear.py``) on a(T; w) = f(w) from the current T, full
@@ -355,6 +366,36 @@ class TemperatureField:
         ycoord.Set(y, dual=True)                  # nodal values: the current (deformed) y
         best = max(verts, key=lambda v: ycoord.vec[v])
         return float(self.values[self.space.GetDofNrs(NodeId(VERTEX, best))[0]])
+
+
+def p1_gradients(points: np.ndarray, triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The gradients of the barycentric coordinates of each triangle (ne, 3, 2) and the
+    Jacobian determinant of its map from the reference triangle (ne; twice the signed area)."""
+    p0, p1, p2 = (points[triangles[:, i]] for i in range(3))
+    a11, a21 = p0[:, 0] - p2[:, 0], p0[:, 1] - p2[:, 1]      # J = [p0 - p2, p1 - p2]
+    a12, a22 = p1[:, 0] - p2[:, 0], p1[:, 1] - p2[:, 1]
+    det = a11 * a22 - a12 * a21
+    g0 = np.stack([a22, -a12], -1) / det[:, None]           # rows of J^-1
+    g1 = np.stack([-a21, a11], -1) / det[:, None]
+    return np.stack([g0, g1, -(g0 + g1)], 1), det
+
+
+def p1_supg_tau(grads: np.ndarray, det: np.ndarray, velocity: np.ndarray, rho_c: float,
+                k: float, supg: float = 1.0) -> np.ndarray:
+    """``TemperatureField._tau`` per P1 triangle (s) for a velocity constant on each (ne, 2)
+    and constant properties: h_v = 2 |v| / sum_i |v.grad N_i| (the mesh size sqrt|det J|
+    where v = 0), Pe = |v| h_v rho c / (2 k), tau = supg h_v / (2 |v|) (coth Pe - 1/Pe), its
+    series below Pe = 1e-2; ``grads, det`` of ``p1_gradients``."""
+    b = np.einsum("eij,ej->ei", grads, velocity)            # v.grad N_i
+    total = np.abs(b).sum(axis=1)
+    speed = np.sqrt(np.einsum("ej,ej->e", velocity, velocity) + 1e-300)
+    moving = total - 1e-300 > 0.0
+    h = np.where(moving, 2.0 * speed / np.where(moving, total, 1.0), np.sqrt(np.abs(det)))
+    pe = speed * h * rho_c / (2.0 * k)
+    big = np.where(pe - 1e-2 > 0.0, pe, 1e-2)
+    e = np.exp(-2.0 * big)
+    xi = np.where(pe - 1e-2 > 0.0, (1.0 + e) / (1.0 - e) - 1.0 / big, pe / 3.0 - pe ** 3 / 45.0)
+    return supg * h / (2.0 * speed) * xi
 
 
 class HeatSystem:

@@ -36,7 +36,7 @@ import numpy as np
 
 from hotroll.fem.mesh import mesh_triangles
 from hotroll.fem.strip_mesh import ThermalStrip, layer_thickness
-from hotroll.fem.thermal_field import TemperatureField
+from hotroll.fem.thermal_field import TemperatureField, p1_gradients, p1_supg_tau
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 from hotroll.solvers.thermal_feedback import FlowStressFeedback
 
@@ -101,6 +101,10 @@ class ThermalCoupling(FlowStressFeedback):
         self.field = TemperatureField(self.strip.mesh, self.props, self.bc,
                                       inlet="left", top="top", outlet="right",
                                       volume_bonus=0 if self.props.is_constant() else 2)
+        if self.props.is_constant():
+            # the velocity curl psi is constant on each triangle: the SUPG parameter in numpy
+            # (the same formula, 1e-15 apart; 0.5 ms against 10 ms for the CF's projection)
+            self.field.element_tau = self._element_tau
         self._qs = GridFunction(H1(self.strip.mesh, order=1))
         self._qfs = GridFunction(H1(self.strip.mesh, order=1))
         self._lo, self._hi = Parameter(0.0), Parameter(0.0)    # the contact's x-range
@@ -222,6 +226,22 @@ class ThermalCoupling(FlowStressFeedback):
             lo, hi = float(xs.min()) - tol, float(xs.max()) + tol
         self._lo.Set(lo)
         self._hi.Set(hi)
+
+    def _element_tau(self) -> np.ndarray:
+        """The SUPG parameter of each strip triangle at the current flow (``p1_supg_tau``):
+        the velocity curl psi of the P1 stream function on the placed strip."""
+        t, props, T0, strip = self._strip_tris, self.props, self.bc.entry_temperature, self.strip
+        # the vertices as the deformed mesh has them (logical + displacement): its thin top
+        # rows make the Jacobian sensitive to the last digit of the positions
+        n, d = strip.nv, strip.disp.vec.FV().NumPy()
+        grads, det = p1_gradients(strip.logical_points + np.stack([d[:n], d[n:2 * n]], -1), t)
+        psi = strip.psi.vec.FV().NumPy()[t]
+        # grad psi from the differences to the third vertex (psi is large, its steps small)
+        g = ((psi[:, 0] - psi[:, 2])[:, None] * grads[:, 0]
+             + (psi[:, 1] - psi[:, 2])[:, None] * grads[:, 1])
+        v = np.stack([g[:, 1], -g[:, 0]], -1)
+        return p1_supg_tau(grads, det, v, float(props.rho_c_values(T0)),
+                           float(props.k_values(T0)), self.field.supg)
 
     def strip_sources(self):
         """(velocity, plastic density, friction flux, contact) on the strip mesh (the same

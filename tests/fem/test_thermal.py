@@ -378,6 +378,48 @@ def test_the_streamline_length_is_the_elements_chord_along_the_flow():
     mesh.UnsetDeformation()
 
 
+@pytest.mark.parametrize("conductivity", [K, 3e5])
+def test_the_numpy_supg_parameter_is_the_projection_of_the_forms(conductivity):
+    """``p1_supg_tau`` (the coupling's tau: a velocity curl psi of a P1 stream function,
+    constant per triangle, constant properties) against the L2 projection of the form's tau
+    CF on a deformed mesh, element by element: the branch coth Pe - 1/Pe (k = 30, Pe up to
+    ~40), its series (k = 3e5: Pe < 1e-2) and the elements where v = 0 (psi the same at their
+    vertices: the mesh size). Measured 3.8e-15 and 6.9e-15 (the same formula; the last digits
+    differ)."""
+    from ngsolve import CF, H1, GridFunction, VectorH1, grad, x, y
+
+    from hotroll.fem.mesh import mesh_triangles
+    from hotroll.fem.thermal_field import p1_gradients, p1_supg_tau
+
+    mesh = rectangle(0.03, 0.01, 12, 6, grading=2.0)
+    disp = GridFunction(VectorH1(mesh, order=1))
+    disp.Set(CF((0.3 * y, 0.05 * x * y / 0.01)))                  # shear and stretch it
+    mesh.SetDeformation(disp)
+    psi = GridFunction(H1(mesh, order=1))
+    psi.Set(0.02 * y * (1.0 + 10.0 * x) + 3.0)                    # large values, small steps
+    n = mesh.nv
+    j, i = np.divmod(np.arange(n), 13)                 # vertex i + 13 j: column i, row j
+    psi.vec.FV().NumPy()[:n][(j <= 1) & (i <= 3)] = 3.0            # v = 0 in six triangles
+    g = grad(psi)
+    props = ThermalProperties(RHO, C, conductivity)
+    field = TemperatureField(mesh, props, boundary(1000.0), top="top")
+    field._tau_gf.Set(field._tau(CF((g[1], -g[0]))))
+    expected = field._tau_gf.vec.FV().NumPy()
+    t = mesh_triangles(mesh)
+    d = disp.vec.FV().NumPy()
+    ref = np.array([mesh.vertices[i].point for i in range(n)])
+    grads, det = p1_gradients(ref + np.stack([d[:n], d[n:2 * n]], -1), t)
+    vals = psi.vec.FV().NumPy()[t]
+    gp = ((vals[:, 0] - vals[:, 2])[:, None] * grads[:, 0]
+          + (vals[:, 1] - vals[:, 2])[:, None] * grads[:, 1])
+    v = np.stack([gp[:, 1], -gp[:, 0]], -1)
+    still = np.all(vals == vals[:, :1], axis=1)
+    assert still.sum() == 6 and np.all(v[still] == 0.0)
+    tau = p1_supg_tau(grads, det, v, RHO * C, conductivity)
+    np.testing.assert_allclose(tau, expected, rtol=1e-13, atol=0.0)
+    mesh.UnsetDeformation()
+
+
 @pytest.mark.parametrize("dt", [0.0, -0.1, float("nan")])
 def test_a_step_needs_a_positive_time(dt):
     """An implicit-Euler step of no time (or of negative or no number of seconds) is refused

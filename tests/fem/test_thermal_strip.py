@@ -185,6 +185,30 @@ def test_element_temperature_has_the_mean_consistency_by_hand():
     assert plain == pytest.approx([(900.0 + 2600.0) / 3.0, 1250.0], rel=1e-12)
 
 
+def test_the_couplings_supg_parameter_is_the_forms_on_the_placed_strip():
+    """``ThermalCoupling._element_tau`` (numpy, from the placed vertices and the stream
+    function) against the L2 projection of ``TemperatureField``'s tau CF of the strip's
+    velocity curl psi, element by element, on a strip placed onto a bent, thinning channel
+    (thin top rows: the positions' last digits matter). Measured 1.1e-14."""
+    from hotroll.fem.mesh import mesh_triangles
+    from hotroll.solvers.thermal_coupling import ThermalCoupling
+
+    H, L, U, lc = 0.01, 0.06, 2.0, 0.01
+    strip = plug_strip(H, L, U, lc, refine=1.0)
+    X, Y = strip.reference[:, 0], strip.reference[:, 1]
+    squeeze = 1.0 - 0.3 * np.clip((X - 0.2 * L) / lc, 0.0, 1.0)
+    strip.place(np.stack([X + 0.02 * Y, Y * squeeze + 1e-3 * np.sin(X / L)], -1))
+    bc = ThermalBoundary(1300.0, 350.0, 300.0, 2e4, 20.0, 0.8)
+    field = TemperatureField(strip.mesh, STEEL, bc, inlet="left", top="top", outlet="right")
+    ns = SimpleNamespace(_strip_tris=mesh_triangles(strip.mesh), props=STEEL, bc=bc,
+                         strip=strip, field=field)
+    tau = ThermalCoupling._element_tau(ns)
+    field._tau_gf.Set(field._tau(strip.velocity()))
+    expected = field._tau_gf.vec.FV().NumPy()
+    np.testing.assert_allclose(tau, expected, rtol=1e-13, atol=0.0)
+    strip.mesh.UnsetDeformation()
+
+
 def test_structured_mesh_from_arrays_is_ngsolves():
     """``structured_triangle_mesh`` (arrays) builds the same points, triangles (order and
     orientation) and named boundaries as NGSolve's MakeStructured2DMesh mapped onto the axes."""
