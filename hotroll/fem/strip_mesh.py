@@ -150,3 +150,20 @@ class ThermalStrip:
         """curl psi = (d psi/dy, -d psi/dx), constant on each triangle (m/s); one CF object
         (the field's forms are built once for it)."""
         return self._velocity
+
+    def element_flow(self, triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """numpy twin of ``velocity()`` on the placed strip: per triangle (``triangles``, the
+        mesh's, in element order) the gradients of its barycentric coordinates (ne, 3, 2), its
+        Jacobian determinant (ne) and curl psi (ne, 2). The vertices as the deformed mesh has
+        them (logical + displacement: the thin top rows make the Jacobian sensitive to the
+        last digit of the positions), grad psi from the differences to the third vertex (psi
+        is large, its steps small)."""
+        from hotroll.fem.thermal_field import p1_gradients
+
+        n, d = self.nv, self.disp.vec.FV().NumPy()
+        grads, det = p1_gradients(self.logical_points + np.stack([d[:n], d[n:2 * n]], -1),
+                                  triangles)
+        psi = self.psi.vec.FV().NumPy()[triangles]
+        g = ((psi[:, 0] - psi[:, 2])[:, None] * grads[:, 0]
+             + (psi[:, 1] - psi[:, 2])[:, None] * grads[:, 1])
+        return grads, det, np.stack([g[:, 1], -g[:, 0]], -1)

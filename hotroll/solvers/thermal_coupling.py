@@ -36,7 +36,7 @@ import numpy as np
 
 from hotroll.fem.mesh import mesh_triangles
 from hotroll.fem.strip_mesh import ThermalStrip, layer_thickness
-from hotroll.fem.thermal_field import TemperatureField, p1_gradients, p1_supg_tau
+from hotroll.fem.thermal_field import TemperatureField, p1_supg_load, p1_supg_tau
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 from hotroll.solvers.thermal_feedback import FlowStressFeedback
 
@@ -101,10 +101,13 @@ class ThermalCoupling(FlowStressFeedback):
         self.field = TemperatureField(self.strip.mesh, self.props, self.bc,
                                       inlet="left", top="top", outlet="right",
                                       volume_bonus=0 if self.props.is_constant() else 2)
+        self._flow = None            # the strip's element_flow at the current placement
         if self.props.is_constant():
-            # the velocity curl psi is constant on each triangle: the SUPG parameter in numpy
-            # (the same formula, 1e-15 apart; 0.5 ms against 10 ms for the CF's projection)
+            # the velocity curl psi is constant on each triangle: the SUPG parameter and the
+            # plastic heat's load in numpy (the same formulas, 1e-15 apart; 1 ms against 10 ms
+            # for the CF's projection and 9 ms for the load's assembly)
             self.field.element_tau = self._element_tau
+            self.field.element_load = self._element_load
         self._qs = GridFunction(H1(self.strip.mesh, order=1))
         self._qfs = GridFunction(H1(self.strip.mesh, order=1))
         self._lo, self._hi = Parameter(0.0), Parameter(0.0)    # the contact's x-range
@@ -213,6 +216,7 @@ class ThermalCoupling(FlowStressFeedback):
         # the flux below each strip vertex along its column (ny+1, nx+1), m^2/s
         flux = self.fine_column_flux(both)[::SUBSAMPLES]
         strip.set_stream_function(flux, total=float(flux[-1, 0]))
+        self._flow = None
         self._qs.vec.FV().NumPy()[:] = self._at(self._plastic_cf, self._pts)[:, 0]
         qf = np.zeros(strip.nv)
         qf[self._top_row] = self._at(self._friction_cf, self._pts[self._top_row])[:, 0]
@@ -227,21 +231,26 @@ class ThermalCoupling(FlowStressFeedback):
         self._lo.Set(lo)
         self._hi.Set(hi)
 
+    def _element_flow(self):
+        """The strip's ``element_flow`` (barycentric gradients, Jacobians, curl psi per
+        triangle), once per placement (``_transfer`` clears it)."""
+        if self._flow is None:
+            self._flow = self.strip.element_flow(self._strip_tris)
+        return self._flow
+
     def _element_tau(self) -> np.ndarray:
         """The SUPG parameter of each strip triangle at the current flow (``p1_supg_tau``):
         the velocity curl psi of the P1 stream function on the placed strip."""
-        t, props, T0, strip = self._strip_tris, self.props, self.bc.entry_temperature, self.strip
-        # the vertices as the deformed mesh has them (logical + displacement): its thin top
-        # rows make the Jacobian sensitive to the last digit of the positions
-        n, d = strip.nv, strip.disp.vec.FV().NumPy()
-        grads, det = p1_gradients(strip.logical_points + np.stack([d[:n], d[n:2 * n]], -1), t)
-        psi = strip.psi.vec.FV().NumPy()[t]
-        # grad psi from the differences to the third vertex (psi is large, its steps small)
-        g = ((psi[:, 0] - psi[:, 2])[:, None] * grads[:, 0]
-             + (psi[:, 1] - psi[:, 2])[:, None] * grads[:, 1])
-        v = np.stack([g[:, 1], -g[:, 0]], -1)
-        return p1_supg_tau(grads, det, v, float(props.rho_c_values(T0)),
+        props, T0 = self.props, self.bc.entry_temperature
+        return p1_supg_tau(*self._element_flow(), float(props.rho_c_values(T0)),
                            float(props.k_values(T0)), self.field.supg)
+
+    def _element_load(self, tau: np.ndarray) -> np.ndarray:
+        """int q (w + tau v.grad w) of the plastic power density at the strip's vertices
+        (``p1_supg_load``)."""
+        grads, det, v = self._element_flow()
+        return p1_supg_load(self._strip_tris, grads, det, v, tau, self._qs.vec.FV().NumPy(),
+                            self.strip.nv)
 
     def strip_sources(self):
         """(velocity, plastic density, friction flux, contact) on the strip mesh (the same

@@ -185,13 +185,17 @@ def test_element_temperature_has_the_mean_consistency_by_hand():
     assert plain == pytest.approx([(900.0 + 2600.0) / 3.0, 1250.0], rel=1e-12)
 
 
-def test_the_couplings_supg_parameter_is_the_forms_on_the_placed_strip():
-    """``ThermalCoupling._element_tau`` (numpy, from the placed vertices and the stream
-    function) against the L2 projection of ``TemperatureField``'s tau CF of the strip's
-    velocity curl psi, element by element, on a strip placed onto a bent, thinning channel
-    (thin top rows: the positions' last digits matter). Measured 1.1e-14."""
+def test_the_couplings_supg_parameter_and_load_are_the_forms_on_the_placed_strip():
+    """What the coupling gives ``TemperatureField`` on its strip (constant properties):
+    ``element_flow`` + ``p1_supg_tau`` against the L2 projection of the field's tau CF of the
+    strip's velocity curl psi, element by element, and ``p1_supg_load`` against the assembly
+    of int q (w + tau v.grad w) for a P1 source q, on a strip placed onto a bent, thinning
+    channel (thin top rows: the positions' last digits matter). Measured 1.1e-14 (tau) and
+    3e-15 of the largest load entry."""
+    from ngsolve import CF, H1, GridFunction, LinearForm, dx, grad, x, y
+
     from hotroll.fem.mesh import mesh_triangles
-    from hotroll.solvers.thermal_coupling import ThermalCoupling
+    from hotroll.fem.thermal_field import p1_supg_load, p1_supg_tau
 
     H, L, U, lc = 0.01, 0.06, 2.0, 0.01
     strip = plug_strip(H, L, U, lc, refine=1.0)
@@ -200,12 +204,21 @@ def test_the_couplings_supg_parameter_is_the_forms_on_the_placed_strip():
     strip.place(np.stack([X + 0.02 * Y, Y * squeeze + 1e-3 * np.sin(X / L)], -1))
     bc = ThermalBoundary(1300.0, 350.0, 300.0, 2e4, 20.0, 0.8)
     field = TemperatureField(strip.mesh, STEEL, bc, inlet="left", top="top", outlet="right")
-    ns = SimpleNamespace(_strip_tris=mesh_triangles(strip.mesh), props=STEEL, bc=bc,
-                         strip=strip, field=field)
-    tau = ThermalCoupling._element_tau(ns)
+    t = mesh_triangles(strip.mesh)
+    grads, det, v = strip.element_flow(t)
+    tau = p1_supg_tau(grads, det, v, 7800.0 * 650.0, K)
     field._tau_gf.Set(field._tau(strip.velocity()))
     expected = field._tau_gf.vec.FV().NumPy()
     np.testing.assert_allclose(tau, expected, rtol=1e-13, atol=0.0)
+    q = GridFunction(H1(strip.mesh, order=1))
+    q.Set(1e9 * (1.0 + x / L) * (1.0 + 30.0 * y))
+    w = field.space.TestFunction()
+    f = LinearForm(field.space)
+    f += (q * (w + field._tau_gf * (CF(strip.velocity()) * grad(w)))) * dx
+    f.Assemble()
+    load = f.vec.FV().NumPy()
+    mine = p1_supg_load(t, grads, det, v, expected, q.vec.FV().NumPy(), strip.nv)
+    assert np.max(np.abs(mine - load)) < 1e-13 * np.max(np.abs(load))
     strip.mesh.UnsetDeformation()
 
 
