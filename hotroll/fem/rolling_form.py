@@ -36,7 +36,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from hotroll.fem.forms import NonlinearProblem, norton_hoff_tangent, norton_hoff_volume, one_sided, strain_rate
-from hotroll.fem.primal_dual import FrictionDual, NortonHoffDual
+from hotroll.fem.primal_dual import FrictionDual, NortonHoffDual, TangentPoints
 from hotroll.fem.spaces import taylor_hood
 from hotroll.model.friction import FrictionLaw
 from hotroll.model.geometry import RollPass
@@ -190,6 +190,8 @@ class RollingForm:
         self._dual_cf = self.dual.cf if primal_dual else None
         # ... and the friction's slip (FrictionDual) where the law has a tangent in the slip
         self.friction_dual = FrictionDual(mesh, contact_regions) if primal_dual else None
+        # ... and the tangent's coefficients at those points, interpolated once an iteration
+        self.tangent_points = TangentPoints(mesh) if primal_dual else None
         self.nonlinear = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll,
                                           jacobian=self.jacobian,
                                           pressure_row_scale=self.mu_ref)
@@ -201,6 +203,7 @@ class RollingForm:
     def _prepare_duals(self, iteration: int) -> bool:
         """Newton's hook (``nonlinear.newton``): the two duals at the current iterate."""
         self.dual.prepare(iteration)
+        self.tangent_points.prepare()
         self.friction_dual.prepare(iteration)
         return False
 
@@ -401,8 +404,12 @@ class RollingForm:
         regularisation, and Coulomb's dependence on the multiplier."""
         from ngsolve import dx
 
-        vol = norton_hoff_tangent(self.material, self.m_material, w, u, p, v, q,
-                                  K=self.consistency, dual=self._dual_cf)
+        if self.tangent_points is not None:     # its coefficients at the points (prepare)
+            self.tangent_points.attach(self.material, self.m_material, w, self.consistency)
+            vol = self.tangent_points.tangent(u, p, v, q, self._dual_cf)
+        else:
+            vol = norton_hoff_tangent(self.material, self.m_material, w, u, p, v, q,
+                                      K=self.consistency, dual=self._dual_cf)
         out = (vol * dx(intrules=self.dual.intrules)
                + self.friction_tangent(w, u, v, lam, lam_w) * self.friction_measure()
                + self.boundary(w, w, v, friction=False).Diff(w, u))
