@@ -47,22 +47,17 @@ def norton_hoff_volume(material: NortonHoff, m, u, p, w, v, q, K=1.0):
     return mu * InnerProduct(strain_rate(u), strain_rate(v)) - p * div(v) - q * div(u)
 
 
-def norton_hoff_tangent(material: NortonHoff, m, w, u, p, v, q, K=1.0, dual=None):
+def norton_hoff_tangent(material: NortonHoff, m, w, u, p, v, q, K=1.0):
     """Newton's Jacobian of ``norton_hoff_volume`` at w along (u, p): with mu(edot^2) of (2.21),
     mu [eps(u):eps(v) + (m-1) (2/3) (eps(w):eps(u)) (eps(w):eps(v)) / (eps0^2 + edot(w)^2)]
-    - p div v - q div u; ``dual`` (a 2x2 CF nu ~ eps(w)/E, ``fem/primal_dual.py``): one
-    factor eps(w)/E of the rank-one term replaced by nu, symmetrised."""
-    from ngsolve import InnerProduct, div, sqrt
+    - p div v - q div u (the primal tangent; the primal-dual one, with nu in one factor of
+    the rank-one term, is ``fem/primal_dual.py: TangentPoints.tangent``)."""
+    from ngsolve import InnerProduct, div
 
     ew, eu, ev = strain_rate(w), strain_rate(u), strain_rate(v)
     e2 = edot_squared(ew)
     mu = material.viscosity(e2, m=m, K=K)
-    E2 = material.eps0**2 + e2
-    if dual is None:
-        rank = InnerProduct(ew, eu) * InnerProduct(ew, ev) / E2
-    else:
-        rank = 0.5 * (InnerProduct(ew, eu) * InnerProduct(dual, ev)
-                      + InnerProduct(dual, eu) * InnerProduct(ew, ev)) / sqrt(E2)
+    rank = InnerProduct(ew, eu) * InnerProduct(ew, ev) / (material.eps0**2 + e2)
     return (mu * (InnerProduct(eu, ev) + (m - 1.0) * (2.0 / 3.0) * rank)
             - p * div(v) - q * div(u))
 

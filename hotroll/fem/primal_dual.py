@@ -5,8 +5,8 @@
 The law s = mu(E) eps, E^2 = eps0^2 + 2/3 eps:eps, mu ~ E^(m-1) (2.21), is written with its
 dual nu = eps / E ((2/3) nu:nu < 1) as s = mu E nu and nu E - eps = 0. Newton on the pair,
 nu eliminated, has the primal residual and the primal tangent with one factor eps/E of its
-rank-one term replaced by nu (``forms.norton_hoff_tangent``, symmetrised so that the LDL^T
-factorisation stays usable):
+rank-one term replaced by nu (``TangentPoints.tangent``; the primal one is
+``forms.norton_hoff_tangent``), symmetrised so that the LDL^T factorisation stays usable:
 
     mu [eps(du):eps(v) + (m-1) (2/3) ((eps:eps(du)) (nu:eps(v)) + (nu:eps(du)) (eps:eps(v))) / (2E)]
 
@@ -127,7 +127,8 @@ class TangentPoints:
         self.gf.Interpolate(self._cf)
 
     def tangent(self, u, p, v, q, dual):
-        """``forms.norton_hoff_tangent`` at the interpolated coefficients (dual: nu)."""
+        """The primal-dual tangent (module docstring) at the interpolated coefficients (the
+        dual's nu: ``dual``)."""
         from ngsolve import CF, InnerProduct, div
 
         from hotroll.fem.forms import strain_rate

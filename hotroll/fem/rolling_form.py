@@ -409,7 +409,7 @@ class RollingForm:
             vol = self.tangent_points.tangent(u, p, v, q, self._dual_cf)
         else:
             vol = norton_hoff_tangent(self.material, self.m_material, w, u, p, v, q,
-                                      K=self.consistency, dual=self._dual_cf)
+                                      K=self.consistency)
         out = (vol * dx(intrules=self.dual.intrules)
                + self.friction_tangent(w, u, v, lam, lam_w) * self.friction_measure()
                + self.boundary(w, w, v, friction=False).Diff(w, u))
