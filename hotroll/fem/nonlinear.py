@@ -20,6 +20,7 @@ from typing import Callable, Protocol
 import numpy as np
 
 from hotroll.fem.forms import NonlinearProblem
+from hotroll.fem.krylov import apply_inverse, make_inverse
 
 
 class NonlinearSystem(Protocol):
@@ -116,7 +117,7 @@ def _linear_step(form, problem, ws, stats, residual_ready: bool = False,
         form.Apply(problem.gf.vec, ws.r)
     kept = problem.inverses.get(id(jacobian if jacobian is not None else form))
     if chord and kept is not None:
-        ws.du.data = kept * ws.r
+        apply_inverse(kept, ws.r, ws.du)
         stats.time_linear += time.perf_counter() - t0
         return
     if jacobian is None:
@@ -130,7 +131,7 @@ def _linear_step(form, problem, ws, stats, residual_ready: bool = False,
     if not (cached is not None and _update_and_solve(cached, jacobian, ws, rnorm)):
         for name in problem.linear_solvers:
             try:
-                inv = jacobian.mat.Inverse(problem.freedofs, inverse=name)
+                inv = make_inverse(jacobian.mat, problem.freedofs, name)
             except Exception:  # noqa: BLE001 - NGSolve raises plain exceptions (zero pivot, no MKL)
                 continue
             if _accurate(inv, jacobian, ws, rnorm):
@@ -145,7 +146,7 @@ def _linear_step(form, problem, ws, stats, residual_ready: bool = False,
 
 def _accurate(inv, form, ws, rnorm: float) -> bool:
     """du = inv r, accepted if ||A du - r|| <= 1e-6 ||r|| on the free DOFs."""
-    ws.du.data = inv * ws.r
+    apply_inverse(inv, ws.r, ws.du)
     ws.check.data = form.mat * ws.du - ws.r
     return ws.norm(ws.check) <= 1e-6 * rnorm
 
