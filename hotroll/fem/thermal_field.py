@@ -182,6 +182,8 @@ class TemperatureField:
             a += vol.Compile() * dvol              # one compiled integrand: ~2x faster
             if self.element_load is None:
                 f += (bc.taylor_quinney * CF(heat_density) * (w + supg)).Compile() * dvol
+            # with element_load set, the plastic heat's load is that hook's (its own source,
+            # the coupling's P1 field), not ``heat_density``'s: the coupling passes the same
             self._load_hook = (f, self.element_load) if self.element_load is not None else None
         else:
             ref = bc.entry_temperature

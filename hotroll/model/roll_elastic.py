@@ -134,8 +134,10 @@ def _kinks(theta: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(J, D): the jumps of a piecewise-linear v (zero outside the nodes) and of its slope at
     the nodes. Its Fourier coefficients are then exact sums over the nodes:
     int v e^(-i n t) dt = sum_j (J_j / (i n) + D_j / (i n)^2) e^(-i n theta_j)."""
-    slope = np.diff(v) / np.diff(theta)
     J = np.zeros_like(v)
+    if len(v) < 2:              # one node: a load of zero width, no kinks (zero displacement)
+        return J, np.zeros_like(v)
+    slope = np.diff(v) / np.diff(theta)
     J[0], J[-1] = v[0], -v[-1]
     return J, np.diff(np.concatenate([[0.0], slope, [0.0]]))
 

@@ -190,7 +190,10 @@ class SteadyRun:
             if warm is not None:
                 self._warm(warm, vec, target)
                 try:
-                    self._follow([target], res, record, s.couple_below_warm)
+                    # unilateral contact keeps the cold threshold: its active set would be
+                    # updated from a flow still 0.1 U off (not measured; from the review)
+                    self._follow([target], res, record, s.couple_below_warm
+                                 if self.active is None else s.couple_below)
                 except LinearSolveError:
                     res.stats.append(SolveStats())
                 # a neighbour too far off (or a broken state): start again from cold
@@ -237,8 +240,9 @@ class SteadyRun:
         self._update_strain()
         # one Newton step of the heat equation, as in every coupling round after it: a full
         # solve here (3-4 steps, 96 ms a pass) gave the ten stands the same Newton iterations
-        # per pass (issue 34 session 7)
-        self._update_thermal(newton_steps=1)
+        # per pass (issue 34 session 7); a fresh step, not on the factors a sweep's kept run
+        # holds from its previous case (from the session's review)
+        self._update_thermal(newton_steps=1, fresh=True)
 
     def _cold_start(self) -> None:
         """Reference strip shape, kinematic velocity guess and a_f (3.15) from it."""
@@ -401,13 +405,13 @@ class SteadyRun:
             return 0.0
         return self.strain.transport(self.form.nonlinear.velocity)
 
-    def _update_thermal(self, newton_steps: int = 30) -> float:
+    def _update_thermal(self, newton_steps: int = 30, fresh: bool = False) -> float:
         """The steady temperature of the current flow (``solvers/thermal_coupling.py``; in the fixed
         point one Newton step per update); its largest change over the largest temperature
         (0 for an isothermal run)."""
         if self.thermal is None:
             return 0.0
-        return self.thermal.update_steady(max_iter=newton_steps)
+        return self.thermal.update_steady(max_iter=newton_steps, fresh=fresh)
 
     def _top_parts(self) -> np.ndarray:
         """Part of every top P2 node (vertices, then edge midpoints, as ``Q.top_nodes``):

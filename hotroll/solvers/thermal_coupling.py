@@ -258,17 +258,18 @@ class ThermalCoupling(FlowStressFeedback):
         return self.strip.velocity(), self._qs, self._qfs, self._chi
 
     # --- updates ---------------------------------------------------------------------------
-    def update_steady(self, tol: float = 1e-8, max_iter: int = 30) -> float:
+    def update_steady(self, tol: float = 1e-8, max_iter: int = 30, fresh: bool = False) -> float:
         """The steady temperature of the current flow on the strip mesh, sampled back at the
         mechanics' vertices; returns the largest change of the elements'
         temperatures over the largest. ``max_iter = 1`` inside a fixed point that repeats
         until that change is small: one Newton step from the last temperature, whose error
-        is then of the order of the change squared."""
+        is then of the order of the change squared. ``fresh``: a new solve's first update
+        (a warm start), never on the factors kept from an earlier case."""
         self._transfer()
         # inside the fixed point, once the temperature moves by less than CHORD_BELOW of
         # itself per update, the heat equation's factors are kept (Newton-chord): the flow,
         # and with it the matrix, then changes little between updates
-        chord = max_iter == 1 and self._change < CHORD_BELOW
+        chord = max_iter == 1 and self._change < CHORD_BELOW and not fresh
         self.last = self.field.solve_steady(*self.strip_sources(), tol=tol, max_iter=max_iter,
                                             chord=chord)
         vals = self.field.values

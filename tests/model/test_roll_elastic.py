@@ -290,3 +290,14 @@ def test_the_series_sums_term_by_term(psi):
     _, _, _, _, re_a2, im_b2 = _series(np.array([psi]), STEEL.nu)
     assert re_a2[0] == pytest.approx(np.sum(a * e.real / n**2), abs=1e-6)
     assert im_b2[0] == pytest.approx(np.sum(b * e.imag / n**2), abs=1e-6)
+
+
+def test_a_load_on_one_node_moves_nothing():
+    """One node: a load of zero width (piecewise linear between the nodes, zero outside), so
+    the rim does not move (an FFT of it is zero too); from the session's review, where the
+    kinks' sum saw a jump with no jump back."""
+    disc = ElasticDisc(0.3, STEEL)
+    out = disc.rim(np.array([0.01]), np.array([1e9]), np.array([1e8]),
+                   at=np.linspace(-0.05, 0.05, 11))
+    assert all(np.all(v == 0.0) for v in out.values())
+
