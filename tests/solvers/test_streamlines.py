@@ -67,3 +67,21 @@ def test_streamline_means_scale_exactly_with_the_roll_speed(tmp_path, factor):
         assert np.allclose(prof["inverse_temperature_mean"], 1.0 / 1373.15, rtol=2e-3)
     # the plastic and friction work heat every streamline a little: above the entry's T
     assert np.all(1.0 / np.asarray(slow["inverse_temperature_mean"]) > 1373.15)
+
+
+def test_the_bilinear_interpolation_is_scipys():
+    """``streamlines.bilinear`` against scipy's RegularGridInterpolator (linear) on an uneven
+    grid, at random points inside it, its nodes and its edges (1e-12)."""
+    from scipy.interpolate import RegularGridInterpolator
+
+    from hotroll.solvers.streamlines import bilinear
+
+    rng = np.random.default_rng(0)
+    a = np.cumsum(rng.uniform(0.1, 1.0, 9)) - 0.5
+    b = np.cumsum(rng.uniform(0.01, 0.3, 14))
+    v = rng.standard_normal((len(a), len(b)))
+    pa = np.concatenate([rng.uniform(a[0], a[-1], 200), a, np.full(3, a[-1])])
+    pb = np.concatenate([rng.uniform(b[0], b[-1], 200), rng.uniform(b[0], b[-1], len(a)),
+                         [b[0], b[-1], b[5]]])
+    ref = RegularGridInterpolator((a, b), v)(np.stack([pa, pb], -1))
+    assert np.allclose(bilinear(a, b, v, pa, pb), ref, rtol=0, atol=1e-12)
