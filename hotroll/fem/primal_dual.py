@@ -56,7 +56,7 @@ class NortonHoffDual:
         from ngsolve import CF, GridFunction
         from ngsolve.comp import IntegrationRuleSpace
 
-        space = IntegrationRuleSpace(mesh, order=ORDER)
+        self.space = space = IntegrationRuleSpace(mesh, order=ORDER)
         self.intrules = space.GetIntegrationRules()
         self.eps0 = eps0
         self.gf, self._next = GridFunction(space**3), GridFunction(space**3)
@@ -95,18 +95,18 @@ class NortonHoffDual:
 
 
 class TangentPoints:
-    """The Norton-Hoff tangent's coefficients at the quadrature points of ``mesh`` (the
-    dual's rule): mu, mu (m - 1) 2/3 and a = eps(w)/E, interpolated once per Newton iteration
-    (``prepare``). The Jacobian then reads five numbers a point (``tangent``) where the
-    symbolic form evaluated the law (K(eps, T), m(T), E) for every pair of trial and test
-    components: a thermo-mechanical pass's assembly 36 -> 9 ms on 2 threads, Example 1's 39
-    -> 17 ms, the matrix equal to rounding (4e-12; issue 34 session 7)."""
+    """The Norton-Hoff tangent's coefficients at the quadrature points of the dual's rule:
+    mu, mu (m - 1) 2/3 and a = eps(w)/E, interpolated once per Newton iteration (``prepare``).
+    The Jacobian then reads five numbers a point (``tangent``) where the symbolic form
+    evaluated the law (K(eps, T), m(T), E) for every pair of trial and test components: a
+    thermo-mechanical pass's assembly 36 -> 9 ms on 2 threads, Example 1's 39 -> 17 ms, the
+    matrix equal to rounding (4e-12; issue 34 session 7)."""
 
-    def __init__(self, mesh):
+    def __init__(self, space):
+        """``space``: the dual's ``IntegrationRuleSpace`` (its points are the integrals')."""
         from ngsolve import GridFunction
-        from ngsolve.comp import IntegrationRuleSpace
 
-        self.gf = GridFunction(IntegrationRuleSpace(mesh, order=ORDER) ** 5)
+        self.gf = GridFunction(space**5)
         self._cf = None
 
     def attach(self, material, m, velocity, K) -> None:

@@ -191,7 +191,7 @@ class RollingForm:
         # ... and the friction's slip (FrictionDual) where the law has a tangent in the slip
         self.friction_dual = FrictionDual(mesh, contact_regions) if primal_dual else None
         # ... and the tangent's coefficients at those points, interpolated once an iteration
-        self.tangent_points = TangentPoints(mesh) if primal_dual else None
+        self.tangent_points = TangentPoints(self.dual.space) if primal_dual else None
         self.nonlinear = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll,
                                           jacobian=self.jacobian,
                                           pressure_row_scale=self.mu_ref)

@@ -84,16 +84,6 @@ class ElasticDisc:
             raise ValueError(f"the roll radius must be positive, not {radius} m")
         self.radius, self.elasticity = radius, elasticity
 
-    def responses(self, n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(a_n, b_n) of the module docstring, zero for n < 2 (the supports' modes)."""
-        nu = self.elasticity.nu
-        n = np.asarray(n, dtype=float)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            den = 2.0 * (n**2 - 1.0)
-            a = np.where(n >= 2, ((2 * n - 1) - 2 * (n - 1) * nu) / den, 0.0)
-            b = np.where(n >= 2, (2 * (n - 1) * nu - (n - 2)) / den, 0.0)
-        return a, b
-
     def rim(self, theta: np.ndarray, pressure: np.ndarray, shear: np.ndarray | None = None,
             at: np.ndarray | None = None) -> dict[str, np.ndarray]:
         """The rim's displacement under the nodal tractions (Pa) at the angles ``theta`` (rad,
