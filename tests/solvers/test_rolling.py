@@ -78,6 +78,15 @@ def steady_constrained(tmp_path_factory):
 
 
 @pytest.fixture(scope=shared_scope)
+def steady_constrained_penalty(tmp_path_factory):
+    """The constrained steady solve with the report's penalty contact: the transient's model
+    (``settled_constrained``), for the two to be compared like with like."""
+    return _run(tmp_path_factory, "steady_constrained_penalty", **{
+        "solver.method": "steady", "friction.a_f": 3.0, "plate.free_surface": "constrained",
+        "contact.method": "penalty"})
+
+
+@pytest.fixture(scope=shared_scope)
 def steady_slipping(tmp_path_factory):
     return _run(tmp_path_factory, "steady_af3", **{"solver.method": "steady",
                                                      "friction.a_f": 3.0})
@@ -315,11 +324,13 @@ def test_free_exit_surface_penalises_vertical_motion_only():
     # docs/validation/contact.md
     (("steady_slipping", "settled"), {"force": 0.02, "torque": 0.04, "slip": 6e-3,
                                       "angle": 0.03, "plastic": 0.08}),
-    # measured: force -8 %, torque -2 %, slip -0.06 points, angle +0.008 rad, plastic power
-    # -5.5 %; the transient's flat tops end at the discrete first contact node, 1 h = 0.02 m
-    # wide here
+    # both with the report's penalty contact (the steady solver's default, exact contact, is
+    # another model: torque -11 % against this transient); measured (steady against
+    # transient, 9369641): force +8.3 %, torque +1.6 %, slip +0.08 points, angle -0.008 rad,
+    # plastic power +5.4 %; the transient's flat tops end at the discrete first contact
+    # node, 1 h = 0.02 m wide here
     # (the report's scheme to steady state with constrained tops: 25 s, in -m slow)
-    pytest.param(("steady_constrained", "settled_constrained"),
+    pytest.param(("steady_constrained_penalty", "settled_constrained"),
                  {"force": 0.12, "torque": 0.05, "slip": 3e-3, "angle": 0.015, "plastic": 0.08},
                  marks=pytest.mark.slow),
 ])
