@@ -208,6 +208,13 @@ class NonlinearProblem:
         lam = vec.FV().NumPy()[r][self.free_mask[r]]
         return float(np.max(np.abs(lam))) if lam.size else 0.0
 
+    @property
+    def p2_nodes(self) -> P2Nodes:
+        """The velocity's P2 nodes (vertices, edge midpoints) and nodal values."""
+        if self._velocity_nodes is None:
+            raise ValueError("the velocity space is not P2")
+        return self._velocity_nodes
+
     @cached_property
     def _velocity_nodes(self):
         try:

@@ -26,27 +26,59 @@ NAME = "sparsecholesky+gmres"
 
 class PreconditionedGMRES:
     """``Update()`` refactorises the preconditioner for the matrix's new values (the same
-    sparsity); ``solve(r, out)``: out = A^{-1} r by GMRES on the free DOFs."""
+    sparsity); ``solve(r, out)``: out = A^{-1} r by GMRES on the free DOFs.
+
+    Where the matrix is symmetric (GMRES's last solve took one iteration: the viscoplastic
+    and Tresca-free passes), the factorisation is applied directly and GMRES runs only if the
+    residual of that is above ``TOL`` of r: GMRES's one iteration applies the factors twice
+    (issue 34 session 8)."""
 
     def __init__(self, mat, freedofs):
+        import numpy as np
+
         self.mat = mat
         self.pre = mat.Inverse(freedofs, inverse="sparsecholesky")
         self.iterations = 0
+        self.direct = False           # try the factors alone first (the last solve's hint)
+        self._free = np.array(list(freedofs), dtype=bool)
+        self._res = None
 
     def Update(self) -> None:                      # noqa: N802 - NGSolve's inverse interface
         self.pre.Update()
 
+    def _direct(self, r, out) -> bool:
+        """out = the factors applied to r; True if A out = r to TOL (free DOFs)."""
+        import numpy as np
+
+        out.data = self.pre * r
+        if self._res is None:
+            self._res = r.CreateVector()
+        self._res.data = self.mat * out - r
+        free = self._free
+        res, rhs = self._res.FV().NumPy()[free], r.FV().NumPy()[free]
+        return bool(np.linalg.norm(res) <= TOL * np.linalg.norm(rhs))
+
     def solve(self, r, out) -> None:
         from ngsolve.krylovspace import GMResSolver
 
+        started = False
+        if self.direct:
+            if self._direct(r, out):
+                self.iterations = 0
+                return
+            started = True            # GMRES from there
         solver = GMResSolver(mat=self.mat, pre=self.pre, tol=TOL, maxiter=MAX_STEPS,
                              printrates=False)
         try:
-            out.data = solver.Solve(rhs=r)
+            if started:
+                out.data = solver.Solve(rhs=r, sol=out, initialize=False)
+            else:
+                out.data = solver.Solve(rhs=r)
         except Exception:  # noqa: BLE001 - NGSolve raises plain exceptions (a singular
             # Hessenberg system on a broken state): no solution, the accuracy test fails
             out.FV().NumPy()[:] = float("nan")
         self.iterations = solver.iterations
+        self.direct = self.iterations <= 1
 
 
 def apply_inverse(inv, r, out) -> None:

@@ -53,3 +53,45 @@ class P2Nodes:
         vert, mid = vals[:, : self.nv], vals[:, self.nv:]
         bubble = (mid - 0.5 * (vert[:, self.ea] + vert[:, self.eb])) / BUBBLE_MID
         return np.concatenate([vert, bubble], axis=1).reshape(-1)
+
+    def at_points(self, triangles: np.ndarray, elem: np.ndarray,
+                  local: np.ndarray) -> "P2PointValues":
+        """The field's values at points given by element number and NGSolve's local
+        coordinates (``fem/point_search.py``; ``triangles``: the elements' vertices, as
+        ``mesh.mesh_triangles``), as a weighted sum of nodal values."""
+        return P2PointValues(self, triangles, elem, local)
+
+
+class P2PointValues:
+    """A P2 field at fixed points of its mesh (the thermal strip's column points): P2 is the
+    Lagrange interpolant of its 6 nodal values on each triangle, u = sum_i l_i (2 l_i - 1) u_i
+    + sum_e 4 l_i l_j u_e (l the barycentric coordinates, NGSolve's local x, y and 1 - x - y
+    of vertices 0, 1, 2), so the values are 6 nodal values a point, weighted; 10x cheaper
+    than NGSolve's evaluation point by point (issue 34 session 8; equal to 1e-15, tested)."""
+
+    def __init__(self, nodes: P2Nodes, triangles: np.ndarray, elem: np.ndarray,
+                 local: np.ndarray):
+        nv = nodes.nv
+        key = np.sort(np.stack([nodes.ea, nodes.eb], -1), axis=1)
+        key = key[:, 0] * nv + key[:, 1]
+        order = np.argsort(key)
+        T = np.asarray(triangles, dtype=int)[np.asarray(elem, dtype=int)]
+
+        def edge(i, j):
+            k = np.minimum(T[:, i], T[:, j]) * nv + np.maximum(T[:, i], T[:, j])
+            return nv + order[np.searchsorted(key[order], k)]
+
+        l0, l1 = local[:, 0], local[:, 1]
+        lam = np.stack([l0, l1, 1.0 - l0 - l1], -1)
+        self.nodes = nodes
+        self.index = np.concatenate([T, np.stack([edge(0, 1), edge(1, 2), edge(0, 2)], -1)],
+                                    axis=1)
+        self.weight = np.concatenate([lam * (2.0 * lam - 1.0),
+                                      4.0 * np.stack([lam[:, 0] * lam[:, 1],
+                                                      lam[:, 1] * lam[:, 2],
+                                                      lam[:, 0] * lam[:, 2]], -1)], axis=1)
+
+    def __call__(self, coefficients: np.ndarray) -> np.ndarray:
+        """(N, 2): both components at the points, from the field's coefficient vector."""
+        vals = self.nodes.values(coefficients)
+        return np.einsum("cnk,nk->nc", vals[:, self.index], self.weight)

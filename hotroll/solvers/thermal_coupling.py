@@ -35,6 +35,7 @@ import math
 import numpy as np
 
 from hotroll.fem.mesh import mesh_triangles
+from hotroll.fem.point_search import mesh_points
 from hotroll.fem.strip_mesh import ThermalStrip, layer_thickness
 from hotroll.fem.thermal_field import TemperatureField, p1_supg_load, p1_supg_tau
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
@@ -88,7 +89,7 @@ class ThermalCoupling(FlowStressFeedback):
     def attach(self, form, disp, top) -> None:
         """The form whose flow heats the strip (built with ``consistency()``), the mechanics'
         displacement GridFunction and its ``TopBoundary``: builds the strip mesh."""
-        from ngsolve import CF, H1, GridFunction, IfPos, Parameter, x, y
+        from ngsolve import H1, GridFunction, IfPos, Parameter, x
 
         self.form, self._disp, self._top = form, disp, top
         T0 = self.bc.entry_temperature
@@ -120,6 +121,12 @@ class ThermalCoupling(FlowStressFeedback):
         strip = self.strip
         self._fine, col_ref = self._column_points()
         self._col_pts = self._find(col_ref)
+        # their positions and velocities from the P2 fields' nodal values (spaces.P2PointValues:
+        # 0.5 ms an update where NGSolve's evaluation at the 16k points took 5.5)
+        self._col_ref = col_ref
+        self._col_p2 = form.nonlinear.p2_nodes.at_points(
+            mesh_triangles(self.mesh), self._col_pts["nr"],
+            np.stack([self._col_pts["x"], self._col_pts["y"]], -1))
         self._pts = self._col_pts.reshape(len(self._fine), -1)[::SUBSAMPLES].ravel()
         self._top_row = np.arange(strip.nv - strip.shape[1], strip.nv)
         # the mechanics element of each strip vertex; the elements with none take the
@@ -136,9 +143,7 @@ class ThermalCoupling(FlowStressFeedback):
         self._strip_tris = mesh_triangles(self.strip.mesh)
         # the CFs evaluated at every update, built and compiled once (they read GridFunctions
         # and Parameters): 2-3x faster to evaluate than the plain expression trees
-        u = form.nonlinear.velocity
         plastic, friction = self.sources()
-        self._column_cf = CF((x, y, u[0], u[1])).Compile()
         self._plastic_cf, self._friction_cf = plastic.Compile(), friction.Compile()
 
     def reset(self, T: float) -> None:
@@ -158,14 +163,10 @@ class ThermalCoupling(FlowStressFeedback):
 
     # --- mechanics -> strip ----------------------------------------------------------------
     def _find(self, ref: np.ndarray):
-        """Mesh points of the mechanics mesh at reference positions (N, 2): searched in the
-        undeformed mesh (NGSolve's point search ignores the deformation); a CF evaluated at
-        them later is evaluated on the deformed mesh, at their current positions."""
-        self.mesh.UnsetDeformation()
-        try:
-            pts = self.mesh(ref[:, 0], ref[:, 1])
-        finally:
-            self.mesh.SetDeformation(self._disp)
+        """Mesh points of the mechanics mesh at reference positions (N, 2): found in the
+        undeformed mesh (``fem/point_search.py``); a CF evaluated at them later is evaluated
+        on the deformed mesh, at their current positions."""
+        pts = mesh_points(self.mesh, ref[:, 0], ref[:, 1], self._disp)
         missing = int(np.sum(np.asarray(pts["nr"]) < 0))
         if missing:
             raise RuntimeError(f"{missing} strip points outside the mechanics mesh")
@@ -191,7 +192,9 @@ class ThermalCoupling(FlowStressFeedback):
         """(x, y, v_x, v_y) at every fine column point, (len(_fine), nx+1, 4): current
         positions (m) and the mechanics' velocity (m/s)."""
         shape = (len(self._fine), len(self.strip.X), 4)
-        return self._at(self._column_cf, self._col_pts).reshape(shape)
+        pos = self._col_ref + self._col_p2(self._disp.vec.FV().NumPy())
+        vel = self._col_p2(self.form.nonlinear.gf.vec.FV().NumPy())
+        return np.concatenate([pos, vel], axis=1).reshape(shape)
 
     def fine_column_flux(self, both: np.ndarray | None = None) -> np.ndarray:
         """The flux below every fine column point (``_fine`` eta, all columns), m^2/s: int v.n

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hotroll.fem.free_surface import StripShape, roll_height
+from hotroll.fem.point_search import mesh_points
 
 
 def _knots(run) -> np.ndarray:
@@ -131,12 +132,7 @@ class SimilarPass:
 
     def _find(self, xs: np.ndarray, ys: np.ndarray):
         """Mesh points of the solved pass's mesh (searched undeformed, evaluated deformed)."""
-        mesh = self.run.mesh
-        mesh.UnsetDeformation()
-        try:
-            pts = mesh(xs, ys)
-        finally:
-            mesh.SetDeformation(self.run.disp)
+        pts = mesh_points(self.run.mesh, xs, ys, self.run.disp)     # fem/point_search.py
         missing = int(np.sum(np.asarray(pts["nr"]) < 0))
         if missing:
             raise ValueError(f"similar-pass start: {missing} nodes outside the solved mesh")
