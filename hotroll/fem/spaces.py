@@ -83,15 +83,18 @@ class P2PointValues:
 
         l0, l1 = local[:, 0], local[:, 1]
         lam = np.stack([l0, l1, 1.0 - l0 - l1], -1)
+        from scipy.sparse import csr_matrix
+
         self.nodes = nodes
-        self.index = np.concatenate([T, np.stack([edge(0, 1), edge(1, 2), edge(0, 2)], -1)],
-                                    axis=1)
-        self.weight = np.concatenate([lam * (2.0 * lam - 1.0),
-                                      4.0 * np.stack([lam[:, 0] * lam[:, 1],
-                                                      lam[:, 1] * lam[:, 2],
-                                                      lam[:, 0] * lam[:, 2]], -1)], axis=1)
+        index = np.concatenate([T, np.stack([edge(0, 1), edge(1, 2), edge(0, 2)], -1)], axis=1)
+        weight = np.concatenate([lam * (2.0 * lam - 1.0),
+                                 4.0 * np.stack([lam[:, 0] * lam[:, 1], lam[:, 1] * lam[:, 2],
+                                                 lam[:, 0] * lam[:, 2]], -1)], axis=1)
+        n = len(T)
+        #: (points, nodes): the 6 weights of each point (a sparse product: 0.1 ms for 16k)
+        self.matrix = csr_matrix((weight.ravel(), index.ravel(), np.arange(0, 6 * n + 1, 6)),
+                                 shape=(n, nodes.nv + len(nodes.ea)))
 
     def __call__(self, coefficients: np.ndarray) -> np.ndarray:
         """(N, 2): both components at the points, from the field's coefficient vector."""
-        vals = self.nodes.values(coefficients)
-        return np.einsum("cnk,nk->nc", vals[:, self.index], self.weight)
+        return self.matrix @ self.nodes.values(coefficients).T

@@ -158,7 +158,7 @@ class ThermalStrip:
         them (logical + displacement: the thin top rows make the Jacobian sensitive to the
         last digit of the positions), grad psi from the differences to the third vertex (psi
         is large, its steps small)."""
-        from hotroll.fem.thermal_field import p1_gradients
+        from hotroll.fem.heat_p1 import p1_gradients
 
         n, d = self.nv, self.disp.vec.FV().NumPy()
         grads, det = p1_gradients(self.logical_points + np.stack([d[:n], d[n:2 * n]], -1),

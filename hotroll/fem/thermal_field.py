@@ -51,6 +51,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from hotroll.fem.heat_p1 import SteadyP1Operator
 from hotroll.fem.nonlinear import newton
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 
@@ -92,6 +93,11 @@ class TemperatureField:
         #: it). Only with ``element_tau``'s conditions and a P1 source on this mesh; set
         #: before the first steady solve (the forms are built without that term then)
         self.element_load = None
+        #: None, or a callable giving (triangles, barycentric gradients, Jacobian determinants,
+        #: velocity per triangle) of the velocity's triangles: with ``element_tau``'s
+        #: conditions the steady residual's and Jacobian's volume terms are then numpy's
+        #: (``fem/heat_p1.SteadyP1Operator``; 1e-13 of NGSolve's, ~5x cheaper)
+        self.element_flow = None
         self._load_hook = None       # (the steady f built without its volume source, the hook)
         self._steady = None          # (inputs, forms, tau) of the last steady solve: reused
         self._system = None          # the HeatSystem of the last solve (its kept factors)
@@ -179,7 +185,10 @@ class TemperatureField:
             a += H * (v * specialcf.normal(2)) * w * ds(self.outlet, bonus_intorder=self._bonus_ds)
             if self.order > 1:
                 vol = vol - k * Trace(u.Operator("hesse")) * supg
-            a += vol.Compile() * dvol              # one compiled integrand: ~2x faster
+            numpy_volume = (self.element_flow is not None and self.order == 1
+                            and p.is_constant())
+            if not numpy_volume:
+                a += vol.Compile() * dvol          # one compiled integrand: ~2x faster
             if self.element_load is None:
                 f += (bc.taylor_quinney * CF(heat_density) * (w + supg)).Compile() * dvol
             # with element_load set, the plastic heat's load is that hook's (its own source,
@@ -195,6 +204,14 @@ class TemperatureField:
             # varies within an element (a vertex rule put 10 % of it in the wrong place)
             f += bc.taylor_quinney * CF(heat_density) * w * dvol
         self._top_terms(u, w, a, f, friction_flux, contact, lumped=dt is not None and self.lumped)
+        if dt is None and numpy_volume:
+            # the volume terms in numpy (fem/heat_p1.py): the form keeps the boundary terms
+            pattern = BilinearForm(self.space)
+            pattern += u * w * dx
+            T0 = bc.entry_temperature
+            a = SteadyP1Operator(a, pattern, self.element_flow,
+                                 lambda: self._tau_gf.vec.FV().NumPy(),
+                                 float(p.k_values(T0)), float(p.rho_c_values(T0)), T0)
         return a, f
 
     def _refresh(self, tau: bool = True) -> None:
@@ -387,50 +404,6 @@ class TemperatureField:
         ycoord.Set(y, dual=True)                  # nodal values: the current (deformed) y
         best = max(verts, key=lambda v: ycoord.vec[v])
         return float(self.values[self.space.GetDofNrs(NodeId(VERTEX, best))[0]])
-
-
-def p1_gradients(points: np.ndarray, triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The gradients of the barycentric coordinates of each triangle (ne, 3, 2) and the
-    Jacobian determinant of its map from the reference triangle (ne; twice the signed area)."""
-    p0, p1, p2 = (points[triangles[:, i]] for i in range(3))
-    a11, a21 = p0[:, 0] - p2[:, 0], p0[:, 1] - p2[:, 1]      # J = [p0 - p2, p1 - p2]
-    a12, a22 = p1[:, 0] - p2[:, 0], p1[:, 1] - p2[:, 1]
-    det = a11 * a22 - a12 * a21
-    g0 = np.stack([a22, -a12], -1) / det[:, None]           # rows of J^-1
-    g1 = np.stack([-a21, a11], -1) / det[:, None]
-    return np.stack([g0, g1, -(g0 + g1)], 1), det
-
-
-def p1_supg_tau(grads: np.ndarray, det: np.ndarray, velocity: np.ndarray, rho_c: float,
-                k: float, supg: float = 1.0) -> np.ndarray:
-    """``TemperatureField._tau`` per P1 triangle (s) for a velocity constant on each (ne, 2)
-    and constant properties: h_v = 2 |v| / sum_i |v.grad N_i| (the mesh size sqrt|det J|
-    where v = 0), Pe = |v| h_v rho c / (2 k), tau = supg h_v / (2 |v|) (coth Pe - 1/Pe), its
-    series below Pe = 1e-2; ``grads, det`` of ``p1_gradients``."""
-    b = np.einsum("eij,ej->ei", grads, velocity)            # v.grad N_i
-    total = np.abs(b).sum(axis=1)
-    speed = np.sqrt(np.einsum("ej,ej->e", velocity, velocity) + 1e-300)
-    moving = total - 1e-300 > 0.0
-    h = np.where(moving, 2.0 * speed / np.where(moving, total, 1.0), np.sqrt(np.abs(det)))
-    pe = speed * h * rho_c / (2.0 * k)
-    big = np.where(pe - 1e-2 > 0.0, pe, 1e-2)
-    e = np.exp(-2.0 * big)
-    xi = np.where(pe - 1e-2 > 0.0, (1.0 + e) / (1.0 - e) - 1.0 / big, pe / 3.0 - pe ** 3 / 45.0)
-    return supg * h / (2.0 * speed) * xi
-
-
-def p1_supg_load(triangles: np.ndarray, grads: np.ndarray, det: np.ndarray,
-                 velocity: np.ndarray, tau: np.ndarray, q: np.ndarray, ndof: int) -> np.ndarray:
-    """int q (w + tau v.grad w) dx for each P1 hat function w (ndof, the vertices), q P1
-    (vertex values), v and tau constant per triangle: on a triangle of area A, int q N_i =
-    A (q_i + sum q) / 12 and int q tau v.grad N_i = tau (v.grad N_i) A sum q / 3 (what the
-    order-2 rule integrates exactly); ``grads, det`` of ``p1_gradients``."""
-    qv = q[triangles]
-    total = qv.sum(axis=1)
-    b = np.einsum("eij,ej->ei", grads, velocity)            # v.grad N_i
-    area = 0.5 * np.abs(det)
-    local = area[:, None] * ((qv + total[:, None]) / 12.0 + (tau * total / 3.0)[:, None] * b)
-    return np.bincount(triangles.ravel(), local.ravel(), minlength=ndof)
 
 
 class HeatSystem:

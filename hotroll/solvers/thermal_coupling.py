@@ -34,10 +34,11 @@ import math
 
 import numpy as np
 
+from hotroll.fem.heat_p1 import p1_supg_load, p1_supg_tau
 from hotroll.fem.mesh import mesh_triangles
 from hotroll.fem.point_search import mesh_points
 from hotroll.fem.strip_mesh import ThermalStrip, layer_thickness
-from hotroll.fem.thermal_field import TemperatureField, p1_supg_load, p1_supg_tau
+from hotroll.fem.thermal_field import TemperatureField
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 from hotroll.solvers.thermal_feedback import FlowStressFeedback
 
@@ -109,6 +110,8 @@ class ThermalCoupling(FlowStressFeedback):
             # for the CF's projection and 9 ms for the load's assembly)
             self.field.element_tau = self._element_tau
             self.field.element_load = self._element_load
+            # ... and the residual's and Jacobian's volume terms (fem/heat_p1.py)
+            self.field.element_flow = lambda: (self._strip_tris, *self._element_flow())
         self._qs = GridFunction(H1(self.strip.mesh, order=1))
         self._qfs = GridFunction(H1(self.strip.mesh, order=1))
         self._lo, self._hi = Parameter(0.0), Parameter(0.0)    # the contact's x-range

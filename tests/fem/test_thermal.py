@@ -391,8 +391,8 @@ def test_the_numpy_supg_parameter_is_the_projection_of_the_forms(conductivity):
     differ)."""
     from ngsolve import CF, H1, GridFunction, VectorH1, grad, x, y
 
+    from hotroll.fem.heat_p1 import p1_gradients, p1_supg_tau
     from hotroll.fem.mesh import mesh_triangles
-    from hotroll.fem.thermal_field import p1_gradients, p1_supg_tau
 
     mesh = rectangle(0.03, 0.01, 12, 6, grading=2.0)
     disp = GridFunction(VectorH1(mesh, order=1))

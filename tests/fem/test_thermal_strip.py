@@ -194,8 +194,8 @@ def test_the_couplings_supg_parameter_and_load_are_the_forms_on_the_placed_strip
     3e-15 of the largest load entry."""
     from ngsolve import CF, H1, GridFunction, LinearForm, dx, grad, x, y
 
+    from hotroll.fem.heat_p1 import p1_supg_load, p1_supg_tau
     from hotroll.fem.mesh import mesh_triangles
-    from hotroll.fem.thermal_field import p1_supg_load, p1_supg_tau
 
     H, L, U, lc = 0.01, 0.06, 2.0, 0.01
     strip = plug_strip(H, L, U, lc, refine=1.0)
