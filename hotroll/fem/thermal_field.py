@@ -93,10 +93,11 @@ class TemperatureField:
         #: it). Only with ``element_tau``'s conditions and a P1 source on this mesh; set
         #: before the first steady solve (the forms are built without that term then)
         self.element_load = None
-        #: None, or a callable giving (triangles, barycentric gradients, Jacobian determinants,
-        #: velocity per triangle) of the velocity's triangles: with ``element_tau``'s
+        #: None, or (the velocity CF it describes, a callable giving (triangles, barycentric
+        #: gradients, Jacobian determinants, velocity per triangle)): with ``element_tau``'s
         #: conditions the steady residual's and Jacobian's volume terms are then numpy's
-        #: (``fem/heat_p1.SteadyP1Operator``; 1e-13 of NGSolve's, ~5x cheaper)
+        #: (``fem/heat_p1.SteadyP1Operator``; 1e-13 of NGSolve's, ~5x cheaper) for a solve
+        #: with that very velocity object; with any other, NGSolve's (from the review)
         self.element_flow = None
         self._load_hook = None       # (the steady f built without its volume source, the hook)
         self._steady = None          # (inputs, forms, tau) of the last steady solve: reused
@@ -186,7 +187,7 @@ class TemperatureField:
             if self.order > 1:
                 vol = vol - k * Trace(u.Operator("hesse")) * supg
             numpy_volume = (self.element_flow is not None and self.order == 1
-                            and p.is_constant())
+                            and p.is_constant() and velocity is self.element_flow[0])
             if not numpy_volume:
                 a += vol.Compile() * dvol          # one compiled integrand: ~2x faster
             if self.element_load is None:
@@ -209,7 +210,7 @@ class TemperatureField:
             pattern = BilinearForm(self.space)
             pattern += u * w * dx
             T0 = bc.entry_temperature
-            a = SteadyP1Operator(a, pattern, self.element_flow,
+            a = SteadyP1Operator(a, pattern, self.element_flow[1],
                                  lambda: self._tau_gf.vec.FV().NumPy(),
                                  float(p.k_values(T0)), float(p.rho_c_values(T0)), T0)
         return a, f

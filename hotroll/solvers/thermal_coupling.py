@@ -111,7 +111,8 @@ class ThermalCoupling(FlowStressFeedback):
             self.field.element_tau = self._element_tau
             self.field.element_load = self._element_load
             # ... and the residual's and Jacobian's volume terms (fem/heat_p1.py)
-            self.field.element_flow = lambda: (self._strip_tris, *self._element_flow())
+            self.field.element_flow = (self.strip.velocity(),
+                                       lambda: (self._strip_tris, *self._element_flow()))
         self._qs = GridFunction(H1(self.strip.mesh, order=1))
         self._qfs = GridFunction(H1(self.strip.mesh, order=1))
         self._lo, self._hi = Parameter(0.0), Parameter(0.0)    # the contact's x-range

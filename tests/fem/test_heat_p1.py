@@ -81,3 +81,17 @@ def test_the_same_steady_temperature(solved):
         out.append(f.values.copy())
     f._steady, f._system = None, None
     assert np.max(np.abs(out[0] - out[1])) < 1e-9 * np.max(out[1])
+
+
+def test_another_velocity_takes_ngsolves_forms(solved):
+    """The numpy volume terms describe the strip's own velocity: a solve given another
+    velocity object (twice the strip's) is assembled by NGSolve, not by them (from the
+    session's review: they had ignored the argument)."""
+    from hotroll.fem.heat_p1 import SteadyP1Operator
+
+    th = solved.thermal
+    v, q, qf, chi = th.strip_sources()
+    a, _ = th.field._forms(2.0 * v, q, qf, chi)
+    assert not isinstance(a, SteadyP1Operator)
+    a, _ = th.field._forms(v, q, qf, chi)
+    assert isinstance(a, SteadyP1Operator)

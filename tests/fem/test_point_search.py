@@ -56,8 +56,9 @@ def test_the_same_points_as_ngsolves_search(graded):
     assert (elem[:20000] == theirs["nr"][:20000])[inside[:20000]].mean() > 0.999
 
 def test_a_field_evaluated_on_the_points_found(graded):
-    """A continuous P2 field (NGSolve's evaluation) is the same on either search's points,
-    on the edges too, where the two may pick different triangles."""
+    """A continuous P2 field (NGSolve's evaluation) is the same on either search's points
+    inside the triangles (the edge midpoints go to NGSolve's search in both: their part of
+    the check compares NGSolve with itself; the band next to the edges is the next test's)."""
     from ngsolve import H1, GridFunction, sin, x, y
 
     mesh = graded
@@ -113,3 +114,27 @@ def test_p2_values_at_points_are_ngsolves(graded):
     ours = values(gf.vec.FV().NumPy())
     theirs = np.asarray(gf(mp)).reshape(-1, 2)
     assert np.max(np.abs(ours - theirs)) < 1e-12 * np.max(np.abs(theirs))
+
+
+def test_near_an_edge_ngsolves_triangle_is_kept(graded):
+    """Points 1.2e-6 and 3e-6 (barycentric) inside each triangle, next to one of its edges:
+    NGSolve's own tolerance gives some of them to the neighbour (1 % at 1.2e-6, measured);
+    mesh_points must give NGSolve's triangle for every one (a strain rate jumps there)."""
+    from hotroll.fem.mesh import mesh_triangles
+
+    mesh = graded
+    mesh.UnsetDeformation()
+    pts = np.asarray(mesh.ngmesh.Coordinates())[:, :2]
+    tris = mesh_triangles(mesh)
+    rng = np.random.default_rng(5)
+    for eps in (1.2e-6, 3e-6):
+        lam = np.empty((len(tris), 3))
+        edge = rng.integers(0, 3, len(tris))
+        split = 0.2 + 0.6 * rng.random(len(tris))
+        rows = np.arange(len(tris))
+        lam[rows, edge] = eps
+        lam[rows, (edge + 1) % 3] = (1 - eps) * split
+        lam[rows, (edge + 2) % 3] = (1 - eps) * (1 - split)
+        xy = np.einsum("nk,nkd->nd", lam, pts[tris])
+        theirs = mesh(xy[:, 0], xy[:, 1])["nr"]
+        assert np.array_equal(PS.mesh_points(mesh, xy[:, 0], xy[:, 1])["nr"], theirs)
