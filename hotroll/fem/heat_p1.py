@@ -82,7 +82,8 @@ class SteadyP1Operator:
     def mat(self):
         return self.pattern.mat
 
-    def _parts(self, T: np.ndarray):
+    def _parts(self):
+        """(triangles, barycentric gradients, areas, v.grad N_i) at the current placement."""
         tris, grads, det, v = self.flow()
         area = 0.5 * np.abs(det)
         b = np.einsum("eij,ej->ei", grads, v)                  # v.grad N_i
@@ -91,7 +92,7 @@ class SteadyP1Operator:
     def Apply(self, vec, out) -> None:                  # noqa: N802 - NGSolve's form interface
         self.boundary.Apply(vec, out)
         T = vec.FV().NumPy()
-        tris, grads, area, b = self._parts(T)
+        tris, grads, area, b = self._parts()
         Te = T[tris]
         grad_T = np.einsum("eij,ei->ej", grads, Te)
         vgT = np.einsum("ei,ei->e", b, Te)
@@ -103,8 +104,7 @@ class SteadyP1Operator:
 
     def AssembleLinearization(self, vec) -> None:       # noqa: N802
         self.boundary.AssembleLinearization(vec)
-        T = vec.FV().NumPy()
-        tris, grads, area, b = self._parts(T)
+        tris, grads, area, b = self._parts()
         if self._where is None:
             self._where = self._positions(tris)
         rc, tau = self.rho_c, self.tau()
@@ -126,9 +126,9 @@ class SteadyP1Operator:
         tris = np.asarray(tris, dtype=np.int64)
         rows = np.repeat(tris, 3, axis=1).ravel()
         cols = np.tile(tris, (1, 3)).ravel()
-        vol = np.searchsorted(keys, rows * n + cols)
-        bnd = np.searchsorted(keys, _keys(self.boundary.mat))
-        for pos, want in ((vol, rows * n + cols), (bnd, _keys(self.boundary.mat))):
+        vol_keys, bnd_keys = rows * n + cols, _keys(self.boundary.mat)
+        vol, bnd = np.searchsorted(keys, vol_keys), np.searchsorted(keys, bnd_keys)
+        for pos, want in ((vol, vol_keys), (bnd, bnd_keys)):
             if np.any(pos >= len(keys)) or np.any(keys[np.minimum(pos, len(keys) - 1)] != want):
                 raise RuntimeError("the pattern form's matrix lacks a coupling of the heat form")
         return vol, bnd

@@ -54,12 +54,6 @@ class P2Nodes:
         bubble = (mid - 0.5 * (vert[:, self.ea] + vert[:, self.eb])) / BUBBLE_MID
         return np.concatenate([vert, bubble], axis=1).reshape(-1)
 
-    def at_points(self, triangles: np.ndarray, elem: np.ndarray,
-                  local: np.ndarray) -> "P2PointValues":
-        """The field's values at points given by element number and NGSolve's local
-        coordinates (``fem/point_search.py``; ``triangles``: the elements' vertices, as
-        ``mesh.mesh_triangles``), as a weighted sum of nodal values."""
-        return P2PointValues(self, triangles, elem, local)
 
 
 class P2PointValues:

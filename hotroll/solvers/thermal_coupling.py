@@ -37,6 +37,7 @@ import numpy as np
 from hotroll.fem.heat_p1 import p1_supg_load, p1_supg_tau
 from hotroll.fem.mesh import mesh_triangles
 from hotroll.fem.point_search import mesh_points
+from hotroll.fem.spaces import P2PointValues
 from hotroll.fem.strip_mesh import ThermalStrip, layer_thickness
 from hotroll.fem.thermal_field import TemperatureField
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
@@ -128,16 +129,17 @@ class ThermalCoupling(FlowStressFeedback):
         # their positions and velocities from the P2 fields' nodal values (spaces.P2PointValues:
         # 0.5 ms an update where NGSolve's evaluation at the 16k points took 5.5)
         self._col_ref = col_ref
-        self._col_p2 = form.nonlinear.p2_nodes.at_points(
-            mesh_triangles(self.mesh), self._col_pts["nr"],
-            np.stack([self._col_pts["x"], self._col_pts["y"]], -1))
+        mech_tris = mesh_triangles(self.mesh)
+        self._col_p2 = P2PointValues(form.nonlinear.p2_nodes, mech_tris,
+                                     self._col_pts["nr"],
+                                     np.stack([self._col_pts["x"], self._col_pts["y"]], -1))
         self._pts = self._col_pts.reshape(len(self._fine), -1)[::SUBSAMPLES].ravel()
         self._top_row = np.arange(strip.nv - strip.shape[1], strip.nv)
         # the mechanics element of each strip vertex; the elements with none take the
         # temperature at their centroid
         self._owner = np.array(self._pts["nr"], dtype=int)
         self._empty = np.setdiff1d(np.arange(self.mesh.ne), self._owner)
-        centroids = top.X0[mesh_triangles(self.mesh)[self._empty]].mean(axis=1)
+        centroids = top.X0[mech_tris[self._empty]].mean(axis=1)
         self._empty_logical = self.strip.logical(centroids)
         # where those are in the strip mesh: searched once (its logical coordinates do not
         # move; NGSolve's point search ignores the deformation)

@@ -96,7 +96,7 @@ def test_p2_values_at_points_are_ngsolves(graded):
     from ngsolve import GridFunction, VectorH1
 
     from hotroll.fem.mesh import mesh_triangles
-    from hotroll.fem.spaces import P2Nodes
+    from hotroll.fem.spaces import P2Nodes, P2PointValues
 
     mesh = graded
     mesh.UnsetDeformation()
@@ -110,7 +110,8 @@ def test_p2_values_at_points_are_ngsolves(graded):
     xy = np.einsum("nk,nkd->nd", lam, pts[tris])
     xy = np.vstack([xy, 0.5 * (pts[tris[:, 1]] + pts[tris[:, 2]])])
     mp = PS.mesh_points(mesh, xy[:, 0], xy[:, 1])
-    values = P2Nodes(mesh, V.ndof // 2).at_points(tris, mp["nr"], np.stack([mp["x"], mp["y"]], -1))
+    values = P2PointValues(P2Nodes(mesh, V.ndof // 2), tris, mp["nr"],
+                           np.stack([mp["x"], mp["y"]], -1))
     ours = values(gf.vec.FV().NumPy())
     theirs = np.asarray(gf(mp)).reshape(-1, 2)
     assert np.max(np.abs(ours - theirs)) < 1e-12 * np.max(np.abs(theirs))
