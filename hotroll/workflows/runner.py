@@ -21,6 +21,7 @@ from hotroll.results.run_dir import RunDir
 from hotroll.results.run_summary import write_results
 from hotroll.solvers.settling import default_end_time  # noqa: F401  (runner's API)
 from hotroll.solvers.steady import SteadyRun
+from hotroll.solvers.threads import solver_threads
 from hotroll.solvers.transient import TransientRun
 from hotroll.workflows.build import (  # noqa: F401  (runner's API)
     build_model,
@@ -72,38 +73,42 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
     ckpt = out / "checkpoint"
     if not resume and (ckpt / "state.npz").exists():
         (ckpt / "state.npz").unlink()
-    t0 = time.perf_counter()
-    model, settings = build_model(case)
-    extra = {"estimated_dofs": est.dofs, "estimated_memory": est.memory_bytes,
-             "estimated_seconds": est.seconds}
-    shift = 0.0
-    if case.solver.method == "steady":
-        # solved in the roll's frame (axis at x = 0), written where the case puts the axis:
-        # the numbers do not depend on roll_axis_x (issue 30)
-        shift = model.rp.axis_x
-        model = replace(model, rp=replace(model.rp, axis_x=0.0))
-        near = warm = None
-        if sweep is None:
-            run = SteadyRun(model, steady_settings(case), case.plate.length)
+    # the whole run in NGSolve's task manager (2 threads): netgen's mesh optimisation, the
+    # forms' set-up and the measures run in parallel too, the same mesh to the last bit
+    # (the solves enter it again: nested, a no-op)
+    with solver_threads():
+        t0 = time.perf_counter()
+        model, settings = build_model(case)
+        extra = {"estimated_dofs": est.dofs, "estimated_memory": est.memory_bytes,
+                 "estimated_seconds": est.seconds}
+        shift = 0.0
+        if case.solver.method == "steady":
+            # solved in the roll's frame (axis at x = 0), written where the case puts the axis:
+            # the numbers do not depend on roll_axis_x (issue 30)
+            shift = model.rp.axis_x
+            model = replace(model, rp=replace(model.rp, axis_x=0.0))
+            near = warm = None
+            if sweep is None:
+                run = SteadyRun(model, steady_settings(case), case.plate.length)
+            else:
+                run = sweep.steady_run(case, model)
+                near, warm = sweep.nearest(case, run)
+            run.mass_flux = mass_flux
+            run.run(progress, warm=warm)
+            omega = run.problem.rp.omega
+            if omega != case.pass_.roll_angular_velocity:      # a tandem speed found in the solve
+                case = case.with_overrides(**{"pass.roll_angular_velocity": omega})
+                write_text(out / "case.toml", case.to_toml())
+            if sweep is not None:
+                sweep.add(case, run)
+            extra["warm_start_from"] = near
+            extra["warm_start_failed"] = bool(run.result.warm_failed)
         else:
-            run = sweep.steady_run(case, model)
-            near, warm = sweep.nearest(case, run)
-        run.mass_flux = mass_flux
-        run.run(progress, warm=warm)
-        omega = run.problem.rp.omega
-        if omega != case.pass_.roll_angular_velocity:      # a tandem speed found in the solve
-            case = case.with_overrides(**{"pass.roll_angular_velocity": omega})
-            write_text(out / "case.toml", case.to_toml())
-        if sweep is not None:
-            sweep.add(case, run)
-        extra["warm_start_from"] = near
-        extra["warm_start_failed"] = bool(run.result.warm_failed)
-    else:
-        run = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint=fingerprint(case))
-        run.run(progress)
-    run.frame_shift = shift
-    wall = time.perf_counter() - t0
-    summary = write_results(case, run, out, wall, extra)
+            run = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint=fingerprint(case))
+            run.run(progress)
+        run.frame_shift = shift
+        wall = time.perf_counter() - t0
+        summary = write_results(case, run, out, wall, extra)
     if case.output.figures:
         from hotroll.results.figures import plot_all  # matplotlib only when drawing
 
