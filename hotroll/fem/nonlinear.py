@@ -55,20 +55,6 @@ WATCHDOG_BELOW = 1e-2
 #: Newton steps a contact multiplier may take after the velocity has converged (``newton``).
 MULTIPLIER_EXTRA = 5
 
-#: ``newton(full_step=True)``: after a full step below this update (x the velocity scale), with
-#: no coupling update since, the next direction is taken on the Jacobian kept from that step
-#: (its factors, GMRES on its matrix: no assembly, no refactorisation). In Newton's quadratic
-#: range that direction differs from Newton's by the update times the step: the last steps of
-#: the ten stands (12 of 95) 31 -> 13 ms each, the same iterations (issue 34 session 9)
-REUSE_BELOW = 1e-3
-#: ... as long as such a step shrinks the update to at most this share of the step before
-#: (the chord's contraction): then it may end the solve, its error about REUSE_RATE / (1 -
-#: REUSE_RATE) of its own size. A step that contracts less ends the reuse for the solve and
-#: does not end it: on Example 1's viscoplastic friction at a_f = 10-50 (a sticking zone's
-#: stiffness a_f v_reg^(m-1), which moves with the slip) the kept Jacobian's steps shrank by
-#: 0.7-0.95 each, and a stop on one of them left the torque 8e-4 off (af_study; session 9)
-REUSE_RATE = 0.1
-
 
 @dataclass
 class SolveStats:
@@ -210,8 +196,7 @@ def newton(
     and the iteration only stops when it returns False and the update is below ``tol``.
     ``chord``: the Jacobian's kept factors instead of new ones (Newton-chord). ``full_step``:
     the steady solver's final solve (a direction below ``tol`` is taken whole; a search that
-    fails below ``WATCHDOG_BELOW`` takes the full step once; after a full step below
-    ``REUSE_BELOW`` the next direction on that step's Jacobian). ``last_residual=False`` (no
+    fails below ``WATCHDOG_BELOW`` takes the full step once). ``last_residual=False`` (no
     line search and no ``couple`` only: neither the coupling nor the multiplier's test runs
     then): the residual after the ``max_it``-th step is not evaluated (its
     ``stats.residual`` is NaN): the heat equation's one step per coupling update, whose
@@ -223,22 +208,16 @@ def newton(
     form = problem.a_newton
     prepare = getattr(problem, "prepare", None)
     residual_ready, extra, watched = False, 0, False
-    reuse, reusable, slow = False, full_step, False
     for it in range(1, max_it + 1):
         if prepare is not None and prepare(it):
             residual_ready = False
         scale = problem.velocity_scale
-        before = stats.update
-        _linear_step(form, problem, ws, stats, residual_ready, problem.a_jacobian,
-                     chord or reuse)
+        _linear_step(form, problem, ws, stats, residual_ready, problem.a_jacobian, chord)
         r0 = ws.norm(ws.r)
         ws.backup.data = problem.gf.vec
         # the Newton direction, not the damped step: a step cut by the line search is small
         # without the iterate being converged
         stats.update = ws.max_velocity(ws.du) / scale
-        # a step on the kept Jacobian that contracted less than REUSE_RATE: no more of them
-        slow = reuse and stats.update > REUSE_RATE * before
-        reusable = reusable and not slow
         # full_step: once the direction is below the tolerance, its full step is taken without
         # the line search. There the residual's norm is at its floor (the near-rigid zones,
         # whose viscosity is eps0^(m-1): a velocity change of 1e-7 U moves it), and the test
@@ -277,11 +256,9 @@ def newton(
         if TRACE is not None:
             TRACE(problem, it, stats.update, alpha, r0, r1)
         residual_ready = True
-        reuse = reusable and alpha == 1.0 and stats.update <= REUSE_BELOW
         if couple is not None and stats.update <= couple_below:
             if couple():
                 residual_ready = False   # the form changed: its residual must be re-evaluated
-                reuse = False            # ... and its Jacobian
                 continue
         # a contact multiplier's own test (its DOFs are not velocity nodes). In a sticking zone
         # the regularised friction is a tangential stiffness of a_f v_reg^(m-1) (10^7 times the
@@ -294,7 +271,7 @@ def newton(
         if stats.update <= tol and not settled and (alpha == 1.0 or not full_step):
             extra += 1
             settled = extra > MULTIPLIER_EXTRA
-        if stats.update <= tol and settled and (alpha == 1.0 or not full_step) and not slow:
+        if stats.update <= tol and settled and (alpha == 1.0 or not full_step):
             # full_step: a full Newton step below the tolerance, in Newton's quadratic range the
             # residual after it is of the order of the step squared (the steady solver's final
             # solve, whose forces are reported; each time step of the report's scheme keeps the
