@@ -117,3 +117,19 @@ def assert_schedule_refused(d: dict, field: str) -> None:
     with pytest.raises(CaseError) as e:
         schedule_from_dict(d, "schedule.toml")
     assert field in str(e.value)
+
+
+def solved_steady_run(example: str):
+    """A bundled example solved by the steady solver in process (no files): its ``SteadyRun``,
+    for tests that read the solver's own objects (the thermal strip, the forms)."""
+    from hotroll.config.case import load_case
+    from hotroll.examples import example_path
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.runner import build_model, steady_settings
+
+    case = load_case(example_path(example)).with_overrides(**{"solver.method": "steady"})
+    model, _ = build_model(case)
+    run = SteadyRun(model, steady_settings(case), case.plate.length)
+    run.record = False
+    run.solve()
+    return run

@@ -5,20 +5,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from casebuild import solved_steady_run
 
 
 @pytest.fixture(scope="module")
 def solved():
-    from hotroll.config.case import load_case
-    from hotroll.examples import example_path
-    from hotroll.solvers.steady import SteadyRun
-    from hotroll.workflows.runner import build_model, steady_settings
-
-    case = load_case(example_path("thermal_pass")).with_overrides(**{"solver.method": "steady"})
-    model, _ = build_model(case)
-    run = SteadyRun(model, steady_settings(case), case.plate.length)
-    run.record = False
-    run.solve()
+    run = solved_steady_run("thermal_pass")
     assert run.thermal.props.is_constant()          # the numpy volume's case
     return run
 

@@ -4,24 +4,16 @@ evaluation of the current positions and the velocity on the deformed mechanics m
 from __future__ import annotations
 
 import numpy as np
+from casebuild import solved_steady_run
 
 
 def test_column_positions_and_velocities_are_ngsolves():
     from ngsolve import CF, x, y
 
-    from hotroll.config.case import load_case
-    from hotroll.examples import example_path
-    from hotroll.solvers.steady import SteadyRun
-    from hotroll.workflows.runner import build_model, steady_settings
-
-    case = load_case(example_path("thermal_pass")).with_overrides(**{"solver.method": "steady"})
-    model, _ = build_model(case)
-    run = SteadyRun(model, steady_settings(case), case.plate.length)
-    run.record = False
-    run.solve()
+    run = solved_steady_run("thermal_pass")
     th = run.thermal
     # the traced tops moved the mesh: the positions carry a displacement to check
-    assert np.max(np.abs(run.d)) > 1e-6 * model.rp.half_exit
+    assert np.max(np.abs(run.d)) > 1e-6 * run.problem.rp.half_exit
     u = run.form.nonlinear.velocity
     theirs = th._at(CF((x, y, u[0], u[1])), th._col_pts).reshape(len(th._fine),
                                                                   len(th.strip.X), 4)
