@@ -7,6 +7,14 @@ study of where the iterations go; docs/validation/speed.md).
 One line per FE solve: the roll speed, the wall time, the Newton steps as L(update, step
 length) and each coupling update as a two-letter name and its change in tolerances (st
 strain, te temperature, a_ a_f, fr free surface, ro roll, sp a tandem stand's speed).
+
+``--flow-alone`` (a diagnosis, issue 34 session 10): every pass started from the previous one
+is first solved with its couplings frozen at the warm start's values (the flow's own Newton
+from that start, a line marked "flow alone"), then as usual (the schedule goes on from that).
+``--freeze strain,free_surface,...`` (a diagnosis, physically wrong): those couplings are
+updated once in each solve and then held (their change counted as 0); names as in
+``solvers/couplings.py`` (strain, temperature, a_f, free_surface, roll, speed). Freezing the
+speed breaks a tandem schedule's mass flow: the schedule then solves passes again.
 """
 from __future__ import annotations
 
@@ -25,6 +33,10 @@ def main(argv=None) -> int:
     p.add_argument("schedule", type=Path, nargs="?", default=None)
     p.add_argument("--example", default=None, help="a bundled example's name instead")
     p.add_argument("--passes", type=int, default=None, help="the first N passes only")
+    p.add_argument("--flow-alone", action="store_true",
+                   help="each warm pass first solved with its couplings frozen")
+    p.add_argument("--freeze", default="",
+                   help="couplings held after their first update (comma-separated names)")
     args = p.parse_args(argv)
 
     from _common import to_toml
@@ -42,18 +54,41 @@ def main(argv=None) -> int:
             log.append(f"L({update:.0e},{alpha:g})")
 
     NL.TRACE = step
-    for cls in (C.StrainTransport, C.Temperature, C.AfEstimate, C.FreeSurface, C.RollFlattening,
-                C.TandemSpeed):
-        def traced(orig, name):
+    classes = (C.StrainTransport, C.Temperature, C.AfEstimate, C.FreeSurface, C.RollFlattening,
+               C.TandemSpeed)
+    frozen = {n for n in args.freeze.split(",") if n}
+    unknown = frozen - {cls.name for cls in classes}
+    if unknown:
+        p.error(f"--freeze: unknown coupling(s) {sorted(unknown)}")
+    for cls in classes:
+        def traced(orig, name, hold):
             def update(self, res):
+                if hold and getattr(self, "_held", False):
+                    return 0.0            # a new solve builds new coupling objects
                 change = orig(self, res)
                 log.append(f"{name[:2]}{change:.2g}")
+                if hold:
+                    self._held = True
+                    return 0.0
                 return change
             return update
-        cls.update = traced(cls.update, cls.name)
+        cls.update = traced(cls.update, cls.name, cls.name in frozen)
     run = S.SteadyRun.run
 
     def traced_run(self, *a, **k):
+        warm = k.get("warm", a[1] if len(a) > 1 else None)
+        if args.flow_alone and hasattr(warm, "apply"):
+            from dataclasses import replace
+
+            settings = self.s
+            self.s = replace(settings, couple_below_warm=0.0)   # the couplings never update
+            log.clear()
+            t0 = time.perf_counter()
+            out = run(self, *a, **k)
+            print(f"{self.problem.rp.u_roll:.3f} m/s  {time.perf_counter() - t0:.2f} s  "
+                  f"flow alone, {sum(1 for e in log if e[0] == 'L')} Newton: {' '.join(log)}",
+                  flush=True)
+            self.s = settings
         log.clear()
         t0 = time.perf_counter()
         out = run(self, *a, **k)
