@@ -98,6 +98,9 @@ class NonlinearProblem:
     multiplier_tol: float = 1e-4
     #: weight of the pressure rows in the residual norm (a viscosity; ``nonlinear._Workspace``)
     pressure_row_scale: float = 1.0
+    #: the largest forcing term of the inexact Newton (``fem/nonlinear.py``): a direction's
+    #: relative residual
+    linear_rtol: float = 1e-2
     gf: object = field(init=False)
     gf_w: object = field(init=False)
     a_newton: object = field(init=False)

@@ -26,11 +26,18 @@ NAME = "sparsecholesky+gmres"
 
 class PreconditionedGMRES:
     """``Update()`` refactorises the preconditioner for the matrix's new values (the same
-    sparsity); ``solve(r, out)``: out = A^{-1} r by GMRES on the free DOFs.
+    sparsity); ``solve(r, out, rtol, weights)``: out = A^{-1} r by GMRES on the free DOFs.
+
+    GMRES is preconditioned from the right (it solves A P y = r, out = P y), so the residual it
+    minimises and stops on is the system's own, r - A out, measured in the norm of the row
+    ``weights`` (the flow's: its pressure rows times a viscosity, ``nonlinear._Workspace``):
+    then its iterations, and where it stops, are the same at any roll speed or unit of time
+    (a left-preconditioned GMRES minimised the 2-norm of a vector of velocities and pressures,
+    whose stopping point moved with the units: issue 34 session 10).
 
     Where the matrix is symmetric (GMRES's last solve took one iteration: the viscoplastic
     and Tresca-free passes), the factorisation is applied directly and GMRES runs only if the
-    residual of that is above ``TOL`` of r: GMRES's one iteration applies the factors twice
+    residual of that is above ``rtol`` of r: GMRES's one iteration applies the factors twice
     (issue 34 session 8)."""
 
     def __init__(self, mat, freedofs):
@@ -40,40 +47,53 @@ class PreconditionedGMRES:
         self.pre = mat.Inverse(freedofs, inverse="sparsecholesky")
         self.iterations = 0
         self.direct = False           # try the factors alone first (the last solve's hint)
+        self._freedofs = freedofs
         self._free = np.array(list(freedofs), dtype=bool)
         self._res = None
 
     def Update(self) -> None:                      # noqa: N802 - NGSolve's inverse interface
         self.pre.Update()
 
-    def _direct(self, r, out) -> bool:
-        """out = the factors applied to r; True if A out = r to TOL (free DOFs)."""
+    def _direct(self, r, out, rtol: float, w) -> bool:
+        """out = the factors applied to r; True if A out = r to ``rtol`` (weighted rows)."""
         import numpy as np
 
         out.data = self.pre * r
         if self._res is None:
             self._res = r.CreateVector()
         self._res.data = self.mat * out - r
-        free = self._free
-        res, rhs = self._res.FV().NumPy()[free], r.FV().NumPy()[free]
-        return bool(np.linalg.norm(res) <= TOL * np.linalg.norm(rhs))
+        res, rhs = w * self._res.FV().NumPy(), w * r.FV().NumPy()
+        return bool(np.linalg.norm(res) <= rtol * np.linalg.norm(rhs))
 
-    def solve(self, r, out) -> None:
+    def solve(self, r, out, rtol: float = TOL, weights=None) -> None:
+        """out = A^{-1} r to the relative residual ``rtol`` in the norm of the row ``weights``
+        (a numpy array over all DOFs; default 1 on the free rows)."""
+        import numpy as np
         from ngsolve.krylovspace import GMResSolver
 
+        w = self._free.astype(float) if weights is None else np.where(self._free, weights, 0.0)
         started = False
         if self.direct:
-            if self._direct(r, out):
+            if self._direct(r, out, rtol, w):
                 self.iterations = 0
                 return
-            started = True            # GMRES from there
-        solver = GMResSolver(mat=self.mat, pre=self.pre, tol=TOL, maxiter=MAX_STEPS,
-                             printrates=False)
+            started = True            # GMRES from there: out = P y with y = r
+        w2 = w * w
+
+        def inner(x, y):
+            return float(np.dot(w2 * x.FV().NumPy(), y.FV().NumPy()))
+
+        solver = GMResSolver(mat=self.mat @ self.pre, freedofs=self._freedofs, innerproduct=inner,
+                             tol=rtol, maxiter=MAX_STEPS, printrates=False)
+        y = r.CreateVector()
         try:
             if started:
-                out.data = solver.Solve(rhs=r, sol=out, initialize=False)
+                y.data = r
+                solver.Solve(rhs=r, sol=y, initialize=False)
             else:
-                out.data = solver.Solve(rhs=r)
+                y[:] = 0.0
+                solver.Solve(rhs=r, sol=y, initialize=False)
+            out.data = self.pre * y
         except Exception:  # noqa: BLE001 - NGSolve raises plain exceptions (a singular
             # Hessenberg system on a broken state): no solution, the accuracy test fails
             out.FV().NumPy()[:] = float("nan")
@@ -81,10 +101,11 @@ class PreconditionedGMRES:
         self.direct = self.iterations <= 1
 
 
-def apply_inverse(inv, r, out) -> None:
-    """out = inv^{-1} r for a direct solver's inverse or a ``PreconditionedGMRES``."""
+def apply_inverse(inv, r, out, rtol: float = TOL, weights=None) -> None:
+    """out = inv^{-1} r for a direct solver's inverse or a ``PreconditionedGMRES`` (to the
+    relative residual ``rtol`` in the norm of the row ``weights``)."""
     if isinstance(inv, PreconditionedGMRES):
-        inv.solve(r, out)
+        inv.solve(r, out, rtol, weights)
     else:
         out.data = inv * r
 

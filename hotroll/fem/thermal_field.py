@@ -418,6 +418,7 @@ class HeatSystem:
     pressure_row_scale = 1.0
     multiplier_tol = math.inf
     linear_solvers = ("umfpack",)
+    linear_rtol = 1e-6               # UMFPACK: the accuracy test only
 
     def __init__(self, field: TemperatureField, a, f, free):
         self.field, self.a, self.f, self.freedofs = field, a, f, free
