@@ -197,7 +197,8 @@ def picard(problem: NonlinearSystem, tol: float = 1e-5, max_it: int = 20) -> Sol
     scale = problem.velocity_scale
     for it in range(1, max_it + 1):
         problem.gf_w.vec.data = problem.gf.vec
-        _linear_step(problem.a_picard, problem, ws, stats)
+        _linear_step(problem.a_picard, problem, ws, stats,      # Newton's forcing term
+                     rtol=min(problem.linear_rtol, max(stats.update, FORCING_FLOOR)))
         stats.residual = ws.norm(ws.r)
         problem.gf.vec.data -= ws.du
         stats.iterations = it
