@@ -14,8 +14,8 @@ direct solver is taken.
 """
 from __future__ import annotations
 
-#: GMRES's relative residual (of the preconditioned system): two orders below what Newton's
-#: direction needs, the direction then 1e-10 from a direct solve's
+#: GMRES's relative residual (of the system, in the rows' weighted norm) where the caller
+#: names none: the solution then 1e-10 from a direct solve's
 TOL = 1e-10
 #: GMRES's iterations before it gives up (the direct solvers after it then run)
 MAX_STEPS = 60
@@ -83,8 +83,11 @@ class PreconditionedGMRES:
         def inner(x, y):
             return float(np.dot(w2 * x.FV().NumPy(), y.FV().NumPy()))
 
+        # stopped on ||r - A out|| <= rtol ||r|| (an absolute bound: from the factors' solution
+        # GMRES's first residual is not r's, and a relative one would be relative to it)
+        size = float(np.sqrt(inner(r, r)))
         solver = GMResSolver(mat=self.mat @ self.pre, freedofs=self._freedofs, innerproduct=inner,
-                             tol=rtol, maxiter=MAX_STEPS, printrates=False)
+                             tol=0.0, atol=rtol * size, maxiter=MAX_STEPS, printrates=False)
         y = r.CreateVector()
         try:
             if started:
