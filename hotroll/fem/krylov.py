@@ -92,10 +92,9 @@ class PreconditionedGMRES:
         try:
             if started:
                 y.data = r
-                solver.Solve(rhs=r, sol=y, initialize=False)
             else:
                 y[:] = 0.0
-                solver.Solve(rhs=r, sol=y, initialize=False)
+            solver.Solve(rhs=r, sol=y, initialize=False)
             out.data = self.pre * y
         except Exception:  # noqa: BLE001 - NGSolve raises plain exceptions (a singular
             # Hessenberg system on a broken state): no solution, the accuracy test fails
