@@ -3,10 +3,10 @@
 For every bundled example (steady solver, automatic mesh) and Example 1 at C2 and M2: the
 report's penalty (Table 1), exact contact held to the whole arc (bilateral multiplier) and
 exact unilateral contact (the default), each in a fresh subprocess on 2 threads. Columns: DOFs,
-Newton iterations, wall time (meshing included: cold), roll force, torque, forward slip, neutral
-angle, contact end angle, the leak (mass-flux error) and the penalty share, the most tensile
-contact stress over the peak pressure, the exit code. Figures are printed and written to
-benchmarks/results/bench_contact.{csv,md}.
+Newton iterations, wall time (meshing included: cold), roll force, torque, forward slip,
+neutral angle, how the contact ends and the separation angle (issue 50), the leak (mass-flux
+error) and the penalty share, the most tensile contact stress over the peak pressure, the exit
+code. Figures are printed and written to benchmarks/results/bench_contact.{csv,md}.
 
     python benchmarks/bench_contact.py                     # all (about 3 minutes)
     python benchmarks/bench_contact.py --cases example1@M2 --methods penalty,bilateral
@@ -27,13 +27,14 @@ sys.path.insert(0, str(HERE.parent / "scripts"))
 from _common import list_arg, print_table, write_table  # noqa: E402
 
 COLUMNS = ["case", "contact", "dofs", "newton_iterations", "wall_s", "roll_force",
-           "roll_torque", "forward_slip", "neutral_angle", "contact_end_angle",
-           "mass_flux_error", "penalty_share", "tensile_over_peak", "exit_code"]
+           "roll_torque", "forward_slip", "neutral_angle", "contact_end_kind",
+           "separation_angle", "mass_flux_error", "penalty_share", "tensile_over_peak",
+           "exit_code"]
 METHODS = {"penalty": {"contact.method": "penalty"},
            "bilateral": {"contact.method": "multiplier", "contact.unilateral": False},
            "unilateral": {"contact.method": "multiplier", "contact.unilateral": True}}
-CASES = ["example1@C2", "example1@M2", "example2", "hot_strip_finishing", "roughing_slab",
-         "hot_aluminium", "tension_pass"]
+CASES = ["example1@C1", "example1@C2", "example1@M2", "example2", "hot_strip_finishing",
+         "roughing_slab", "hot_aluminium", "tension_pass", "thermal_pass", "thin_strip"]
 
 
 def one(name: str, method: str, threads: int) -> dict:
@@ -60,8 +61,8 @@ def one(name: str, method: str, threads: int) -> dict:
     return {"case": name, "contact": method, "dofs": s["dofs"],
             "newton_iterations": s["nonlinear_iterations"], "wall_s": wall,
             **{k: s.get(k) for k in ("roll_force", "roll_torque", "forward_slip",
-                                     "neutral_angle", "contact_end_angle", "mass_flux_error",
-                                     "penalty_share", "exit_code")},
+                                     "neutral_angle", "contact_end_kind", "separation_angle",
+                                     "mass_flux_error", "penalty_share", "exit_code")},
             "tensile_over_peak": max(max(sn), 0.0) / peak}
 
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import Any, Literal
 
-from pydantic import PrivateAttr, field_validator, model_validator
+from pydantic import PrivateAttr, StrictBool, field_validator, model_validator
 
 from hotroll.config.base import MESH_TABLE, MeshName, PosFloat, Problems, Section, field
 from hotroll.model.geometry import RollPass
@@ -239,16 +239,23 @@ class ContactConfig(Section):
         "auto", "roll contact: exact (the pressure a Lagrange multiplier on the arc) or the "
         "report's penalty (Table 1); auto: multiplier for the steady solver, penalty for the "
         "report's scheme", "", '"auto", "multiplier" (steady only) or "penalty"')
-    unilateral: bool = field(
-        False, "exact contact: the strip may leave the roll where the contact pressure would be "
-        "tensile (active set); false: bilateral, the strip held to the whole arc", "",
-        "true or false")
+    unilateral: Literal["auto"] | StrictBool = field(
+        "auto", "the strip leaves the roll where the contact pressure falls to zero (before "
+        "the gap or at it); false: bilateral, the strip held to the roll up to the gap whatever "
+        "the pressure; auto: true for the steady solver, false (the report's (2.28a)) for the "
+        "report's scheme", "", '"auto", true or false')
 
     def resolved(self, solver_method: str) -> str:
         """The method a run uses: "auto" resolved by the solver."""
         if self.method != "auto":
             return self.method
         return "multiplier" if solver_method == "steady" else "penalty"
+
+    def resolved_unilateral(self, solver_method: str) -> bool:
+        """Whether the strip may leave the roll: "auto" resolved by the solver."""
+        if self.unilateral != "auto":
+            return bool(self.unilateral)
+        return solver_method == "steady"
 
 
 class RollConfig(Section):

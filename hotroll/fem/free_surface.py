@@ -33,13 +33,14 @@ from hotroll.model.geometry import RollPass
 
 @dataclass
 class StripShape:
-    """Contact start and the free tops as curves (x, y) in the current configuration."""
+    """The contact's two ends and the free tops as curves (x, y) in the current configuration."""
 
     x_c: float
     entry_x: np.ndarray      # entry top, increasing x, ending at x_c
     entry_y: np.ndarray
-    exit_x: np.ndarray       # exit top, increasing x, starting at X_roll
+    exit_x: np.ndarray       # exit top, increasing x, starting at the contact's end x_e
     exit_y: np.ndarray
+    x_e: float | None = None  # the contact's end (separation point); None: the gap X_roll
 
     @classmethod
     def flat(cls, rp: RollPass) -> "StripShape":
@@ -48,9 +49,13 @@ class StripShape:
                    np.full(2, rp.half_entry), np.array([rp.axis_x, rp.axis_x + 1e3]),
                    np.full(2, rp.half_exit))
 
+    def end(self, rp: RollPass) -> float:
+        """x_e: where the contact ends (the gap X_roll unless the strip leaves before it)."""
+        return rp.axis_x if self.x_e is None else self.x_e
+
     def copy(self) -> "StripShape":
         return StripShape(self.x_c, self.entry_x.copy(), self.entry_y.copy(),
-                          self.exit_x.copy(), self.exit_y.copy())
+                          self.exit_x.copy(), self.exit_y.copy(), self.x_e)
 
 
 def roll_height(rp: RollPass, x):
@@ -80,34 +85,48 @@ class StripMap:
         self.H_ref = np.where(X >= rp.axis_x, rp.half_exit, rp.half_entry)
         self.H_ref[on_arc] = roll_height(rp, X[on_arc])
         self.roll = rp           # the roll now (its surface, if flattened, moves)
-        # the stretch acts between x_a (half a contact length before the bite) and X_roll
+        # the stretch acts between x_a (half a contact length before the bite) and X_roll,
+        # and on the exit side from X_roll to x_b (where the contact's end moves the exit top)
         self.x_a = max(rp.x_touch - 0.5 * rp.contact_length, 0.5 * (x_in + rp.x_touch))
+        x_out = float(X.max())
+        self.x_b = min(rp.axis_x + 0.5 * rp.contact_length, 0.5 * (rp.axis_x + x_out))
 
     def x_bounds(self) -> tuple[float, float]:
         """Allowed range of the contact start (keeps the stretch within a factor ~2)."""
         rp = self.rp
         return (0.5 * (self.x_a + rp.x_touch), rp.axis_x - 0.5 * rp.contact_length)
 
-    def stretch(self, X: np.ndarray, x_c: float) -> np.ndarray:
-        rp, xa = self.rp, self.x_a
+    def end_bounds(self) -> tuple[float, float]:
+        """Allowed range of the contact's end x_e: from half a contact length before the gap
+        to the gap."""
+        rp = self.rp
+        return (rp.axis_x - 0.5 * rp.contact_length, rp.axis_x)
+
+    def stretch(self, X: np.ndarray, x_c: float, x_e: float | None = None) -> np.ndarray:
+        """Piecewise-linear in x: x_a and x_b stay, the reference touching point goes to x_c,
+        the reference gap X_roll to the contact's end x_e (default X_roll)."""
+        rp, xa, xb = self.rp, self.x_a, self.x_b
+        x_e = rp.axis_x if x_e is None else x_e
         x = X.copy()
         a = (X > xa) & (X <= rp.x_touch)
         x[a] = xa + (X[a] - xa) * (x_c - xa) / (rp.x_touch - xa)
         b = (X > rp.x_touch) & (X < rp.axis_x)
-        x[b] = x_c + (X[b] - rp.x_touch) * (rp.axis_x - x_c) / (rp.axis_x - rp.x_touch)
+        x[b] = x_c + (X[b] - rp.x_touch) * (x_e - x_c) / (rp.axis_x - rp.x_touch)
+        c = (X >= rp.axis_x) & (X < xb)
+        x[c] = x_e + (X[c] - rp.axis_x) * (xb - x_e) / (xb - rp.axis_x)
         return x
 
     def displacement(self, shape: StripShape) -> np.ndarray:
-        """Coefficient vector of the P2 displacement that maps the reference mesh onto ``shape``."""
+        """Coefficient vector of the P2 displacement that maps the reference mesh onto ``shape``:
+        the arc's chain of edges on the roll from x_c to x_e, the free tops on their curves."""
         rp, X = self.rp, self.P[:, 0]
-        x = self.stretch(X, shape.x_c)
+        x = self.stretch(X, shape.x_c, shape.x_e)
         H = roll_height(self.roll, x)
-        ent, ex = X < rp.x_touch, X > rp.axis_x
+        ent, ex = X < rp.x_touch, X >= rp.axis_x
         H[ent] = np.interp(x[ent], shape.entry_x, shape.entry_y)
-        H[ex] = np.interp(x[ex], shape.exit_x, shape.exit_y)
-        # the strip has left the roll before the gap (unilateral contact): below the roll
-        left = ~ex & ~ent & (x > shape.exit_x[0])
-        H[left] = np.minimum(H[left], np.interp(x[left], shape.exit_x, shape.exit_y))
+        # the exit top starts at the contact's end, on the roll
+        H[ex] = np.where(x[ex] <= shape.exit_x[0], H[ex],
+                         np.interp(x[ex], shape.exit_x, shape.exit_y))
         new = np.stack([x, self.P[:, 1] * H / self.H_ref], axis=1)
         return self.nodes.coefficients((new - self.nodes.X0).T)
 
@@ -127,8 +146,9 @@ def kinematic_update(rp: RollPass, shape: StripShape, x: np.ndarray, v: np.ndarr
     ``x``, ``v``: positions and velocities of the top P2 nodes, sorted by x; ``part``: 0 entry
     free top, 1 contact, 2 exit free top. The entry top is traced from the entry thickness at
     ``x_up`` (upstream the strip is rigid and flat) to the first contact node; the exit top from
-    the gap at X_roll. Returns (new shape, residual in m): the residual is the largest distance
-    between a traced top and the current one (the gap at the contact start included).
+    the contact's end x_e on the roll (``StripShape.end``; it moves by ``ContactEndSearch``).
+    Returns (new shape, residual in m): the residual is the largest distance between a traced
+    top and the current one (the gap at the contact start included).
     """
     vx = np.where(np.abs(v[:, 0]) > 1e-300, v[:, 0], 1e-300)
     slope = v[:, 1] / vx
@@ -150,14 +170,72 @@ def kinematic_update(rp: RollPass, shape: StripShape, x: np.ndarray, v: np.ndarr
     w = np.clip((ent_x - x_up) / max(x_new - x_up, 1e-300), 0.0, 1.0)
     ent_y += w * (float(roll_height(rp, x_new)) - ent_y[-1])
     residual = float(np.max(np.abs(eta - x[idx, 1])))
-    # exit: from the last contact node (the gap at X_roll unless the strip left the roll
-    # before it) along the exit nodes
-    last = np.nonzero(part == 1)[0][-1]
-    ex = np.nonzero((part == 2) & (x[:, 0] > x[last, 0]))[0]
-    xs2 = np.concatenate([[x[last, 0]], x[ex, 0]])
-    eta2 = _trace(xs2, np.concatenate([[slope[last]], slope[ex]]), x[last, 1])
-    if len(ex):
-        residual = max(residual, float(np.max(np.abs(eta2[1:] - x[ex, 1]))))
+    # exit: from the contact's end on the roll along the nodes after it (the exit top's, and
+    # the contact's beyond a new end: their flow is the free top's there)
+    end = shape.end(rp)
+    ex = np.nonzero((part != 0) & (x[:, 0] > end))[0]
+    xs2 = np.concatenate([[end], x[ex, 0]])
+    s_end = np.interp(end, x[part != 0, 0], slope[part != 0])
+    eta2 = _trace(xs2, np.concatenate([[s_end], slope[ex]]), float(roll_height(rp, end)))
+    free = part[ex] == 2
+    if free.any():
+        residual = max(residual, float(np.max(np.abs(eta2[1:][free] - x[ex][free, 1]))))
     ex_x = np.concatenate([xs2, [xs2[-1] + 1e3]])
     ex_y = np.concatenate([eta2, [eta2[-1]]])
-    return StripShape(x_new, ent_x, ent_y, ex_x, ex_y), residual
+    return StripShape(x_new, ent_x, ent_y, ex_x, ex_y, shape.x_e), residual
+
+
+class ContactEndSearch:
+    """The contact's end x_e as a root of p_end(x_e), the contact pressure at the arc's last
+    vertex (which the map puts at x_e), one step per coupling update (``step``).
+
+    Unilateral contact ends where the pressure falls to zero (a smooth separation: the
+    multiplier at the end vertex vanishes) or at the gap (the upper bound) with p >= 0 there:
+    p_end >= 0, X_roll - x_e >= 0, p_end (X_roll - x_e) = 0. A step goes to the zero of the
+    pressure's line through the last two vertices (a tensile vertex before the end: to the
+    first zero crossing after the peak, however far); once the last update lies within an
+    element, along the secant through the two (x_e, p_end) instead (p_end(x_e) falls about
+    twice as steeply as the pressure along the arc: the line alone overshot, p_end alternating
+    in sign and shrinking by only 0.7 an update). A step is at most ``trust`` long: one
+    element, halved whenever p_end changes sign (the root lies behind; a trust that grew back
+    while the sign held let a search cycle with period four). p_end is read from a flow converged to the
+    coupling threshold and, at the gap, from a P1 multiplier that averages the rigid-plastic
+    strip's pressure jump there: near the gap it need not be monotone (a pass rolled by the
+    PyRolL plugin cycled between the gap and 0.1 element before it), and the halving ends such
+    a search at a sign change of p_end in a bounded number of updates."""
+
+    def __init__(self):
+        self.last: tuple[float, float] | None = None
+        self.trust: float | None = None
+
+    def step(self, x: np.ndarray, pressure: np.ndarray,
+             bounds: tuple[float, float]) -> tuple[float, float]:
+        """(new x_e clipped to ``bounds``, the residual: its distance from the current end, m)
+        from the pressure at the arc's vertices (``x`` increasing, the last at the end)."""
+        lo_b, hi_b = bounds
+        p = np.asarray(pressure, dtype=float)
+        x = np.asarray(x, dtype=float)
+        x_e, p_e = float(x[-1]), float(p[-1])
+        h = x_e - float(x[-2])                         # the last element's length
+        peak = int(np.argmax(p))
+        neg = np.flatnonzero(p[:-1] < 0.0)
+        neg = neg[neg > peak]
+        last, self.last = self.last, (x_e, p_e)
+        if len(neg):             # tensile before the end: the first crossing after the peak
+            i = int(neg[0])
+            self.trust = h
+            new = x[i - 1] + p[i - 1] * (x[i] - x[i - 1]) / (p[i - 1] - p[i])
+            return float(np.clip(new, lo_b, hi_b)), abs(float(np.clip(new, lo_b, hi_b)) - x_e)
+        if p[-2] > p_e:          # falling towards the end: where its line reaches zero
+            new = x_e + p_e * h / (p[-2] - p_e)
+        else:                    # not falling: the contact goes on
+            new = x_e + (h if p_e >= 0.0 else -h)
+        trust = h if self.trust is None else self.trust
+        if last is not None:
+            xo, po = last
+            if 0.0 < abs(x_e - xo) <= h and (p_e - po) / (x_e - xo) < 0.0:
+                new = x_e - p_e * (x_e - xo) / (p_e - po)
+            trust = 0.5 * trust if (po < 0.0) != (p_e < 0.0) else min(trust, h)
+        self.trust = trust
+        new = float(np.clip(min(max(new, x_e - trust), x_e + trust), lo_b, hi_b))
+        return new, abs(new - x_e)

@@ -152,12 +152,19 @@ def smoothed(profile: dict, values: np.ndarray) -> np.ndarray:
     return out
 
 
+#: Tension below this share of the peak pressure is the unilateral contact's end tolerance
+#: (its end is iterated to p = 0 within 1e-3 h: about 1e-4 of the peak), not contact loss.
+LOSS_FLOOR = 1e-3
+
+
 def contact_loss(profile: dict, normal_stress: np.ndarray, min_length: float) -> list:
     """Stretches [x_start, x_end] of the contact, at least ``min_length`` long along the arc,
-    where the normal stress is tensile: there the strip would leave the roll."""
-    sn = np.asarray(normal_stress)
+    where the normal stress is tensile (beyond ``LOSS_FLOOR`` of the peak pressure): there the
+    strip would leave the roll."""
+    sn = np.asarray(normal_stress, dtype=float)
     if len(sn) < 2:
         return []
+    sn = sn - LOSS_FLOOR * max(float(-sn.min()), 0.0)
     xy = np.stack([profile["x"], profile["y"]], -1)
     s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))])
     out, i = [], 0

@@ -110,6 +110,24 @@ def summary_groups(s: dict) -> list[tuple[str, list[dict]]]:
     return out
 
 
+def contact_end_text(s: dict) -> str | None:
+    """How the contact ends, in words (exact contact, steady solver), or None."""
+    kind, p = s.get("contact_end_kind"), s.get("contact_end_pressure")
+    if kind == "separation":
+        a = s.get("separation_angle")
+        return (f"the strip leaves the roll {math.degrees(a):.3g}° ({a:.4g} rad) before the gap, "
+                f"where the contact pressure falls to zero; after it the top is free")
+    if kind == "bound":
+        return ("the contact's end reached its lowest allowed position (half a contact length "
+                "before the gap): where the strip leaves the roll is not resolved")
+    if kind == "gap" and finite(p):
+        return f"the contact reaches the roll gap; the pressure there is {p / 1e6:.4g} MPa"
+    if kind == "held" and finite(p):
+        return (f"bilateral contact: the strip is held to the roll up to the gap; the pressure "
+                f"there is {p / 1e6:.4g} MPa")
+    return None
+
+
 def run_warnings(s: dict) -> list[dict]:
     """What a reader must not miss: failure, not steady or settled, contact loss, checks."""
     w = []
@@ -134,7 +152,12 @@ def run_warnings(s: dict) -> list[dict]:
         add("error", f"not converged (status '{s.get('status')}', exit code {s.get('exit_code')})")
     for a, b in s.get("contact_loss") or []:
         add("warn", f"contact loss: the normal stress is tensile from x = {a:.4g} m to "
-                    f"{b:.4g} m; the strip would leave the roll there")
+                    f"{b:.4g} m; the strip would leave the roll there"
+            + (" (bilateral contact holds it: [contact] unilateral = true lets it go)"
+               if s.get("contact_end_kind") == "held" else ""))
+    end = contact_end_text(s)
+    if end:
+        add("warn" if s.get("contact_end_kind") == "bound" else "info", end)
     if s.get("neutral_angle_reason"):
         add("info", f"no neutral angle: {s['neutral_angle_reason']}")
     if (s.get("unconverged_steps_in_window") or 0) > 0:

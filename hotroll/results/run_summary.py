@@ -30,6 +30,36 @@ THERMAL_AVERAGED = ("exit_temperature_mean", "exit_temperature_surface", "max_te
                     "heat_balance_error")
 
 
+#: A contact ending less than this many contact mesh sizes before the gap ends at the gap: the
+#: rigid-plastic strip's pressure falls from about 2k to 0 there, which the discrete contact
+#: resolves over its last element (its end then lies a fraction of an element before the gap).
+GAP_RESOLUTION = 0.5
+
+
+def contact_end_kind(run, prof) -> str | None:
+    """How the contact ends (exact contact, steady solver): ``"gap"`` (at the roll gap, within
+    ``GAP_RESOLUTION`` elements),
+    ``"separation"`` (the strip leaves the roll before the gap where the pressure falls to
+    zero; unilateral), ``"bound"`` (the end reached the lowest allowed x_e: half a contact
+    length before the gap) or ``"held"`` (bilateral contact: held to the gap whatever the
+    pressure)."""
+    if not len(prof["x"]):
+        return None
+    if not getattr(run, "unilateral", False):
+        return "held"
+    lo, hi = run.map.end_bounds()
+    x_e = run.shape.end(run.problem.rp)
+    if x_e >= hi - GAP_RESOLUTION * run.problem.h:
+        return "gap"
+    return "bound" if x_e <= lo + 1e-9 * run.problem.rp.radius else "separation"
+
+
+def separation_angle(rp, prof) -> float:
+    """The roll angle from the gap (the surface's lowest point) to the contact's end, rad."""
+    gap = float(rp.angle(np.array([rp.axis_x, rp.half_exit])))
+    return float(prof["angle"][-1]) - gap
+
+
 def exit_strain(case: Case, run) -> dict:
     """Mean strain of the exit strip beside the homogeneous strain entry + 2/sqrt3 ln(h0/h1)
     of plane-strain compression: steady strip, x in X_roll + [0.25, 0.75] D with D = max(l_c,
@@ -198,16 +228,15 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
     # exact contact: every tensile node of the raw multiplier (bilateral), and the stretch of the
     # arc the strip has left (unilateral); penalties: stretches of 2h of the corrected stress
     loss = Q.contact_loss(prof, prof["normal_stress_corrected"], 0.0 if exact else 2.0 * run.problem.h)
-    active = getattr(run, "active", None)
-    if active is not None and len(prof["x"]):
-        gap = rp.centre[0]
-        if prof["x"][-1] < gap - 1e-9 * rp.radius:
-            loss.append([float(prof["x"][-1]), float(gap)])
+    unilateral = bool(getattr(run, "unilateral", False))
+    end_kind = contact_end_kind(run, prof) if steady_solver and exact else None
     contact_figures = {
         "contact_method": run.form.contact,
-        "unilateral": active is not None,
-        "active_set_changes": active.changes if active is not None else None,
-        "active_set_cycled": bool(active.cycled) if active is not None else None,
+        "unilateral": unilateral,
+        "contact_end_kind": end_kind,
+        "separation_angle": separation_angle(rp, prof) if end_kind == "separation" else None,
+        "contact_end_pressure": float(-prof["normal_stress"][-1])
+        if steady_solver and exact and len(prof["x"]) else None,
         "contact_start_angle": float(prof["angle"][0]) if len(prof["angle"]) else None,
         "contact_end_angle": float(prof["angle"][-1]) if len(prof["angle"]) else None,
         "min_contact_pressure": float(-np.max(prof["normal_stress"]))

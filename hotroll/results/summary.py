@@ -170,9 +170,16 @@ class Summary(Mapping):
                             "turns tensile")
     contact_loss_detected: bool = _f(None, "contact loss detected", "")
     contact_method: str = _f(None, "contact method", "`multiplier` or `penalty`")
-    unilateral: bool = _f(None, "unilateral", "the active-set option")
-    active_set_changes: int | None = _f(None, "active set changes", "unilateral contact")
-    active_set_cycled: bool | None = _f(None, "active set cycled", "unilateral contact")
+    unilateral: bool = _f(None, "unilateral", "the strip may leave the roll (true, the default) "
+                          "or is held to it up to the gap (false: bilateral)")
+    contact_end_kind: str | None = _f(None, "contact end", "`gap`, `separation` (the strip "
+                                      "leaves the roll before the gap), `bound` or `held` "
+                                      "(bilateral)")
+    separation_angle: float | None = _f("rad", "separation angle", "where the strip leaves "
+                                        "the roll before the gap (angle from the gap)",
+                                        group="Pass")
+    contact_end_pressure: float | None = _f("Pa", "contact end pressure", "the contact "
+                                            "pressure at the contact's end")
     contact_start_angle: float | None = _f("rad", "contact start angle", "")
     contact_end_angle: float | None = _f("rad", "contact end angle", "")
     min_contact_pressure: float | None = _f("Pa", "min contact pressure", "the most tensile "

@@ -12,7 +12,6 @@ solver builds its list (``SteadyRun.couplings``, ``TransientRun.couplings``).
 """
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 from typing import Callable
 
@@ -33,23 +32,6 @@ class Coupling:
 
     def advance(self, dt: float) -> None:
         """The report's scheme: carry the field through one step of ``dt`` seconds."""
-
-
-class ActiveSet(Coupling):
-    """Unilateral contact's active set (``fem/contact_set.py``); ``changed`` re-derives the
-    contact edges and the top's parts. A change counts as infinitely large."""
-
-    name = "active_set"
-    in_fixed_point = False
-
-    def __init__(self, active, changed: Callable[[], None]):
-        self.active, self.changed = active, changed
-
-    def update(self, result) -> float:
-        if not self.active.update():
-            return 0.0
-        self.changed()
-        return math.inf
 
 
 class StrainTransport(Coupling):
@@ -112,6 +94,28 @@ class FreeSurface(Coupling):
         moved = self.trace()
         result.surface_moves.append(moved)
         return moved / self.tol
+
+
+class ContactEnd(Coupling):
+    """Unilateral contact's end x_e (``fem/free_surface.py: ContactEndSearch``): moved to
+    where the contact pressure falls to zero (or to the gap), then the mesh follows; the change
+    is the move in units of ``tol`` (m)."""
+
+    name = "contact_end"
+    #: its tolerance in units of the traced tops' (1e-2 h by default): the end's pressure
+    #: p_end(x_e) carries the flow's coupling noise, about 1e-3 of the peak pressure, which
+    #: moves its root by several of the tops' 1e-3 h
+    TOLERANCE = 1.0
+    #: moved once the other couplings are within 10 tolerances: a_f (3.15) of a warm start from
+    #: another pass swings by 10x from update to update, and the end followed each swing
+    #: (a study's warm-started Example 1 pass did not settle in 30 updates)
+    after_others = 10.0
+
+    def __init__(self, move: Callable[[], float], tol: float):
+        self.move, self.tol = move, tol
+
+    def update(self, result) -> float:
+        return self.move() / self.tol
 
 
 class TandemSpeed(Coupling):

@@ -29,8 +29,7 @@ from dataclasses import replace
 import numpy as np
 
 from hotroll.fem import quantities as Q
-from hotroll.fem.contact_set import ActiveSet
-from hotroll.fem.free_surface import StripMap, StripShape, kinematic_update
+from hotroll.fem.free_surface import ContactEndSearch, StripMap, StripShape, kinematic_update
 from hotroll.fem.mesh import build_steady_mesh
 from hotroll.fem.nonlinear import LinearSolveError, SolveStats, newton
 from hotroll.fem.rolling_form import PenaltyTable, RollingForm
@@ -87,8 +86,11 @@ class SteadyRun:
         self.top.set_midpoints(self.d, rows, rp.project(self.top.midpoint_positions(self.d, rows)))
         self.d_ref = self.d.copy()
         self.map = StripMap(rp, self.mesh, V.ndof // 2, self.d_ref, rp.x_touch - self.upstream)
-        self.active = (ActiveSet(self.form) if self.form.exact and settings.unilateral
-                       else None)
+        #: unilateral contact (exact contact with traced tops): the contact's end x_e is a
+        #: shape unknown, where the pressure falls to zero or the gap (docs/theory.md 1e)
+        self.unilateral = (self.form.exact and settings.unilateral
+                           and settings.free_surface == "traced")
+        self.end_search = ContactEndSearch()
         self.shape = StripShape.flat(rp)
         self._set_shape()
         self._top_part = self._top_parts()
@@ -173,6 +175,7 @@ class SteadyRun:
         # a similar pass's start carries its roll (``transfer.SimilarPass``); a neighbour's on
         # the same mesh (a sweep's ``WarmStart``) starts from a fresh roll
         self.couplings = self._couplings(warm=hasattr(warm, "apply"))
+        self.end_search = ContactEndSearch()     # the contact end's search afresh each solve
 
         def record(st):
             if self.record:
@@ -190,14 +193,13 @@ class SteadyRun:
             if warm is not None:
                 self._warm(warm, vec, target)
                 try:
-                    # unilateral contact keeps the cold threshold: its active set would be
-                    # updated from a flow still 0.1 U off (not measured; from the review)
-                    self._follow([target], res, record, s.couple_below_warm
-                                 if self.active is None else s.couple_below)
+                    self._follow([target], res, record, s.couple_below_warm)
                 except LinearSolveError:
                     res.stats.append(SolveStats())
-                # a neighbour too far off (or a broken state): start again from cold
-                res.warm_failed = not res.stats[-1].converged
+                # a neighbour too far off (or a broken state), or a fixed point that did not
+                # settle from it: start again from cold (a study's Example 1 pass warm-started
+                # from another reduction swung a_f (3.15) by 2x for 30 updates; cold: 8)
+                res.warm_failed = not (res.stats[-1].converged and res.settled)
             if warm is None or res.warm_failed:
                 self._cold_start()
                 path = list(s.m_path) or [target]
@@ -253,8 +255,7 @@ class SteadyRun:
             if isinstance(c, C.RollFlattening):
                 c.after_others = C.RollFlattening.after_others
         self.shape = StripShape.flat(self.problem.rp)
-        if self.active is not None:
-            self.active.reset()
+        self.end_search = ContactEndSearch()
         self._set_shape()
         self._kinematic_guess()
         self._update_strain()
@@ -312,13 +313,11 @@ class SteadyRun:
         record(st)
 
     def _couplings(self, warm: bool = False) -> list[C.Coupling]:
-        """The run's couplings in their update order (``solvers/couplings.py``): the active set
-        (unilateral contact), the strain, the temperature, a_f (3.15), the traced free tops,
-        the flattening roll (from the first round when ``warm``: started from a solved similar
-        pass and its roll), the tandem speed."""
+        """The run's couplings in their update order (``solvers/couplings.py``): the strain, the
+        temperature, a_f (3.15), the traced free tops and the contact's end, the flattening
+        roll (from the first round when ``warm``: started from a solved similar pass and its
+        roll), the tandem speed."""
         s, out = self.s, []
-        if self.active is not None:
-            out.append(C.ActiveSet(self.active, self._set_contact))
         if self.strain is not None:
             out.append(C.StrainTransport(self.strain, self.form.nonlinear.velocity, s.strain_rtol))
         if self.thermal is not None:
@@ -327,6 +326,9 @@ class SteadyRun:
             out.append(C.AfEstimate(self.form.a_f, self._estimate_a_f, s.a_f_rtol))
         if s.free_surface == "traced":
             out.append(C.FreeSurface(self.update_surface, s.surface_tol * self.problem.h))
+        if self.unilateral:
+            out.append(C.ContactEnd(self.move_contact_end,
+                                    C.ContactEnd.TOLERANCE * s.surface_tol * self.problem.h))
         if self.problem.roll is not None:
             out.append(C.RollFlattening(self.problem.roll, self._roll_loads, self._set_shape,
                                         s.roll_tol * self.problem.rp.half_exit,
@@ -384,14 +386,9 @@ class SteadyRun:
         return max(changes, default=0.0)
 
     def _set_contact(self) -> None:
-        """The contact edges: arc edges with both vertices active (all of the arc without an
-        active set); the friction indicator and the top's parts follow."""
-        edges = self.arc
-        if self.active is not None:
-            on = np.zeros(self.mesh.nv, dtype=bool)
-            on[self.active.active_vertices()] = True
-            edges = self.arc & on[self.top.ea] & on[self.top.eb]
-        self.top.set_contact_edges(edges)
+        """The contact edges: the arc's chain (mapped from x_c to x_e); the friction indicator
+        and the top's parts follow."""
+        self.top.set_contact_edges(self.arc)
         self.top.write_indicator(self.form.chi.vec.FV().NumPy())
         self._top_part = self._top_parts()
         # the entry's and the exit's one-sided conditions split inside the contact
@@ -439,6 +436,25 @@ class SteadyRun:
                                                 self.map.x_bounds())
         self._set_shape()
         return residual
+
+    def move_contact_end(self) -> float:
+        """Unilateral contact: move the contact's end by ``ContactEndSearch``'s step from the
+        pressure at the arc's vertices and remap the mesh; its residual or move (m), the
+        larger."""
+        top = self.top
+        verts = top.verts[top.vertex_contact]
+        x = top.vertex_positions(self.d, verts)[:, 0]
+        order = np.argsort(x)
+        p = self.form.vertex_pressure()[verts]
+        rp, sh = self.problem.rp, self.shape
+        old = sh.end(rp)
+        new, residual = self.end_search.step(x[order], p[order], self.map.end_bounds())
+        # the exit top moves with its start, which stays on the roll
+        sh.exit_x = sh.exit_x + (new - old)
+        sh.exit_y = sh.exit_y + float(rp.height(new) - rp.height(old))
+        sh.x_e = new
+        self._set_shape()
+        return max(residual, abs(new - old))
 
     def _set_shape(self) -> None:
         """Map the mesh onto ``self.shape``; the contact is the arc's chain of edges."""

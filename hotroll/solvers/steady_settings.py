@@ -37,7 +37,7 @@ class SteadySettings:
     couple_below_warm: float = 0.1   # ... after a warm start (a neighbour's or a similar
                                      # pass's solution: its couplings are near their own)
     contact: str = "multiplier"      # exact contact (a multiplier on the arc) or "penalty"
-    unilateral: bool = False         # exact contact: the strip may leave the roll (active set)
+    unilateral: bool = True          # exact contact: the strip may leave the roll (x_e free)
 
     def mesh_zone(self, rp, h: float) -> tuple[float, float, float, float]:
         """(upstream, downstream, fine margin, core factor) of the strip's mesh at contact
@@ -95,7 +95,7 @@ class SteadyResult:
 
     settled: bool = False        # a_f and the free surface reached their fixed point
     fallback: bool = False       # the direct solve failed; solved again along m = 1 -> target
-    warm_failed: bool = False    # the warm start did not converge; solved again from cold
+    warm_failed: bool = False    # the warm start did not converge or settle; solved again cold
     failure: str = ""            # why the last solve stopped: a linear solve that failed
 
     @property

@@ -366,7 +366,8 @@ class ThermalCoupling(FlowStressFeedback):
 
     def section_means(self, x0: float, band: float) -> tuple[float, float]:
         """(mixing-cup mean int T v_x / int v_x over the strip between x0 and x0 + band, the
-        top's temperature at the roll gap column): the exit temperatures."""
+        top's temperature at the contact's end column (the gap, or where the strip leaves the
+        roll before it)): the exit temperatures."""
         from ngsolve import IfPos, Integrate, x
 
         u, T, mesh = self.strip.velocity(), self.field.gf, self.strip.mesh
@@ -379,7 +380,7 @@ class ThermalCoupling(FlowStressFeedback):
 
     def measure(self, x_exit: float, h: float, heat_flows: bool = True) -> dict:
         """The thermal figures of one state (K, W/m): exit mean (mixing cup over 2 h after the
-        roll gap section ``x_exit``) and the surface temperature at the gap, the heat flows
+        roll gap section ``x_exit``) and the surface temperature at the contact's end, the heat flows
         and the balance error (NaN without ``heat_flows``: the fixed point's intermediate
         rows), the extreme temperatures, the strip mesh's size."""
         mean, surface = self.section_means(x_exit, 2.0 * h)

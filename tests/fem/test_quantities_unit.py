@@ -746,8 +746,8 @@ def test_the_contact_files_vertex_column_is_integer(solved_example1):
     with open(solved_example1 / "contact.csv", newline="") as fh:
         column = [row["vertex"] for row in csv.DictReader(fh)]
     assert set(column) == {"0", "1"}
-    # (the bilateral default: the summary says so)
-    assert json.loads((solved_example1 / "summary.json").read_text())["unilateral"] is False
+    # (the unilateral default: the summary says so)
+    assert json.loads((solved_example1 / "summary.json").read_text())["unilateral"] is True
 
 
 def test_the_p1_space_is_made_once_per_mesh_and_sets_as_a_new_one():

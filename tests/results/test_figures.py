@@ -32,11 +32,15 @@ pytestmark = pytest.mark.mutation
 OMEGA = math.pi / 3
 R = 0.6
 BASE = EXAMPLE1_COARSE       # tests/conftest.py: the suite's cached solved case
-# issue 14's mesh study, traced tops, a_f = 5 (docs/studies/mesh_convergence_example1.md)
-FORCE_EXTRAPOLATED = 0.52147     # N/m (K = 1), Richardson from the three finest meshes
-TORQUE_FINEST = 0.085128         # N m/m, h = 1.5 mm (band 0.085 % over h <= 3.7 mm)
-SLIP_FINEST = 0.033477           # -, h = 1.5 mm (band 0.0036 points)
-ANGLE_FINEST = 0.04835           # rad, mean over h <= 3.7 mm (band 0.0012 rad)
+# issue 50's mesh study of the same case with unilateral contact (the default: the strip
+# leaves the roll 0.0374-0.0378 rad before the gap), traced tops, a_f = 5, h = 3.7, 3.0, 2.5,
+# 2.0, 1.5 mm (docs/validation/contact.md, "Issue 50"); issue 14's, held to the gap, gave
+# 0.52147, 0.085128, 0.033477, 0.04835
+FORCE_EXTRAPOLATED = 0.53770     # N/m (K = 1), mean of the three finest (band 0.023 % over
+                                 # h <= 3.7 mm, not monotone: no Richardson)
+TORQUE_FINEST = 0.084851         # N m/m, h = 1.5 mm (band 0.05 % over h <= 3.7 mm)
+SLIP_FINEST = 0.040423           # -, h = 1.5 mm (band 0.0073 points)
+ANGLE_FINEST = 0.06603           # rad, mean over h <= 3.7 mm (band 0.00012 rad)
 
 
 def _run(tmp_path_factory, name, **over):
@@ -64,13 +68,15 @@ def coarse(coarse_dir):
 
 
 def test_force_torque_slip_angle_against_the_mesh_converged_values(coarse):
-    """Measured at h = 0.02: force -0.32 %, torque -1.2 %, slip +0.02 points, angle +0.004
-    rad against the converged values; the bounds are 2.5-3 times those."""
+    """Measured at h = 0.02: force -0.36 %, torque -0.75 %, slip -0.097 points, angle
+    +0.0007 rad against the converged values (issue 50, unilateral; held to the gap issue 14
+    measured -0.32 %, -1.2 %, +0.02 points, +0.004 rad); the bounds are 2.5-3 times the
+    larger of the two."""
     s = coarse[0]
     assert s["converged"]
     assert s["roll_force"] == pytest.approx(FORCE_EXTRAPOLATED, rel=0.01)
     assert s["roll_torque"] == pytest.approx(TORQUE_FINEST, rel=0.03)
-    assert abs(s["forward_slip"] - SLIP_FINEST) < 6e-4
+    assert abs(s["forward_slip"] - SLIP_FINEST) < 2.5e-3
     assert abs(s["neutral_angle"] - ANGLE_FINEST) < 0.012
 
 
@@ -378,10 +384,11 @@ def test_history_rows_of_a_continuation_in_m_use_their_own_m():
 
 def test_contact_geometry_and_shares(coarse):
     """Contact length = the arc between the first and last contact node (R times their angle
-    difference; the contact is the chords, 1e-4 shorter); it ends at the gap (x = X_roll,
-    y = h1/2) and starts on the roll, after the nominal bite point (the free entry top sags
-    ahead of the roll: measured 7 % shorter than the nominal arc R alpha). The penalty share
-    is penalty power / roll power; the exit-correction change is the relative change of the
+    difference; the contact is the chords, 1e-4 shorter); it ends on the roll where the strip
+    leaves it (this thick strip: before the gap) and starts on the roll, after the nominal
+    bite point (the free entry top sags ahead of the roll; with the separation measured 15 %
+    shorter than the nominal arc R alpha, 7 % held to the gap). The penalty share is
+    penalty power / roll power; the exit-correction change is the relative change of the
     integral of the normal stress along the arc, from the written profile; horizontal force:
     no tensions, the roll pushes only down (measured 3e-12 of the force)."""
     s, c, _ = coarse
@@ -389,8 +396,11 @@ def test_contact_geometry_and_shares(coarse):
     arc = R * (c["angle"][0] - c["angle"][-1])
     assert s["contact_length"] == pytest.approx(arc, rel=1e-3)
     alpha = math.acos(1.0 - 0.05 / R)
-    assert 0.85 * R * alpha < s["contact_length"] < R * alpha
-    assert s["contact_end"] == pytest.approx([1.0, 0.2], abs=1e-9)
+    assert 0.8 * R * alpha < s["contact_length"] < R * alpha
+    # unilateral: it ends before the gap where the strip leaves the roll, on the roll
+    assert s["contact_end"] == pytest.approx([c["x"][-1], c["y"][-1]], abs=1e-12)
+    assert s["contact_end"][0] < 1.0 and s["contact_end_kind"] == "separation"
+    assert math.hypot(s["contact_end"][0] - cx, s["contact_end"][1] - cy) == pytest.approx(R)
     assert math.hypot(s["contact_start"][0] - cx, s["contact_start"][1] - cy) == pytest.approx(R)
     assert s["contact_start"][0] == pytest.approx(c["x"][0], abs=1e-12)
     assert s["penalty_share"] == pytest.approx(s["penalty_power"] / s["roll_power"], rel=1e-9)

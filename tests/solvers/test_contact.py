@@ -170,11 +170,13 @@ def finishing_runs():
 
 def test_the_pressure_is_smooth_up_to_the_arcs_ends(finishing_runs):
     """Raw nodal normal stress within 10 % of the peak of its local smooth curve over the
-    inner 96 % of the arc, on the automatic mesh and on one twice as fine; no tensile value."""
+    inner 96 % of the arc, on the automatic mesh and on one twice as fine; no tensile value
+    beyond the contact end's tolerance (the end is iterated to p = 0 within 1e-3 h: a pressure
+    of about 1e-4 of the peak)."""
     for k, (s, prof) in finishing_runs.items():
         assert s["exit_code"] == 0, (k, s["failure"])
         assert _zigzag(prof) < 0.10, k
-        assert np.max(prof["normal_stress"]) <= 1e-9 * np.max(np.abs(prof["normal_stress"]))
+        assert np.max(prof["normal_stress"]) <= 1e-3 * np.max(np.abs(prof["normal_stress"]))
 
 
 def test_coulomb_shear_follows_the_multiplier_at_vertices_and_midpoints(finishing_runs):
@@ -206,34 +208,72 @@ def test_exact_contact_has_no_leak_and_no_penalty_on_the_roll(finishing_runs):
 # --- unilateral contact ------------------------------------------------------------------------
 @pytest.fixture(scope=shared_scope)
 def example1_unilateral():
-    return solve(with_(example1_coarse("unilateral"), **{"contact.unilateral": True}))
+    return solve(example1_coarse("unilateral"))       # unilateral is the default
 
 
 def test_a_thick_strip_leaves_the_roll_before_the_gap(example1_unilateral):
     """Example 1 (h/l_c about 1.8): held to the whole arc, the contact stress turns tensile
-    before the gap; unilateral, the strip leaves the roll there: the loss is reported (from
-    the contact's end to the gap), the pressure is >= 0 on the arc, the run converges."""
+    before the gap (next test); unilateral (the default), the strip leaves the roll where the
+    pressure falls to zero: the contact's end is a node of the arc's chain (the map puts it
+    there), its pressure is zero to the solver's tolerance (1e-3 of the peak: the condition the
+    end is iterated to), the pressure >= 0 on the arc, the run converges."""
     s, prof = example1_unilateral
     assert s["exit_code"] == 0, s["failure"]
-    assert s["unilateral"] is True
-    assert s["contact_end_angle"] > 0.01
-    # the arc's ends are the written profile's (plumbing), the loss from its end to the gap
+    assert s["unilateral"] is True and s["contact_end_kind"] == "separation"
+    assert s["separation_angle"] > 0.01
+    # the arc's ends are the written profile's (plumbing); the gap of a rigid roll is angle 0
     assert s["contact_end_angle"] == pytest.approx(prof["angle"][-1], abs=1e-12)
+    assert s["separation_angle"] == pytest.approx(prof["angle"][-1], abs=1e-12)
     assert s["contact_start_angle"] == pytest.approx(prof["angle"][0], abs=1e-12)
-    assert s["contact_loss"][-1][0] == pytest.approx(prof["x"][-1], abs=1e-12)
-    assert s["contact_loss_detected"] and s["contact_loss"][-1][1] == pytest.approx(1.0)
-    assert s["min_contact_pressure"] >= 0.0
-    assert np.max(prof["normal_stress"]) <= 0.0
+    p = -prof["normal_stress"]
+    assert abs(p[-1]) <= 1e-3 * p.max()
+    assert s["contact_end_pressure"] == pytest.approx(p[-1], abs=1e-9 * p.max())
+    assert p.min() >= -1e-3 * p.max() and not s["contact_loss_detected"]
 
 
 def test_held_to_the_arc_the_tensile_stretch_is_reported():
     """Bilateral exact contact on the same pass: the raw multiplier's tensile nodes at the
-    exit are reported as contact loss (no exit correction hides them)."""
+    exit are reported as contact loss (no exit correction hides them), the end named held."""
     s, prof = solve(with_(example1_coarse("bilateral"), **{"contact.unilateral": False}))
     assert s["exit_code"] == 0
+    assert s["unilateral"] is False and s["contact_end_kind"] == "held"
     assert np.max(prof["normal_stress"]) > 0.0
     assert s["contact_loss_detected"] and s["min_contact_pressure"] < 0.0
     assert s["contact_end_angle"] == pytest.approx(0.0, abs=1e-12)
+    assert s["separation_angle"] is None
+
+
+def test_the_separation_point_converges_with_the_mesh():
+    """Example 1 on the report's meshes C1, C2 and M2: the separation angle's spread below
+    10 % of its distance from the gap (issue 50; with the end snapped to a node it moved by
+    one element, 0.040 rad on C2 against 0.0675 at h = 0.02), each run settled (exit 0; the
+    old active set cycled on F2) and without tension on the arc."""
+    angles = []
+    for mesh in ("C1", "C2", "M2"):
+        s, prof = solve(example1_coarse(f"sep_{mesh}", mesh={"h_contact": mesh}))
+        assert s["exit_code"] == 0, (mesh, s["failure"])
+        p = -prof["normal_stress"]
+        assert p.min() >= -1e-3 * p.max(), mesh
+        angles.append(s["separation_angle"])
+    assert max(angles) - min(angles) < 0.1 * min(angles), angles
+
+
+def test_the_roughing_slab_is_not_held_by_a_pulling_roll():
+    """The bundled roughing_slab (200 -> 170 mm, Tresca 0.9): held to the arc its multiplier
+    ends at -114 MPa (issue 50); by default the strip leaves the roll before the gap, no
+    tensile pressure anywhere on the arc, the run settles."""
+    import tomllib
+
+    from hotroll.examples import example_path
+
+    d = tomllib.loads(example_path("roughing_slab.toml").read_text())
+    s, prof = solve(with_(d, **{"solver.threads": 1, "output.figures": False,
+                                "output.vtk": False}))
+    assert s["exit_code"] == 0, s["failure"]
+    assert s["contact_end_kind"] == "separation"
+    p = -prof["normal_stress"]
+    assert p.min() >= -1e-3 * p.max()
+    assert abs(p[-1]) <= 1e-3 * p.max()
 
 
 def test_the_separated_top_stays_off_the_roll(example1_unilateral):

@@ -62,7 +62,7 @@ def test_traced_tops_are_streamlines(traced):
 def test_contact_starts_where_the_entry_top_meets_the_roll(traced):
     """The first contact node lies on the roll at x_c; the entry top sags ahead of the bite
     (x_c > x_touch) and reaches the roll there continuously; the exit top leaves the roll at
-    the gap."""
+    the contact's last node x_e (the gap, or before it where the strip separates)."""
     rp, top, d = traced.problem.rp, traced.top, traced.d
     x_c = traced.shape.x_c
     assert rp.x_touch < x_c < rp.x_touch + 0.1 * rp.contact_length
@@ -74,8 +74,12 @@ def test_contact_starts_where_the_entry_top_meets_the_roll(traced):
     before = free[free[:, 0] < x_c]
     assert np.all(before[:, 1] <= rp.half_entry + 1e-3 * traced.problem.h)   # no bulge
     assert np.all(rp.signed_distance(free) > 0)  # no free node inside the roll
-    assert np.interp(rp.axis_x, traced.shape.exit_x, traced.shape.exit_y) == pytest.approx(
-        rp.half_exit, abs=1e-12 * rp.radius)     # traced from the last contact node, the gap
+    last = contact[np.argmax(contact[:, 0])]      # traced from the last contact node
+    x_e = traced.shape.end(rp)
+    assert last[0] == pytest.approx(x_e, abs=1e-12) and x_e <= rp.axis_x
+    assert abs(rp.signed_distance(last[None])[0]) < 1e-12
+    assert np.interp(x_e, traced.shape.exit_x, traced.shape.exit_y) == pytest.approx(
+        last[1], abs=1e-12 * rp.radius)
 
 
 def test_flat_shape_is_the_reference_mesh(traced):

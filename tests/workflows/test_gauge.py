@@ -38,7 +38,10 @@ def test_the_exit_thickness_is_the_gap_plus_the_stretch(runs):
     s = runs["soft"]
     assert s["exit_code"] == 0 and s["roll_gap"] == GAP
     h1 = s["gauge_thickness"]              # the pass's exit thickness (the measured one
-    assert s["exit_thickness"] == pytest.approx(h1, rel=3e-3)   # differs by the mesh's error)
+    # differs by the mesh's error and, this thick strip leaving the roll before the gap, by its
+    # thinning after it: measured 0.37 %)
+    assert s["exit_thickness"] == pytest.approx(h1, rel=6e-3)
+    assert s["exit_thickness"] < h1 and s["contact_end_kind"] == "separation"
     stretch = s["roll_force_total"] / MODULUS
     assert 0.03 < stretch < 0.1            # the stand does open: the test means something
     assert h1 == pytest.approx(GAP + stretch, abs=5 * GAUGE_RTOL * GAP)
@@ -60,10 +63,11 @@ def test_a_stiffer_mill_rolls_nearer_the_gap(runs):
 def test_the_gap_pass_scales_exactly_with_the_flow_stress_and_the_modulus(runs):
     """Norton-Hoff with viscoplastic friction: F is proportional to K at a given geometry, so
     K x 3 with M x 3 is the same search, step by step: the same exit thickness (to round-off
-    and Newton's tolerance), three times the force."""
+    and Newton's tolerance), three times the force (to the contact end's tolerance)."""
     soft, scaled = runs["soft"], runs["scaled"]
     assert scaled["gauge_thickness"] == pytest.approx(soft["gauge_thickness"], rel=1e-7)
-    assert scaled["roll_force_total"] == pytest.approx(3 * soft["roll_force_total"], rel=1e-6)
+    # (the contact's end is settled to 1e-3 h: measured 1.9e-6 of the force between the two)
+    assert scaled["roll_force_total"] == pytest.approx(3 * soft["roll_force_total"], rel=5e-6)
     assert scaled["gauge_solves"] == soft["gauge_solves"]
 
 
