@@ -7,6 +7,8 @@ Per unit width, SI units.  numpy + scipy only.
   temperature-dependent flow stress, tensions; force, torque, neutral point, forward slip.
 * :func:`sims` -- Sims (1954) closed form for sticking friction.
 * :func:`ford_alexander` -- Ford & Alexander (1963/64) simplified load formula.
+* :func:`profile_slip_offset`, :func:`slip_error_bound` -- slab theory's forward-slip error in
+  the thin-gap limit, to leading order.
 """
 
 from hotroll.theory.ford_alexander import FordAlexanderResult, ford_alexander, ford_alexander_factor
@@ -20,9 +22,11 @@ from hotroll.theory.slab import (
     constant_flow_stress,
     solve_pass,
 )
+from hotroll.theory.thin_gap import profile_slip_offset, slip_error_bound
 
 __all__ = [
     "Coulomb", "Tresca", "Sticking", "constant_flow_stress", "solve_pass", "SlabResult",
     "NoNeutralPointError", "sims", "SimsResult", "sims_force_factor", "sims_neutral_angle",
-    "ford_alexander", "FordAlexanderResult", "ford_alexander_factor",
+    "ford_alexander", "FordAlexanderResult", "ford_alexander_factor", "profile_slip_offset",
+    "slip_error_bound",
 ]

@@ -117,15 +117,25 @@ def check_number(name: str, value, low=None, high=None, low_open=False, high_ope
 
 @dataclass(frozen=True)
 class Coulomb:
-    """Coulomb friction tau = mu p, capped at k (sticking where mu p > k)."""
+    """Coulomb friction tau = mu p, capped at k (sticking where mu p > k).
+
+    ``rounding`` r > 0 rounds the two kinks as the FE's law does (docs/theory.md 1b):
+    max(p, 0) over r k / mu and the cap over r k, (a + sqrt(a^2 + d^2))/2 and
+    (a + b - sqrt((a - b)^2 + d^2))/2; 0 (default): the sharp law."""
 
     mu: float
+    rounding: float = 0.0
 
     def __post_init__(self):
         object.__setattr__(self, "mu", check_number("mu", self.mu, low=0.0))
+        object.__setattr__(self, "rounding", check_number("rounding", self.rounding, low=0.0))
 
     def shear(self, p: float, k: float) -> float:
-        return min(self.mu * max(p, 0.0), k)
+        if self.rounding == 0.0 or self.mu == 0.0:
+            return min(self.mu * max(p, 0.0), k)
+        d = self.rounding * k
+        a = 0.5 * self.mu * (p + math.sqrt(p * p + (d / self.mu) ** 2))
+        return 0.5 * (a + k - math.sqrt((a - k) ** 2 + d * d))
 
 
 @dataclass(frozen=True)

@@ -34,6 +34,7 @@ import numpy as np
 
 from hotroll.config.case import Case
 from hotroll.model.friction import FRICTION_LAWS
+from hotroll.model.friction.coulomb import CoulombFriction
 from hotroll.results.compare_table import (
     COLUMNS,
     DEFINITIONS,
@@ -84,7 +85,9 @@ def slab_friction(case: Case):
     fr = case.friction
     form, key = FRICTION_LAWS[fr.law].slab or ("sticking", None)
     if form == "coulomb":
-        return Coulomb(fr.mu), f"coulomb mu = {fr.mu:g} (tau = min(mu p, k), as the FE)"
+        r = CoulombFriction.rounding  # the FE's rounded kinks: the slab solves the same law
+        return Coulomb(fr.mu, rounding=r), (f"coulomb mu = {fr.mu:g} (tau = min(mu p, k), "
+                                            f"its kinks rounded over {r:g} k as the FE)")
     if form == "tresca":
         return Tresca(getattr(fr, key)), (f"tresca factor = {getattr(fr, key):g} (tau = factor k,"
                                           " as the FE)")

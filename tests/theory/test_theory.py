@@ -439,3 +439,16 @@ def test_constant_flow_stress_rejects_a_non_positive_sigma_by_name(bad):
     """The constant law's sigma must be in (0, inf); the message names the argument 'sigma'."""
     with pytest.raises(ValueError, match=r"\bsigma\b"):
         constant_flow_stress(bad)
+
+
+def test_rounded_coulomb_is_the_fe_law():
+    """Coulomb(mu, rounding=0.01) is the FE's law (kinks rounded over 0.01 k), rounding 0 the
+    sharp min(mu p, k)."""
+    from hotroll.model.friction.coulomb import CoulombFriction
+
+    for mu in (0.01, 0.3, 2.0):
+        fe = CoulombFriction(1e-3, mu=mu)
+        for p, k in ((-1.0, 1.0), (0.0, 1.0), (0.5, 1.0), (2.0, 1.0), (50.0, 1.0)):
+            assert Coulomb(mu, rounding=fe.rounding).shear(p, k) == pytest.approx(
+                fe.limit(pressure=p, k=k), rel=1e-12, abs=1e-15)
+            assert Coulomb(mu).shear(p, k) == min(mu * max(p, 0.0), k)
