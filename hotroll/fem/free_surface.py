@@ -197,8 +197,9 @@ class ContactEndSearch:
     element, along the secant through the two (x_e, p_end) instead (p_end(x_e) falls about
     twice as steeply as the pressure along the arc: the line alone overshot, p_end alternating
     in sign and shrinking by only 0.7 an update). A step is at most ``trust`` long: one
-    element, halved whenever p_end changes sign (the root lies behind; a trust that grew back
-    while the sign held let a search cycle with period four). p_end is read from a flow converged to the
+    element, halved whenever p_end changes sign (the root lies behind) and doubled back
+    towards an element only while |p_end| falls on the same side (a trust that grew whenever
+    the sign held let a search near the gap cycle with period four). p_end is read from a flow converged to the
     coupling threshold and, at the gap, from a P1 multiplier that averages the rigid-plastic
     strip's pressure jump there: near the gap it need not be monotone (a pass rolled by the
     PyRolL plugin cycled between the gap and 0.1 element before it), and the halving ends such
@@ -235,7 +236,10 @@ class ContactEndSearch:
             xo, po = last
             if 0.0 < abs(x_e - xo) <= h and (p_e - po) / (x_e - xo) < 0.0:
                 new = x_e - p_e * (x_e - xo) / (p_e - po)
-            trust = 0.5 * trust if (po < 0.0) != (p_e < 0.0) else min(trust, h)
+            if (po < 0.0) != (p_e < 0.0):
+                trust *= 0.5
+            elif abs(p_e) < abs(po):       # same side and closer: the trust grows back
+                trust = min(2.0 * trust, h)
         self.trust = trust
         new = float(np.clip(min(max(new, x_e - trust), x_e + trust), lo_b, hi_b))
         return new, abs(new - x_e)
