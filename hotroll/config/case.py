@@ -98,6 +98,13 @@ class Case(Section):
             problems.append('contact.method: "multiplier" needs solver.method = "steady" (the '
                             'report\'s scheme has the penalty contact of Table 1), got '
                             f'"{self.solver.method}"')
+        if self.contact.unilateral is True and self.plate.free_surface != "traced":
+            problems.append("contact.unilateral: true needs plate.free_surface = \"traced\" "
+                            "(the top after the contact's end is a traced free surface)")
+        if self.contact.unilateral is True and self.solver.method != "steady":
+            problems.append("contact.unilateral: true needs solver.method = \"steady\" (the "
+                            "report's scheme holds the strip to the roll up to the exit point, "
+                            "its (2.28a); set it to \"auto\" or false)")
         if self.roll.model != "rigid" and self.solver.method != "steady":
             problems.append(f'roll.model: "{self.roll.model}" needs solver.method = "steady" '
                             '(the report\'s scheme rolls with the rigid roll), got '

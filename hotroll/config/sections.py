@@ -242,8 +242,8 @@ class ContactConfig(Section):
     unilateral: Literal["auto"] | StrictBool = field(
         "auto", "the strip leaves the roll where the contact pressure falls to zero (before "
         "the gap or at it); false: bilateral, the strip held to the roll up to the gap whatever "
-        "the pressure; auto: true for the steady solver, false (the report's (2.28a)) for the "
-        "report's scheme", "", '"auto", true or false')
+        "the pressure; auto: true for the steady solver with traced tops, false otherwise (the "
+        "report's scheme: its (2.28a))", "", '"auto", true (steady solver, traced tops) or false')
 
     def resolved(self, solver_method: str) -> str:
         """The method a run uses: "auto" resolved by the solver."""
@@ -255,7 +255,7 @@ class ContactConfig(Section):
         """Whether the strip may leave the roll: "auto" resolved by the solver."""
         if self.unilateral != "auto":
             return bool(self.unilateral)
-        return solver_method == "steady"
+        return solver_method == "steady"     # (constrained tops: held, ``SteadyRun``)
 
 
 class RollConfig(Section):

@@ -3,8 +3,7 @@
 Each step n: a_f from (3.15) with the previous velocity; solve (3.6) on Omega_n (Picard (3.8) or
 Newton); move every P2 geometry node, x_{n+1} = x_n + dt v_n (3.7); project nodes that entered
 the roll back onto it and flag contact nodes (3.9), a contact node staying in contact up to the
-exit point (bilateral (2.28a); ``[contact] unilateral = true`` releases a node that moves off
-the roll); every 10 steps put all contact nodes on the roll surface. The
+exit point (bilateral (2.28a)); every 10 steps put all contact nodes on the roll surface. The
 first iterate of the first step uses m = 1 (Section 3.4).
 
 Steady state and the summary windows: ``settling.py``.
@@ -50,8 +49,6 @@ class TransientSettings:
     wall_time_limit: float | None = None
     checkpoint_every: int = 25
     contact_tol: float = 1e-5
-    unilateral: bool = False      # True: a contact node moving off the roll (beyond contact_tol)
-                                  # is released; False: held up to M (the report's (2.28a))
     project_every: int = 10
     a_f: float | None = None      # None: estimate (3.15) at every step
     a_f_max: float = 1e6
@@ -109,7 +106,7 @@ class TransientRun:
     # --- geometry ----------------------------------------------------------------------------
     def _detect(self, project: bool) -> None:
         self.top.detect(self.problem.rp, self.d, self.s.contact_tol, project,
-                        bilateral=not self.s.unilateral)
+                        bilateral=True)
         self.top.write_indicator(self.form.chi.vec.FV().NumPy())
 
     def head_x(self) -> float:

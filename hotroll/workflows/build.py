@@ -69,7 +69,6 @@ def build_model(case: Case):
         max_it=sv.max_iterations, steady_tol=sv.steady_tolerance, max_steps=sv.max_steps,
         wall_time_limit=sv.wall_time_limit, checkpoint_every=sv.checkpoint_every,
         contact_tol=contact_tolerance(rp, case.dt),
-        unilateral=case.contact.resolved_unilateral(sv.method),
         a_f=case.friction.a_f_rule,
         a_f_max=case.friction.a_f_max, free_surface=case.plate.free_surface)
     return model, settings

@@ -335,6 +335,21 @@ def test_the_penalty_is_an_option_of_the_steady_solver_only():
                           ).contact.resolved("transient") == "penalty"
 
 
+def test_unilateral_contact_needs_the_steady_solver_and_traced_tops():
+    """[contact] unilateral = true with the report's scheme (its bilateral (2.28a)) or with
+    constrained tops (no free top to trace after the contact's end) is refused naming the
+    field; "auto" resolves to the steady solver's unilateral and the scheme's bilateral."""
+    from hotroll.config.case import CaseError
+
+    for other in ({"solver.method": "transient"}, {"plate.free_surface": "constrained"}):
+        with pytest.raises(CaseError, match="contact.unilateral"):
+            case_from_dict(with_(example1_coarse("x"), **{"contact.unilateral": True}, **other))
+    case = case_from_dict(example1_coarse("x"))
+    assert case.contact.unilateral == "auto"
+    assert case.contact.resolved_unilateral("steady") is True
+    assert case.contact.resolved_unilateral("transient") is False
+
+
 # --- the written pressure carries the force -------------------------------------------------
 def test_the_written_pressure_and_shear_give_the_roll_force(finishing_runs):
     """The roll force recomputed from contact.csv alone: int (-sigma_n n_y... ) along the arc,
