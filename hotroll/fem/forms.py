@@ -75,7 +75,12 @@ def norton_hoff_tangent(material: NortonHoff, m, w, u, p, v, q, K=1.0):
 # against 24 ms for UMFPACK on a thermal finishing pass; on a symmetric Jacobian GMRES stops
 # after one iteration). First, so that a non-symmetric pass factorises once: finishing_mill
 # 0.2 s faster than with the plain LDL^T tried first, Example 1 the same within the noise.
-LINEAR_SOLVERS = ("sparsecholesky+gmres", "pardiso", "umfpack")
+# Issue 50: UMFPACK first, the only one whose factors are the same in every run. NGSolve's
+# LDL^T is not, even with no task manager (a 6.6k-DOF Coulomb Jacobian, 15 factorisations: 10-11
+# distinct solutions, 1e-16 apart); their noise made the ten stands' F10 take 15 or 17 Newton
+# steps. UMFPACK's refactorisation and solve there: 22 ms against LDL^T's 6 ms (2 threads); whole
+# passes: docs/validation/speed.md "Issue 50". The others remain fallbacks.
+LINEAR_SOLVERS = ("umfpack", "sparsecholesky+gmres", "pardiso")
 
 
 @dataclass

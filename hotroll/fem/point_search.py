@@ -19,6 +19,8 @@ from collections import OrderedDict
 
 import numpy as np
 
+from hotroll.fem.reproducible import find_points
+
 #: a point is inside a triangle when each barycentric coordinate is >= -INSIDE
 INSIDE = 1e-12
 #: ... and inside it alone when each is > CLEAR; nearer an edge or a corner NGSolve searches (its
@@ -124,7 +126,7 @@ def mesh_points(mesh, x, y, deformation=None) -> np.ndarray:
     if deformation is not None:
         mesh.UnsetDeformation()
     try:
-        theirs = mesh(np.append(x[unclear], 0.0), np.append(y[unclear], 0.0))
+        theirs = find_points(mesh, np.append(x[unclear], 0.0), np.append(y[unclear], 0.0))
     finally:
         if deformation is not None:
             mesh.SetDeformation(deformation)

@@ -22,6 +22,7 @@ from hotroll.fem.profile_figures import (  # noqa: F401 (re-exported)
     smoothed,
     sticking_zone,
 )
+from hotroll.fem.reproducible import integrate
 from hotroll.fem.rolling_form import TOP, RollingForm
 from hotroll.fem.top_boundary import TopBoundary
 from hotroll.model.material import edot_squared
@@ -147,7 +148,7 @@ def measure(form: RollingForm, top: TopBoundary, disp: np.ndarray, K: float, h: 
 # --- integrals -------------------------------------------------------------------------------
 def integrals(form: RollingForm, K: float) -> dict:
     """Forces, torque and the power balance of (3.6) tested with v itself (all per unit width)."""
-    from ngsolve import BND, CF, VOL, IfPos, InnerProduct, Integrate, specialcf, sqrt, x, y
+    from ngsolve import BND, CF, VOL, IfPos, InnerProduct, specialcf, sqrt, x, y
 
     mesh, rp, pen, m = form.mesh, form.rp, form.penalties, form.m
     u = form.nonlinear.velocity
@@ -164,7 +165,7 @@ def integrals(form: RollingForm, K: float) -> dict:
     r = sqrt((x - cx) ** 2 + (y - cy) ** 2)
 
     def bnd(cf, region=top):
-        return float(Integrate(CF(cf).Compile(), mesh, BND, definedon=region))
+        return integrate(CF(cf).Compile(), mesh, BND, definedon=region)
 
     inlet = form.inlet_penalty(u, u) * u[0]
     outlet = form.outlet_penalty(u, u) * u[0]
@@ -182,7 +183,7 @@ def integrals(form: RollingForm, K: float) -> dict:
     p = m.Get() + 1.0
     nh = specialcf.normal(2)
     out = {
-        "plastic_power": K * float(Integrate((mu * InnerProduct(eps, eps)).Compile(), mesh, VOL)),
+        "plastic_power": K * integrate((mu * InnerProduct(eps, eps)).Compile(), mesh, VOL),
         "friction_power": K * form.integrate_friction(chi * kf * s * s),
         "penalty_power": K * (free_pen + face_pen + contact_pen),
         "contact_penalty_power": K * contact_pen,
@@ -198,7 +199,7 @@ def integrals(form: RollingForm, K: float) -> dict:
                               + bnd(form.tension_front * (u * nh), mesh.Boundaries("out"))),
         "contact_length": bnd(chi),
         "slip_measure": bnd(chi * IfPos(s * s, (s * s) ** (p / 2), 0.0)),
-        "strain_rate_measure": float(Integrate((3.0 * e2 + 1e-300) ** (p / 2), mesh, VOL)),
+        "strain_rate_measure": integrate((3.0 * e2 + 1e-300) ** (p / 2), mesh, VOL),
     }
     out.update(force_balance(form, K))
     # the roll's force on the plate, pressing down: the roll force is its vertical part
@@ -223,7 +224,7 @@ def force_balance(form: RollingForm, K: float) -> dict:
     ``balance_error`` = |sum| / roll force. ``tension``: the back and front tensions' force.
     ``free_top_force_share``: |free-top force| / roll force.
     """
-    from ngsolve import BND, CF, Grad, IfPos, Integrate, specialcf, x
+    from ngsolve import BND, CF, Grad, IfPos, specialcf, x
 
     mesh, rp = form.mesh, form.rp
     u, chi = form.nonlinear.velocity, form.chi
@@ -242,8 +243,8 @@ def force_balance(form: RollingForm, K: float) -> dict:
     nh = specialcf.normal(2)
 
     def force(term, region):
-        return [-K * float(Integrate(term[i].Compile(), mesh, BND,
-                                     definedon=mesh.Boundaries(region))) for i in range(2)]
+        return [-K * integrate(term[i].Compile(), mesh, BND, definedon=mesh.Boundaries(region))
+                for i in range(2)]
 
     normal = (force(form.pressure(u) * n, "arc") if form.exact
               else force(chi * gam * (u * n) * n, TOP))
@@ -270,7 +271,7 @@ def force_balance(form: RollingForm, K: float) -> dict:
     exx = Grad(u)[0, 0]
     mu = form.material.viscosity(4.0 / 3.0 * exx * exx, m=form.m_material, K=form.consistency)
     sigma_yy = -mu * exx - problem.pressure
-    sym_stress = -K * float(Integrate(sigma_yy, mesh, BND, definedon=mesh.Boundaries("sym")))
+    sym_stress = -K * integrate(sigma_yy, mesh, BND, definedon=mesh.Boundaries("sym"))
     total = np.add(np.add(roll, tops), np.add(np.add(face, tension), [0.0, sym_y]))
     scale = max(abs(roll[1]), 1e-300)
     out = {"balance_error": float(np.hypot(*total)) / scale, "symmetry_stress_force_y": sym_stress,
@@ -282,22 +283,22 @@ def force_balance(form: RollingForm, K: float) -> dict:
 
 def a_f_inputs(form: RollingForm) -> tuple[float, float]:
     """The two integrals of (3.15): int_Omega |v|^p dx and the length of Gamma_C^-."""
-    from ngsolve import BND, VOL, IfPos, Integrate, Norm
+    from ngsolve import BND, VOL, IfPos, Norm
 
     u, p = form.nonlinear.velocity, form.m.Get() + 1.0
-    vol = float(Integrate((Norm(u) ** 2 + 1e-300) ** (p / 2), form.mesh, VOL))
-    back = float(Integrate(form.chi * IfPos(-form.slip(u), 1.0, 0.0), form.mesh, BND,
-                           definedon=form.mesh.Boundaries(TOP)))
+    vol = integrate((Norm(u) ** 2 + 1e-300) ** (p / 2), form.mesh, VOL)
+    back = integrate(form.chi * IfPos(-form.slip(u), 1.0, 0.0), form.mesh, BND,
+                     definedon=form.mesh.Boundaries(TOP))
     return vol, back
 
 
 def face_flow(form: RollingForm, face: str) -> dict:
     """Flux (m^2/s, half model), projected height and mean velocity through the face ``in``
     (tail / inlet) or ``out`` (head / outlet): flux = |int v.n ds|, exact for any face shape."""
-    from ngsolve import BND, Integrate, specialcf
+    from ngsolve import BND, specialcf
 
     nh = specialcf.normal(2)
     region = form.mesh.Boundaries(face)
-    q = abs(float(Integrate(form.nonlinear.velocity * nh, form.mesh, BND, definedon=region)))
-    height = abs(float(Integrate(nh[0], form.mesh, BND, definedon=region)))
+    q = abs(integrate(form.nonlinear.velocity * nh, form.mesh, BND, definedon=region))
+    height = abs(integrate(nh[0], form.mesh, BND, definedon=region))
     return {"velocity": q / height if height > 0 else math.nan, "thickness": height, "flux": q}

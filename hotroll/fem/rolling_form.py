@@ -37,6 +37,7 @@ from dataclasses import dataclass, replace
 
 from hotroll.fem.forms import NonlinearProblem, norton_hoff_tangent, norton_hoff_volume, one_sided, strain_rate
 from hotroll.fem.primal_dual import FrictionDual, NortonHoffDual, TangentPoints
+from hotroll.fem.reproducible import integrate
 from hotroll.fem.spaces import taylor_hood
 from hotroll.model.friction import FrictionLaw
 from hotroll.model.geometry import RollPass
@@ -365,9 +366,12 @@ class RollingForm:
 
     def integrate_friction(self, cf) -> float:
         """Integral of ``cf`` (with chi in it) over the contact, on ``friction_measure``."""
-        from ngsolve import Integrate
+        from ngsolve import BND
 
-        return float(Integrate(cf.Compile() * self.friction_measure(), self.mesh))
+        if self.top_elements is None:
+            return integrate(cf.Compile(), self.mesh, BND,
+                             definedon=self.mesh.Boundaries(self.contact_regions))
+        return integrate(cf.Compile() * self.friction_measure(), self.mesh)
 
     def inlet_penalty(self, u, w):
         """(3.2a) per unit test v_x: gamma_in [v_x - |U_roll|]_+, active set taken at w."""

@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from hotroll.fem.forms import strain_rate
+from hotroll.fem.reproducible import integrate
 from hotroll.model.material import edot_squared
 
 
@@ -97,19 +98,19 @@ class StrainField:
     def mean_where(self, vertex_mask) -> float:
         """Mean strain over the elements whose vertices are all in ``vertex_mask`` (P1
         indicator; the rest of the mesh weighs nothing)."""
-        from ngsolve import H1, GridFunction, IfPos, Integrate
+        from ngsolve import H1, GridFunction, IfPos
 
         ind = GridFunction(H1(self.mesh, order=1))
         ind.vec.FV().NumPy()[:] = np.asarray(vertex_mask, dtype=float)
         full = IfPos(ind - 0.999, 1.0, 0.0)
-        area = float(Integrate(full, self.mesh))
-        return float(Integrate(full * self.gf, self.mesh)) / area if area > 0 else float("nan")
+        area = integrate(full, self.mesh)
+        return integrate(full * self.gf, self.mesh) / area if area > 0 else float("nan")
 
     def mean_between(self, x0: float, x1: float) -> float:
         """Mean strain over the strip between x0 and x1 (current coordinates): the
         thickness-weighted mean of a cross-section where the strip is rigid."""
-        from ngsolve import IfPos, Integrate, x
+        from ngsolve import IfPos, x
 
         band = IfPos(x - x0, IfPos(x1 - x, 1.0, 0.0), 0.0)
-        area = float(Integrate(band, self.mesh))
-        return float(Integrate(band * self.gf, self.mesh)) / area if area > 0 else float("nan")
+        area = integrate(band, self.mesh)
+        return integrate(band * self.gf, self.mesh) / area if area > 0 else float("nan")

@@ -53,6 +53,7 @@ import numpy as np
 
 from hotroll.fem.heat_p1 import SteadyP1Operator
 from hotroll.fem.nonlinear import newton
+from hotroll.fem.reproducible import integrate
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 
 
@@ -319,12 +320,12 @@ class TemperatureField:
 
     # --- figures -------------------------------------------------------------------------------
     def _integrate(self, cf, region=None) -> float:
-        from ngsolve import BND, VOL, Integrate
+        from ngsolve import BND, VOL
 
         if region is None:
-            return float(Integrate(cf, self.mesh, VOL, order=2 * self.order + self._bonus_dx))
-        return float(Integrate(cf, self.mesh, BND, order=2 * self.order + self._bonus_ds,
-                               definedon=self.mesh.Boundaries(region)))
+            return integrate(cf, self.mesh, VOL, order=2 * self.order + self._bonus_dx)
+        return integrate(cf, self.mesh, BND, order=2 * self.order + self._bonus_ds,
+                         definedon=self.mesh.Boundaries(region))
 
     def balance(self, velocity, heat_density, friction_flux, contact,
                 sources_unchanged: bool = False) -> dict:

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from hotroll.fem.reproducible import find_points
 from hotroll.solvers.streamlines import streamline_means
 
 #: eta grid of the strain profile in an isothermal run (no thermal strip mesh).
@@ -58,7 +59,7 @@ def _outlet(run, fields, eta: np.ndarray) -> list[np.ndarray]:
     mesh = run.mesh
     mesh.UnsetDeformation()
     try:
-        pts = mesh(np.full_like(y, x), y)
+        pts = find_points(mesh, np.full_like(y, x), y)
     finally:
         mesh.SetDeformation(run.disp)
     return [np.asarray(f(pts), dtype=float).reshape(-1) for f in fields]

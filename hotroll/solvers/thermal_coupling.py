@@ -37,6 +37,7 @@ import numpy as np
 from hotroll.fem.heat_p1 import p1_supg_load, p1_supg_tau
 from hotroll.fem.mesh import mesh_triangles
 from hotroll.fem.point_search import mesh_points
+from hotroll.fem.reproducible import find_points, integrate
 from hotroll.fem.spaces import P2PointValues
 from hotroll.fem.strip_mesh import ThermalStrip, layer_thickness
 from hotroll.fem.thermal_field import TemperatureField
@@ -144,8 +145,9 @@ class ThermalCoupling(FlowStressFeedback):
         # where those are in the strip mesh: searched once (its logical coordinates do not
         # move; NGSolve's point search ignores the deformation)
         smesh = self.strip.mesh
-        self._mech_strip_pts = smesh(*self._mech_logical)
-        self._empty_strip_pts = smesh(*self._empty_logical) if len(self._empty) else None
+        self._mech_strip_pts = find_points(smesh, *self._mech_logical)
+        self._empty_strip_pts = (find_points(smesh, *self._empty_logical) if len(self._empty)
+                                 else None)
         self._strip_tris = mesh_triangles(self.strip.mesh)
         # the CFs evaluated at every update, built and compiled once (they read GridFunctions
         # and Parameters): 2-3x faster to evaluate than the plain expression trees
@@ -368,12 +370,12 @@ class ThermalCoupling(FlowStressFeedback):
         """(mixing-cup mean int T v_x / int v_x over the strip between x0 and x0 + band, the
         top's temperature at the contact's end column (the gap, or where the strip leaves the
         roll before it)): the exit temperatures."""
-        from ngsolve import IfPos, Integrate, x
+        from ngsolve import IfPos, x
 
         u, T, mesh = self.strip.velocity(), self.field.gf, self.strip.mesh
         sel = IfPos(x - x0, IfPos(x0 + band - x, 1.0, 0.0), 0.0)
-        flux = float(Integrate(sel * u[0], mesh))
-        mean = float(Integrate(sel * u[0] * T, mesh)) / flux if flux else math.nan
+        flux = integrate(sel * u[0], mesh)
+        mean = integrate(sel * u[0] * T, mesh) / flux if flux else math.nan
         ny, nx1 = self.strip.shape
         surface = float(self.field.values[(ny - 1) * nx1 + self.strip.i_exit])
         return mean, surface

@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from hotroll.fem.mesh import mesh_triangles
+from hotroll.fem.reproducible import integrate
 from hotroll.fem.thermal_field import SolveInfo, TemperatureField
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 from hotroll.solvers.thermal_coupling import HEAT_FLOWS
@@ -111,12 +112,12 @@ class LagrangianThermal(FlowStressFeedback):
         temperature at the gap, the heat flows of the current flow and temperature, and the
         last step's energy identity; the advected and conducted flows of the steady balance
         do not apply (NaN)."""
-        from ngsolve import IfPos, Integrate, x
+        from ngsolve import IfPos, x
 
         u, T, mesh = self.form.nonlinear.velocity, self.field.gf, self.mesh
         sel = IfPos(x - x_exit, IfPos(x_exit + 2.0 * h - x, 1.0, 0.0), 0.0)
-        flux = float(Integrate(sel * u[0], mesh))
-        mean = float(Integrate(sel * u[0] * T, mesh)) / flux if flux > 0 else math.nan
+        flux = integrate(sel * u[0], mesh)
+        mean = integrate(sel * u[0] * T, mesh) / flux if flux > 0 else math.nan
         top, d = self._top, self._disp.vec.FV().NumPy()
         xy = top.vertex_positions(d)
         near = np.argmin(np.abs(xy[:, 0] - x_exit) + np.where(xy[:, 0] < x_exit - h, 1e9, 0.0))

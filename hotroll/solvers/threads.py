@@ -13,12 +13,13 @@ from __future__ import annotations
 
 from contextlib import contextmanager
 
+from hotroll.fem.reproducible import threaded
+
 
 @contextmanager
-def solver_threads():
-    """``with solver_threads():`` NGSolve's TaskManager, BLAS limited to 1 thread."""
-    from ngsolve import TaskManager
-    from threadpoolctl import threadpool_limits
-
-    with threadpool_limits(limits=1, user_api="blas"), TaskManager():
+def solver_threads(threads: int | None = None):
+    """``with solver_threads(n):`` NGSolve's TaskManager with ``n`` threads (None: the count
+    as set), BLAS limited to 1 thread; the direct solvers step out of it
+    (``fem/reproducible.py``)."""
+    with threaded(threads):
         yield

@@ -23,6 +23,7 @@ import numpy as np
 
 from hotroll.fem.forms import NonlinearProblem, norton_hoff_volume, strain_rate
 from hotroll.fem.nonlinear import SolveStats, newton, picard
+from hotroll.fem.reproducible import find_points, integrate
 from hotroll.fem.spaces import taylor_hood
 from hotroll.model.material import NortonHoff, edot_squared
 
@@ -65,16 +66,16 @@ def solve_with_continuation(problem: NonlinearProblem, m_param, m: float, method
 
 
 def _l2(cf, mesh, order=10) -> float:
-    from ngsolve import InnerProduct, Integrate
+    from ngsolve import InnerProduct
 
-    return float(np.sqrt(Integrate(InnerProduct(cf, cf), mesh, order=order)))
+    return float(np.sqrt(integrate(InnerProduct(cf, cf), mesh, order=order)))
 
 
 def poiseuille(h: float, m: float, K: float = 1.0, G: float = 1.0, H: float = 1.0,
                L: float = 2.0, eps0: float = 1e-6, method: str = "newton",
                tol: float = 1e-10, max_it: int = 60) -> dict:
     """Power-law Poiseuille flow on a structured mesh of size h; errors relative to the exact."""
-    from ngsolve import CF, Integrate, Parameter, ds, dx, x, y
+    from ngsolve import CF, Parameter, ds, dx, x, y
 
     mesh = rectangle(L, H, round(L / h), round(H / h), ("sym", "out", "wall", "in"))
     fes = taylor_hood(mesh, dirichletx="wall", dirichlety="sym|wall|in|out")
@@ -94,7 +95,7 @@ def poiseuille(h: float, m: float, K: float = 1.0, G: float = 1.0, H: float = 1.
     p_exact = G * (L - x)
     q_exact = m / (2.0 * m + 1.0) * (G / K) ** (1.0 / m) * H ** ((2.0 * m + 1.0) / m)
     u_h, p_h = problem.velocity, problem.pressure
-    q_h = Integrate(u_h[0], mesh, order=6) / L          # mean over x of the flow rate
+    q_h = integrate(u_h[0], mesh, order=6) / L          # mean over x of the flow rate
     return {
         "u_error": _l2(u_h - u_exact, mesh) / _l2(u_exact, mesh),
         "flux": q_h,
@@ -114,7 +115,7 @@ def compression(h: float, m: float, K: float = 1.0, r: float = 1.0, a: float = 1
                 b: float = 1.0, method: str = "newton", eps0: float = 1e-6,
                 tol: float = 1e-10, max_it: int = 30) -> dict:
     """Frictionless plane-strain compression; the exact solution is in the discrete space."""
-    from ngsolve import BND, BoundaryFromVolumeCF, Integrate, Parameter, dx
+    from ngsolve import BND, BoundaryFromVolumeCF, Parameter, dx
 
     mesh = rectangle(a, b, max(1, round(a / h)), max(1, round(b / h)),
                      ("bottom", "right", "top", "left"))
@@ -132,15 +133,15 @@ def compression(h: float, m: float, K: float = 1.0, r: float = 1.0, a: float = 1
 
     u_h, p_h = problem.velocity, problem.pressure
     xs, ys = np.meshgrid(np.linspace(0, a, 21), np.linspace(0, b, 21))
-    vals = u_h(mesh(xs.ravel(), ys.ravel()))
+    vals = u_h(find_points(mesh, xs.ravel(), ys.ravel()))
     exact = r * np.column_stack([xs.ravel(), -ys.ravel()])
     eps = strain_rate(u_h)
     s_yy = material.viscosity(edot_squared(eps), m=m, K=K) * eps[1, 1]
     # on boundary elements Grad gives the surface gradient only (d/dy of v_y lost on the top):
     # evaluate sigma_yy from the adjacent volume element
-    force = Integrate(BoundaryFromVolumeCF(s_yy - p_h), mesh, BND,
+    force = integrate(BoundaryFromVolumeCF(s_yy - p_h), mesh, BND,
                       definedon=mesh.Boundaries("top"), order=6)
-    p_mean = Integrate(p_h, mesh, order=4) / (a * b)
+    p_mean = integrate(p_h, mesh, order=4) / (a * b)
     return {
         "u_error": float(np.max(np.abs(vals - exact))) / (r * a),
         "force": force,

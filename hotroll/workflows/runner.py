@@ -61,22 +61,19 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
     only): (inlet flux m^2/s of the half strip, relative tolerance) of a tandem stand whose
     roll speed the solve finds (``solvers/couplings.TandemSpeed``); the case's speed is the
     start, the speed found is written (case.toml, summary.json)."""
-    import ngsolve
-
     if case.pass_.roll_gap is not None:      # the exit thickness follows from the gap
         return run_gap_case(case, Path(out), run_case, progress=progress, sweep=sweep)
     est = check(case)                     # ResourceError before anything is written or meshed
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    ngsolve.SetNumThreads(case.solver.threads)
     write_text(out / "case.toml", case.to_toml())
     ckpt = out / "checkpoint"
     if not resume and (ckpt / "state.npz").exists():
         (ckpt / "state.npz").unlink()
-    # the whole run in NGSolve's task manager (2 threads): netgen's mesh optimisation, the
-    # forms' set-up and the measures run in parallel too, the same mesh to the last bit
-    # (the solves enter it again: nested, a no-op)
-    with solver_threads():
+    # the whole run in NGSolve's task manager ([solver] threads, set here): netgen's mesh
+    # optimisation, the forms' set-up and the measures run in parallel too, the same mesh to
+    # the last bit (the solves enter it again: nested, a no-op; the direct solvers step out)
+    with solver_threads(case.solver.threads):
         t0 = time.perf_counter()
         model, settings = build_model(case)
         extra = {"estimated_dofs": est.dofs, "estimated_memory": est.memory_bytes,
