@@ -42,6 +42,8 @@ issue 34 session 6).
 """
 from __future__ import annotations
 
+from hotroll.fem.reproducible import fe_space
+
 #: order of the ``IntegrationRuleSpace``: its rule (6 points on a triangle, exact to order 4)
 #: is the one NGSolve picks by default for the P2-P1 forms (P2 trial x P2 test), so the
 #: residual is the same as with plain ``dx`` (tests/fem/test_primal_dual.py)
@@ -56,7 +58,7 @@ class NortonHoffDual:
         from ngsolve import CF, GridFunction
         from ngsolve.comp import IntegrationRuleSpace
 
-        self.space = space = IntegrationRuleSpace(mesh, order=ORDER)
+        self.space = space = fe_space(IntegrationRuleSpace, mesh, order=ORDER)
         self.intrules = space.GetIntegrationRules()
         self.eps0 = eps0
         self.gf, self._next = GridFunction(space**3), GridFunction(space**3)
@@ -150,7 +152,7 @@ class FrictionDual:
         from ngsolve import H1, GridFunction
 
         self.region = mesh.Boundaries(region)
-        space = H1(mesh, order=2)
+        space = fe_space(H1, mesh, order=2)
         self.d, self._next = GridFunction(space), GridFunction(space)
         self.velocity = self._previous = self._step = None
         self._restart = False

@@ -22,7 +22,7 @@ from hotroll.fem.profile_figures import (  # noqa: F401 (re-exported)
     smoothed,
     sticking_zone,
 )
-from hotroll.fem.reproducible import integrate
+from hotroll.fem.reproducible import fe_space, integrate
 from hotroll.fem.rolling_form import TOP, RollingForm
 from hotroll.fem.top_boundary import TopBoundary
 from hotroll.model.material import edot_squared
@@ -106,7 +106,7 @@ def p1_space(mesh):
     if _P1[0] is not mesh:
         from ngsolve import H1
 
-        _P1[:] = [mesh, H1(mesh, order=1)]
+        _P1[:] = [mesh, fe_space(H1, mesh, order=1)]
     return _P1[1]
 
 

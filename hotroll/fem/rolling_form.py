@@ -37,7 +37,7 @@ from dataclasses import dataclass, replace
 
 from hotroll.fem.forms import NonlinearProblem, norton_hoff_tangent, norton_hoff_volume, one_sided, strain_rate
 from hotroll.fem.primal_dual import FrictionDual, NortonHoffDual, TangentPoints
-from hotroll.fem.reproducible import integrate
+from hotroll.fem.reproducible import fe_space, integrate
 from hotroll.fem.spaces import taylor_hood
 from hotroll.model.friction import FrictionLaw
 from hotroll.model.geometry import RollPass
@@ -169,7 +169,7 @@ class RollingForm:
         # free tops before this x are the entry's (3.2a), after it the exit's (3.2b): the roll
         # axis, or (steady solver) a point inside the contact, which may end before the axis
         self.x_split = Parameter(rp.axis_x)
-        self.chi = GridFunction(FacetFESpace(mesh, order=0))  # 1 on contact edges
+        self.chi = GridFunction(fe_space(FacetFESpace, mesh, order=0))  # 1 on contact edges
         # back / front tension over K (reduced, like every stress in the form)
         self.tension_back, self.tension_front = Parameter(tensions[0]), Parameter(tensions[1])
         # the elements a law with k integrates its friction on (element boundaries): those
@@ -183,7 +183,7 @@ class RollingForm:
         if rp.shape is not None:
             from ngsolve import H1
 
-            P1 = H1(mesh, order=1)
+            P1 = fe_space(H1, mesh, order=1)
             self.roll_tilt, self.roll_hoop = GridFunction(P1), GridFunction(P1)
             self.roll_cx = Parameter(rp.centre[0])     # moves with the lowest point
         # Newton's tangent: primal-dual (fem/primal_dual.py) or the primal one; the volume

@@ -1,7 +1,11 @@
 """Taylor-Hood P2/P1 spaces (report (3.4), l = k - 1 for inf-sup stability)."""
 from __future__ import annotations
 
+from operator import mul
+
 import numpy as np
+
+from hotroll.fem.reproducible import fe_space
 
 #: NGSolve's order-2 H1 edge shape function at the edge midpoint: the edge DOF of a P2 field is
 #: the coefficient of this bubble, not a nodal value.
@@ -18,13 +22,13 @@ def taylor_hood(mesh, dirichletx: str = "", dirichlety: str = "sym", order: int 
     gradient, e.g. Coulomb's cap k of the strain rate) evaluates it too, as the P1 trace."""
     from ngsolve import H1, Compress, VectorH1
 
-    V = VectorH1(mesh, order=order, dirichletx=dirichletx, dirichlety=dirichlety)
-    Q = H1(mesh, order=order - 1)
+    V = fe_space(VectorH1, mesh, order=order, dirichletx=dirichletx, dirichlety=dirichlety)
+    Q = fe_space(H1, mesh, order=order - 1)
     if multiplier_on is None:
-        return V * Q
-    full = H1(mesh, order=1)
-    L = Compress(full, active_dofs=full.GetDofs(mesh.Boundaries(multiplier_on)))
-    return V * Q * L
+        return fe_space(mul, V, Q)
+    full = fe_space(H1, mesh, order=1)
+    L = fe_space(Compress, full, active_dofs=full.GetDofs(mesh.Boundaries(multiplier_on)))
+    return fe_space(mul, fe_space(mul, V, Q), L)
 
 
 class P2Nodes:

@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from hotroll.fem.forms import strain_rate
-from hotroll.fem.reproducible import integrate
+from hotroll.fem.reproducible import fe_space, integrate
 from hotroll.model.material import edot_squared
 
 
@@ -31,7 +31,7 @@ class StrainField:
         from ngsolve import H1, GridFunction
 
         self.mesh, self.entry = mesh, float(entry_strain)
-        self.space = H1(mesh, order=1, dirichlet=inlet)
+        self.space = fe_space(H1, mesh, order=1, dirichlet=inlet)
         self.gf = GridFunction(self.space)
         self._inlet = np.full(self.space.ndof, self.entry)
         if profile is not None:
@@ -41,7 +41,7 @@ class StrainField:
             self.entry = float(profile.mean())
             self._inlet[~fixed] = self.entry
         self.gf.vec.FV().NumPy()[:] = self._inlet
-        self._edot = GridFunction(H1(mesh, order=1))
+        self._edot = GridFunction(fe_space(H1, mesh, order=1))
         self._steady: list | None = None   # (velocity, a, f, inverse) of ``transport``
 
     @property
@@ -100,7 +100,7 @@ class StrainField:
         indicator; the rest of the mesh weighs nothing)."""
         from ngsolve import H1, GridFunction, IfPos
 
-        ind = GridFunction(H1(self.mesh, order=1))
+        ind = GridFunction(fe_space(H1, self.mesh, order=1))
         ind.vec.FV().NumPy()[:] = np.asarray(vertex_mask, dtype=float)
         full = IfPos(ind - 0.999, 1.0, 0.0)
         area = integrate(full, self.mesh)

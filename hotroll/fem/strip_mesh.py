@@ -23,6 +23,7 @@ import math
 import numpy as np
 
 from hotroll.fem.mesh import structured_triangle_mesh
+from hotroll.fem.reproducible import fe_space
 
 FIRST_CELL = 1.0 / 8.0     # first row at the top, in layer thicknesses delta
 ROW_GROWTH = 1.2           # row-to-row growth away from the top
@@ -103,8 +104,8 @@ class ThermalStrip:
         Xg, Eg = np.meshgrid(X, eta)
         self.logical_points = np.stack([Xg.ravel(), Eg.ravel()], -1)
         self.reference = np.stack([Xg.ravel(), Eg.ravel() * self.top_height(Xg.ravel())], -1)
-        self.disp = GridFunction(VectorH1(self.mesh, order=1))
-        self.psi = GridFunction(H1(self.mesh, order=1))
+        self.disp = GridFunction(fe_space(VectorH1, self.mesh, order=1))
+        self.psi = GridFunction(fe_space(H1, self.mesh, order=1))
         g = grad(self.psi)
         self._velocity = CF((g[1], -g[0]))
         self.physical = self.reference.copy()

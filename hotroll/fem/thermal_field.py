@@ -53,7 +53,7 @@ import numpy as np
 
 from hotroll.fem.heat_p1 import SteadyP1Operator
 from hotroll.fem.nonlinear import newton
-from hotroll.fem.reproducible import integrate
+from hotroll.fem.reproducible import fe_space, integrate
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 
 
@@ -76,14 +76,14 @@ class TemperatureField:
         if lumped_mass and self.order != 1:
             raise ValueError(f"lumped_mass needs order 1, got order {self.order}")
         self.lumped = bool(lumped_mass)   # step(): vertex quadrature of the T terms
-        self.space = H1(mesh, order=self.order, dirichlet=inlet)
+        self.space = fe_space(H1, mesh, order=self.order, dirichlet=inlet)
         self.gf = GridFunction(self.space)
         self.gf.Set(bc.entry_temperature)
         self._frozen = GridFunction(self.space)   # previous iterate (SUPG tau)
         self._old = GridFunction(self.space)      # previous time level (step)
         self._all = BitArray(self.space.ndof)     # step(): no Dirichlet face
         self._all.Set()
-        self._tau_gf = GridFunction(L2(mesh, order=0))   # SUPG tau, one value per element
+        self._tau_gf = GridFunction(fe_space(L2, mesh, order=0))   # SUPG tau, one value per element
         self._tau_cf = None
         #: None, or a callable giving tau per element (numpy, element order) in place of the
         #: projection of the tau CF: only for a velocity constant on each element and constant
@@ -402,7 +402,7 @@ class TemperatureField:
                         for v in el.vertices})
         if not verts:
             raise ValueError(f"no boundary named {face!r} in the mesh")
-        ycoord = GridFunction(H1(self.mesh, order=1))   # vertex v is dof v
+        ycoord = GridFunction(fe_space(H1, self.mesh, order=1))   # vertex v is dof v
         ycoord.Set(y, dual=True)                  # nodal values: the current (deformed) y
         best = max(verts, key=lambda v: ycoord.vec[v])
         return float(self.values[self.space.GetDofNrs(NodeId(VERTEX, best))[0]])

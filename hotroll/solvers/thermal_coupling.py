@@ -37,7 +37,7 @@ import numpy as np
 from hotroll.fem.heat_p1 import p1_supg_load, p1_supg_tau
 from hotroll.fem.mesh import mesh_triangles
 from hotroll.fem.point_search import mesh_points
-from hotroll.fem.reproducible import find_points, integrate
+from hotroll.fem.reproducible import fe_space, find_points, integrate
 from hotroll.fem.spaces import P2PointValues
 from hotroll.fem.strip_mesh import ThermalStrip, layer_thickness
 from hotroll.fem.thermal_field import TemperatureField
@@ -59,12 +59,12 @@ class ThermalCoupling(FlowStressFeedback):
 
         super().__init__(mesh, props, bc, K_ref, m_ref, eps0, flow, strain, entry_strain)
         self.refine = float(refine)
-        self.T = GridFunction(H1(mesh, order=1))   # the temperature at the mechanics' vertices
+        self.T = GridFunction(fe_space(H1, mesh, order=1))   # the temperature at the mechanics' vertices
         self.T.Set(bc.entry_temperature)
-        self.T_mean = GridFunction(L2(mesh, order=0))   # each element's mean temperature, K
+        self.T_mean = GridFunction(fe_space(L2, mesh, order=0))   # each element's mean temperature, K
         self.T_mean.Set(bc.entry_temperature)
-        self._ratio = GridFunction(L2(mesh, order=0))   # K/K_ref per element (see consistency)
-        self._offset = GridFunction(L2(mesh, order=0))  # m(T) - m_ref per element
+        self._ratio = GridFunction(fe_space(L2, mesh, order=0))   # K/K_ref per element (see consistency)
+        self._offset = GridFunction(fe_space(L2, mesh, order=0))  # m(T) - m_ref per element
         self.strip = self.field = None
         self._change = math.inf      # the last update's change (update_steady)
         # no strain field: the ratio is a number per element, kept in a P0 field (the form
@@ -115,8 +115,8 @@ class ThermalCoupling(FlowStressFeedback):
             # ... and the residual's and Jacobian's volume terms (fem/heat_p1.py)
             self.field.element_flow = (self.strip.velocity(),
                                        lambda: (self._strip_tris, *self._element_flow()))
-        self._qs = GridFunction(H1(self.strip.mesh, order=1))
-        self._qfs = GridFunction(H1(self.strip.mesh, order=1))
+        self._qs = GridFunction(fe_space(H1, self.strip.mesh, order=1))
+        self._qfs = GridFunction(fe_space(H1, self.strip.mesh, order=1))
         self._lo, self._hi = Parameter(0.0), Parameter(0.0)    # the contact's x-range
         self._chi = IfPos(x - self._lo, IfPos(self._hi - x, 1.0, 0.0), 0.0)
         self._mech_logical = self.strip.logical(top.X0)   # the mechanics' vertices
@@ -351,7 +351,7 @@ class ThermalCoupling(FlowStressFeedback):
         averaged at the mechanics' vertices (K)."""
         from ngsolve import H1, GridFunction
 
-        g = GridFunction(H1(self.mesh, order=1))
+        g = GridFunction(fe_space(H1, self.mesh, order=1))
         g.Set(self.T_mean)
         return g.vec.FV().NumPy()[:self.mesh.nv].copy()
 

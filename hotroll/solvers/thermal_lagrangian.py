@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 from hotroll.fem.mesh import mesh_triangles
-from hotroll.fem.reproducible import integrate
+from hotroll.fem.reproducible import fe_space, integrate
 from hotroll.fem.thermal_field import SolveInfo, TemperatureField
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 from hotroll.solvers.thermal_coupling import HEAT_FLOWS
@@ -37,7 +37,7 @@ class LagrangianThermal(FlowStressFeedback):
         super().__init__(mesh, props, bc, K_ref, m_ref, eps0, flow, strain, entry_strain)
         self.field = TemperatureField(mesh, props, bc, inlet="in", top="top|arc|exit",
                                       outlet="out", lumped_mass=True)
-        P1 = H1(mesh, order=1)
+        P1 = fe_space(H1, mesh, order=1)
         self._k = GridFunction(P1)            # k (reduced), P1: the top has no volume gradient
         # each vertex's lumped area (the step's storage weights), assembled on the moved mesh
         self._lump = LinearForm(P1)

@@ -22,6 +22,7 @@ import numpy as np
 from hotroll.fem import quantities as Q
 from hotroll.fem.mesh import build_plate_mesh
 from hotroll.fem.nonlinear import LinearSolveError, SolveStats, picard, solve
+from hotroll.fem.reproducible import fe_space
 from hotroll.fem.rolling_form import PenaltyTable, RollingForm
 from hotroll.fem.top_boundary import TopBoundary
 from hotroll.files import atomic
@@ -93,7 +94,7 @@ class TransientRun:
                           if self.strain is not None else [])
         self.couplings += [C.Temperature(self.thermal)] if self.thermal is not None else []
         self.d = self.disp.vec.FV().NumPy()
-        self._det = ngsolve.GridFunction(ngsolve.L2(self.mesh, order=0))   # for _check_mesh
+        self._det = ngsolve.GridFunction(fe_space(ngsolve.L2, self.mesh, order=0))   # for _check_mesh
         # summary means: whole projection periods covering 3 h of roll travel; the steady test
         # compares two windows of at least 6 periods each
         self.window, self.steady_window = summary_windows(problem.h, rp.u_roll, settings.dt,
