@@ -75,11 +75,16 @@ def norton_hoff_tangent(material: NortonHoff, m, w, u, p, v, q, K=1.0):
 # against 24 ms for UMFPACK on a thermal finishing pass; on a symmetric Jacobian GMRES stops
 # after one iteration). First, so that a non-symmetric pass factorises once: finishing_mill
 # 0.2 s faster than with the plain LDL^T tried first, Example 1 the same within the noise.
-# Issue 50: UMFPACK first, the only one whose factors are the same in every run. NGSolve's
-# LDL^T is not, even with no task manager (a 6.6k-DOF Coulomb Jacobian, 15 factorisations: 10-11
-# distinct solutions, 1e-16 apart); their noise made the ten stands' F10 take 15 or 17 Newton
-# steps. UMFPACK's refactorisation and solve there: 22 ms against LDL^T's 6 ms (2 threads); whole
-# passes: docs/validation/speed.md "Issue 50". The others remain fallbacks.
+# Issue 50: UMFPACK first, the only one whose factors are the same in every run and at any
+# thread count: NGSolve's LDL^T merges its blocks under locks in the order the threads reach
+# them, and with no task manager it starts one of its own with every core (a Taylor-Hood Stokes
+# matrix: 8 distinct solutions of 8 factorisations with 2 threads or none, 1 of 8 in a 1-thread
+# task manager); their noise made the ten stands' F10 take 15 or 17 Newton steps. UMFPACK's
+# refactorisation and solve there: 22 ms against LDL^T's 6 ms (2 threads); kept as GMRES's
+# preconditioner across Newton steps instead, its factors took 4-12 iterations of 2.8 ms (its
+# solve) on 22 of 42 changed Jacobians and missed 12 on the other 20: slower than factorising.
+# Whole passes: docs/validation/speed.md "Issue 50". The others remain fallbacks (a run that
+# needs them is not reproducible to the bit).
 LINEAR_SOLVERS = ("umfpack", "sparsecholesky+gmres", "pardiso")
 
 

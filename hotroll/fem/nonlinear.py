@@ -18,7 +18,10 @@ flow's 1e-2, ``forms.NonlinearProblem``) or the last direction's size (its large
 update over the velocity scale) where that is smaller, down to ``FORCING_FLOOR``: eta = O(|du|)
 keeps Newton's local convergence superlinear (order about 1.6), and a direction small enough to
 end the solve is solved again to its own size before it is accepted (a solve's first direction
-is solved to linear_rtol), so the accepted last step is as accurate as before.
+is solved to linear_rtol), so the accepted last step is as accurate as before; where the
+residual the solve reached is already below that size (a direct solver's: rounding), it is not
+solved again (the same direction: UMFPACK's factors of the same matrix; issue 50 saved a
+refactorisation per solve that way).
 GMRES (``fem/krylov.py``) stops on the same residual in the same norm, so where it stops does
 not depend on the roll speed or the units (the exact scalings hold). Measured on the ten
 stands: the same Newton steps on every pass, GMRES's iterations about halved (issue 34 session
@@ -98,6 +101,9 @@ class _Workspace:
         self.backup = problem.gf.vec.CreateVector()
         self.check = problem.gf.vec.CreateVector()
         self.problem = problem
+        #: the last direction's relative residual ||J du - r|| / ||r|| (``_accurate``; inf
+        #: where it was not measured)
+        self.achieved = float("inf")
 
     @property
     def free(self):
@@ -145,6 +151,7 @@ def _linear_step(form, problem, ws, stats, residual_ready: bool = False,
     the direction's relative residual, the forcing term (default the system's ``linear_rtol``).
     """
     t0 = time.perf_counter()
+    ws.achieved = float("inf")
     if not residual_ready:
         form.Apply(problem.gf.vec, ws.r)
     kept = problem.inverses.get(id(jacobian if jacobian is not None else form))
@@ -181,7 +188,9 @@ def _accurate(inv, form, ws, rnorm: float, rtol: float) -> bool:
     """du = inv r, accepted if ||A du - r|| <= rtol ||r|| (``ws.norm``, the free DOFs)."""
     apply_inverse(inv, ws.r, ws.du, GMRES_MARGIN * rtol, ws.weights())
     ws.check.data = form.mat * ws.du - ws.r
-    return ws.norm(ws.check) <= rtol * rnorm
+    res = ws.norm(ws.check)
+    ws.achieved = res / rnorm
+    return res <= rtol * rnorm
 
 
 def _update_and_solve(inv, form, ws, rnorm: float, rtol: float) -> bool:
@@ -252,10 +261,12 @@ def newton(
         # the Newton direction, not the damped step: a step cut by the line search is small
         # without the iterate being converged
         stats.update = ws.max_velocity(ws.du) / scale
-        if stats.update <= tol and rtol > max(stats.update, FORCING_FLOOR):
+        if (stats.update <= tol and rtol > max(stats.update, FORCING_FLOOR)
+                and ws.achieved > max(stats.update, FORCING_FLOOR)):
             # a direction small enough to end the solve, solved loosely (a solve's first:
             # the last update is not known yet): solved again to its own size before it is
-            # trusted (from the session's review: a 3e-6 U start stopped 2e-6 U off)
+            # trusted (from the session's review: a 3e-6 U start stopped 2e-6 U off), unless
+            # it already reached that (a direct solver's solution: its rounding)
             rtol = max(stats.update, FORCING_FLOOR)
             _linear_step(form, problem, ws, stats, True, problem.a_jacobian, chord, rtol)
             stats.update = ws.max_velocity(ws.du) / scale
