@@ -136,14 +136,17 @@ def save_warm(path: Path, warm) -> None:
     with atomic(path) as tmp:
         np.savez(tmp, solution=warm.solution, x_c=sh.x_c, entry_x=sh.entry_x, entry_y=sh.entry_y,
                  exit_x=sh.exit_x, exit_y=sh.exit_y, a_f=warm.a_f, m=warm.m, u_roll=warm.u_roll,
-                 mesh_key=warm.mesh_key, free_surface=warm.free_surface)
+                 mesh_key=warm.mesh_key, free_surface=warm.free_surface,
+                 x_e=np.nan if sh.x_e is None else sh.x_e)
 
 
 def load_warm(path: Path):
     import numpy as np
 
     z = np.load(path)
-    shape = StripShape(float(z["x_c"]), z["entry_x"], z["entry_y"], z["exit_x"], z["exit_y"])
+    x_e = float(z["x_e"]) if "x_e" in z.files else math.nan      # the contact's end (issue 50)
+    shape = StripShape(float(z["x_c"]), z["entry_x"], z["entry_y"], z["exit_x"], z["exit_y"],
+                       None if math.isnan(x_e) else x_e)
     return WarmStart(z["solution"], shape, float(z["a_f"]), float(z["m"]), float(z["u_roll"]),
                      str(z["mesh_key"]), str(z["free_surface"]))
 

@@ -25,7 +25,7 @@ def _warm(solution: np.ndarray, shape: StripShape) -> WarmStart:
 
 def test_a_saved_warm_state_loads_back_unchanged(tmp_path):
     """save_warm then load_warm: every field of the WarmStart back as written (arrays to the
-    bit, a_f, m, u_roll, mesh key and free-surface model)."""
+    bit, a_f, m, u_roll, mesh key and free-surface model, the contact's end)."""
     from hotroll.workflows.study import load_warm, save_warm
 
     shape = StripShape(0.25, np.array([-1.0, 0.0, 0.25]), np.array([0.25, 0.25, 0.24]),
@@ -39,6 +39,10 @@ def test_a_saved_warm_state_loads_back_unchanged(tmp_path):
         assert np.array_equal(getattr(back.shape, k), getattr(shape, k)), k
     assert (back.a_f, back.m, back.u_roll) == (5.0, 0.2, 0.6283)
     assert (back.mesh_key, back.free_surface) == ("mesh-abc", "constrained")
+    assert back.shape.x_e is None                     # held to the gap: no end of its own
+    shape.x_e = 0.97                                   # a strip that left the roll (issue 50)
+    save_warm(tmp_path / "warm_state.npz", _warm(warm.solution, shape))
+    assert load_warm(tmp_path / "warm_state.npz").shape.x_e == 0.97
 
 
 def test_restore_run_is_the_cases_steady_run_at_the_saved_state():
