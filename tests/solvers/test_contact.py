@@ -475,3 +475,42 @@ def test_pressure_last_update_is_the_last_newton_step(tmp_path, monkeypatch):
                 * r.problem.material.K)
     assert s["pressure_last_update"] == pytest.approx(expected, rel=1e-12)
     assert 0.0 <= s["pressure_last_update"]
+
+
+# --- the steady solver's Solution (moved from the removed test_active_set.py) ---------------
+@pytest.fixture(scope=shared_scope)
+def steady_unilateral():
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.runner import build_model, steady_settings
+
+    case = case_from_dict(example1_coarse("unilateral_run"))
+    model, _ = build_model(case)
+    run = SteadyRun(model, steady_settings(case), case.plate.length)
+    run.run()
+    return run
+
+
+def test_the_steady_solution_has_no_time_and_records_its_solves(steady_unilateral):
+    """The steady solver's Solution: no time (NaN, not the report's scheme's seconds), one
+    history row per solve with its Newton iterations and final residual (below the solver's
+    tolerance for the last, converged one)."""
+    run = steady_unilateral
+    state, stats = run.state, run.last_stats
+    assert math.isnan(state.time) and state.step == len(state.history) - 1
+    last = state.history[-1]
+    assert math.isnan(last["time"])
+    assert last["iterations"] == stats.iterations and last["residual"] == stats.residual
+    assert last["solver_converged"] and last["residual"] <= run.s.tol
+
+
+def test_friction_acts_on_the_contact_only(steady_unilateral):
+    """The friction indicator is 1 on the arc's edges (mapped onto [x_c, x_e]) and 0 on every
+    other top edge: after the contact's end the top is free (no friction), and the arc's last
+    vertex is the contact's end x_e."""
+    run = steady_unilateral
+    chi = run.form.chi.vec.FV().NumPy()[run.top.edge]
+    assert np.array_equal(chi == 1.0, run.arc)
+    x_e = run.shape.end(run.problem.rp)
+    assert x_e < run.problem.rp.axis_x                 # this thick strip separates
+    xy = run.top.vertex_positions(run.d, run.top.verts[run.top.vertex_contact])
+    assert xy[:, 0].max() == pytest.approx(x_e, abs=1e-12)
