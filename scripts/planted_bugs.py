@@ -119,6 +119,10 @@ BUGS: dict[str, tuple[str, str, str, str]] = {
                          "new = float(np.clip(min(max(hi_b - 1.1 * (hi_b - new), x_e - trust), "
                          "x_e + trust), lo_b, hi_b))",
                          "the contact end's step aims 1.1 times as far from the gap"),
+    "unloading": ("hotroll/fem/rolling_form.py",
+                  "c = self.compliance * y * self._lam",
+                  "c = 1.1 * self.compliance * y * self._lam",
+                  "the strip's elastic compliance in the contact x 1.1"),
     "separation_angle": ("hotroll/results/run_summary.py",
                          'return float(prof["angle"][-1]) - gap',
                          'return 1.1 * (float(prof["angle"][-1]) - gap)',

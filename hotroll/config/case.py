@@ -98,6 +98,12 @@ class Case(Section):
             problems.append('contact.method: "multiplier" needs solver.method = "steady" (the '
                             'report\'s scheme has the penalty contact of Table 1), got '
                             f'"{self.solver.method}"')
+        if self.contact.strip_youngs_modulus is not None and (
+                self.solver.method != "steady" or self.contact.resolved(self.solver.method)
+                != "multiplier"):
+            problems.append("contact.strip_youngs_modulus: needs solver.method = \"steady\" "
+                            "with exact contact (the strip's elasticity enters the multiplier's "
+                            "constraint)")
         if self.contact.unilateral is True and self.plate.free_surface != "traced":
             problems.append("contact.unilateral: true needs plate.free_surface = \"traced\" "
                             "(the top after the contact's end is a traced free surface)")

@@ -245,6 +245,14 @@ class ContactConfig(Section):
         "the pressure; auto: true for the steady solver with traced tops, false otherwise (the "
         "report's scheme: its (2.28a))", "", '"auto", true (steady solver, traced tops) or false')
 
+    strip_youngs_modulus: PosFloat | None = field(
+        None, "the strip's Young's modulus at the pass temperature: its elastic thickness strain "
+        "in the contact (elastic entry and exit zones, the strip recovering past the gap); omit: "
+        "rigid-plastic (steady solver, exact contact)", "Pa", "> 0", gt=0)
+    strip_poissons_ratio: float = field(0.3, "the strip's Poisson's ratio (with "
+                                        "strip_youngs_modulus)", "", ">= 0 and < 0.5",
+                                        ge=0.0, lt=0.5)
+
     def resolved(self, solver_method: str) -> str:
         """The method a run uses: "auto" resolved by the solver."""
         if self.method != "auto":

@@ -96,11 +96,12 @@ class StripMap:
         rp = self.rp
         return (0.5 * (self.x_a + rp.x_touch), rp.axis_x - 0.5 * rp.contact_length)
 
-    def end_bounds(self) -> tuple[float, float]:
+    def end_bounds(self, past_gap: float = 0.0) -> tuple[float, float]:
         """Allowed range of the contact's end x_e: from half a contact length before the gap
-        to the gap."""
+        to the gap, or ``past_gap`` contact lengths after it (an elastic strip follows the
+        rising roll while it recovers)."""
         rp = self.rp
-        return (rp.axis_x - 0.5 * rp.contact_length, rp.axis_x)
+        return (rp.axis_x - 0.5 * rp.contact_length, rp.axis_x + past_gap * rp.contact_length)
 
     def stretch(self, X: np.ndarray, x_c: float, x_e: float | None = None) -> np.ndarray:
         """Piecewise-linear in x: x_a and x_b stay, the reference touching point goes to x_c,

@@ -134,7 +134,8 @@ class RollingForm:
     def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: FrictionLaw,
                  penalties: PenaltyTable, free_surface: str, tensions: tuple = (0.0, 0.0),
                  consistency=1.0, rate_offset=None, contact: str = "penalty",
-                 contact_regions: str = TOP, primal_dual: bool = True):
+                 contact_regions: str = TOP, primal_dual: bool = True,
+                 strip_compliance: float | None = None):
         from ngsolve import FacetFESpace, GridFunction, Parameter
 
         if contact not in CONTACT_METHODS:
@@ -142,6 +143,9 @@ class RollingForm:
         self.mesh, self.rp = mesh, rp
         self.free_surface = free_surface
         self.contact = contact
+        #: the strip's elastic compliance (1 - nu_s^2) / E_s times K (per unit of reduced
+        #: pressure), or None: rigid-plastic contact (``constraint``)
+        self.compliance = strip_compliance
         # what follows the roll speed is a Parameter (``set_roll_speed``: a tandem stand's speed
         # found inside the solve, issue 34): the surface speed U, the friction's v_reg, the
         # viscosity scale mu_ref of the penalties, and the multiplier's scale
@@ -394,15 +398,34 @@ class RollingForm:
         out = vol * dx(intrules=self.dual.intrules) + self.boundary(u, w, v, lam=lam)
         return out + self.constraint(u, v, lam, xi) if self.exact else out
 
-    def constraint(self, u, v, lam, xi, regularise: float = 0.0):
+    def constraint(self, u, v, lam, xi, regularise: float = 0.0, u_w=None, lam_w=None):
         """s (lambda~ v.n + xi u.n) on the arc: the contact pressure's work and the weak
-        impermeability int xi u.n = 0; ``regularise`` adds -delta s lambda~ xi (matrix only)."""
+        impermeability int xi u.n = 0; ``regularise`` adds -delta s lambda~ xi (matrix only).
+
+        With the strip's compliance (``compliance``): the strip's surface sits c_e p below its
+        plastic flow's (its elastic thickness strain, c_e = (h/2)(1 - nu_s^2)/E_s, h = 2y the
+        local thickness), so the roll is impermeable to u.n - c_e (u.t) dp/ds (the elastic
+        surface's rate along the flow): int w u.n - c_e (u.t) dp/ds = 0, w the test function
+        upwinded along t (each segment's constant dp/ds on its downstream node: an advection
+        of p along a rigid stretch). ``u_w``, ``lam_w``: the Jacobian at that iterate along
+        (u, lam)."""
         from ngsolve import ds
 
-        n, _ = self.roll_frame()
+        n, t = self.roll_frame()
         term = self._lam * (lam * (v * n) + xi * (u * n))
         if regularise:
             term = term - regularise * self._lam * lam * xi
+        if self.compliance:
+            from ngsolve import grad, specialcf, y
+
+            c = self.compliance * y * self._lam           # c_e K s: per unit lambda~
+            w = xi + 0.5 * specialcf.mesh_size * (xi.Trace().Deriv() * t)
+            ds_lam = lam.Trace().Deriv() * t
+            if u_w is None:
+                rate = (u * t) * ds_lam
+            else:
+                rate = (u * t) * (grad(lam_w) * t) + (u_w * t) * ds_lam
+            term = term - self._lam * c * rate * w
         return term * ds("arc", bonus_intorder=2)
 
     def jacobian(self, w, u, p, v, q, lam=None, xi=None, lam_w=None):
@@ -422,7 +445,8 @@ class RollingForm:
                + self.friction_tangent(w, u, v, lam, lam_w) * self.friction_measure()
                + self.boundary(w, w, v, friction=False).Diff(w, u))
         if self.exact:
-            out = out + self.constraint(u, v, lam, xi, regularise=MATRIX_REGULARISATION)
+            out = out + self.constraint(u, v, lam, xi, regularise=MATRIX_REGULARISATION,
+                                        u_w=w, lam_w=lam_w)
         return out
 
     def friction_tangent(self, w, u, v, lam=None, lam_w=None):

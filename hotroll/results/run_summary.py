@@ -38,20 +38,22 @@ GAP_RESOLUTION = 0.5
 
 def contact_end_kind(run, prof) -> str | None:
     """How the contact ends (exact contact, steady solver): ``"gap"`` (at the roll gap, within
-    ``GAP_RESOLUTION`` elements),
-    ``"separation"`` (the strip leaves the roll before the gap where the pressure falls to
-    zero; unilateral), ``"bound"`` (the end reached the lowest allowed x_e: half a contact
-    length before the gap) or ``"held"`` (bilateral contact: held to the gap whatever the
-    pressure)."""
+    ``GAP_RESOLUTION`` elements), ``"separation"`` (the strip leaves the roll before the gap
+    where the pressure falls to zero; unilateral), ``"recovery"`` (after the gap: an elastic
+    strip follows the rising roll while its pressure falls, ``[contact] strip_youngs_modulus``),
+    ``"bound"`` (the end reached its allowed range's end) or ``"held"`` (bilateral contact:
+    held to the gap whatever the pressure)."""
     if not len(prof["x"]):
         return None
     if not getattr(run, "unilateral", False):
         return "held"
-    lo, hi = run.map.end_bounds()
-    x_e = run.shape.end(run.problem.rp)
-    if x_e >= hi - GAP_RESOLUTION * run.problem.h:
+    lo, hi = run.end_bounds()
+    x_e, gap, R = run.shape.end(run.problem.rp), run.problem.rp.axis_x, run.problem.rp.radius
+    if abs(x_e - gap) <= GAP_RESOLUTION * run.problem.h:
         return "gap"
-    return "bound" if x_e <= lo + 1e-9 * run.problem.rp.radius else "separation"
+    if x_e <= lo + 1e-9 * R or (x_e > gap and x_e >= hi - 1e-9 * R):
+        return "bound"
+    return "separation" if x_e < gap else "recovery"
 
 
 def separation_angle(rp, prof) -> float:

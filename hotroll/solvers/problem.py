@@ -39,6 +39,17 @@ class Problem:
                                    # shape rp holds, or None: the rigid roll
     v_reg_per_speed: float | None = None   # v_reg / U where the regularisation follows the
                                            # roll speed (the laws' default), None: v_reg given
+    strip_elasticity: tuple | None = None  # (E_s Pa, nu_s) of the strip: its elastic thickness
+                                           # strain in the contact (docs/theory.md 1e), or None
+
+    @property
+    def strip_compliance(self) -> float | None:
+        """(1 - nu_s^2) / E_s times K: the strip's plane-strain elastic compliance per unit of
+        reduced pressure, or None (rigid-plastic)."""
+        if self.strip_elasticity is None:
+            return None
+        E, nu = self.strip_elasticity
+        return (1.0 - nu * nu) / E * self.material.K
 
     @property
     def v_reg(self) -> float:

@@ -48,6 +48,15 @@ from hotroll.solvers.steady_settings import (
 )
 from hotroll.solvers.threads import solver_threads
 
+#: how far past the gap an elastic strip's contact may reach, in contact lengths (its elastic
+#: exit zone is sqrt(2 R c_e p), a few percent of the contact length: docs/theory.md 1e)
+PAST_GAP = 0.25
+#: the couplings' threshold (Newton update over U) with the strip's compliance: the pressure
+#: in its elastic zones follows dp/ds = u.n / (c_e u.t), so an error of 1e-2 U in u.n moved p
+#: by about 200 MPa over one element of a finishing pass and the contact's end wandered
+#: (unsettled after 30 rounds); on a flow converged to 1e-4 U it settled in 13
+COUPLE_BELOW_ELASTIC = 1e-4
+
 
 class SteadyRun:
     """The steady strip, its form and the coupled Newton solve."""
@@ -72,7 +81,8 @@ class SteadyRun:
                                 tensions=problem.reduced_tensions, consistency=consistency,
                                 rate_offset=self.thermal.rate_offset()
                                 if self.thermal is not None else None,
-                                contact=settings.contact, contact_regions="arc")
+                                contact=settings.contact, contact_regions="arc",
+                                strip_compliance=problem.strip_compliance)
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.d = self.disp.vec.FV().NumPy()
@@ -306,7 +316,8 @@ class SteadyRun:
         coupled = any(c.in_fixed_point for c in self.couplings)
         st = newton(f.nonlinear, s.tol, s.max_it + 3 * s.max_outer,
                     couple=couple if coupled else None,
-                    couple_below=s.couple_below if couple_below is None else couple_below,
+                    couple_below=(COUPLE_BELOW_ELASTIC if self.form.compliance else
+                                  s.couple_below if couple_below is None else couple_below),
                     full_step=True)
         res.stats.append(st)
         res.settled = state["settled"] or not coupled
@@ -437,6 +448,12 @@ class SteadyRun:
         self._set_shape()
         return residual
 
+    def end_bounds(self) -> tuple[float, float]:
+        """The contact end's range (``StripMap.end_bounds``): up to the gap for a rigid-plastic
+        strip; past it (``PAST_GAP``) for an elastic one, which follows the rising roll while
+        its pressure falls."""
+        return self.map.end_bounds(PAST_GAP if self.form.compliance else 0.0)
+
     def move_contact_end(self) -> float:
         """Unilateral contact: move the contact's end by ``ContactEndSearch``'s step from the
         pressure at the arc's vertices and remap the mesh; its residual or move (m), the
@@ -448,7 +465,7 @@ class SteadyRun:
         p = self.form.vertex_pressure()[verts]
         rp, sh = self.problem.rp, self.shape
         old = sh.end(rp)
-        new, residual = self.end_search.step(x[order], p[order], self.map.end_bounds())
+        new, residual = self.end_search.step(x[order], p[order], self.end_bounds())
         # the exit top moves with its start, which stays on the roll
         sh.exit_x = sh.exit_x + (new - old)
         sh.exit_y = sh.exit_y + float(rp.height(new) - rp.height(old))
