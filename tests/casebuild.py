@@ -119,17 +119,23 @@ def assert_schedule_refused(d: dict, field: str) -> None:
     assert field in str(e.value)
 
 
+def steady_run(case):
+    """The ``SteadyRun`` of a case (built, not solved), with the case's own settings."""
+    from hotroll.solvers.steady import SteadyRun
+    from hotroll.workflows.runner import build_model, steady_settings
+
+    model, _ = build_model(case)
+    return SteadyRun(model, steady_settings(case), case.plate.length)
+
+
 def solved_steady_run(example: str):
     """A bundled example solved by the steady solver in process (no files): its ``SteadyRun``,
     for tests that read the solver's own objects (the thermal strip, the forms)."""
     from hotroll.config.case import load_case
     from hotroll.examples import example_path
-    from hotroll.solvers.steady import SteadyRun
-    from hotroll.workflows.runner import build_model, steady_settings
 
-    case = load_case(example_path(example)).with_overrides(**{"solver.method": "steady"})
-    model, _ = build_model(case)
-    run = SteadyRun(model, steady_settings(case), case.plate.length)
+    run = steady_run(load_case(example_path(example)).with_overrides(
+        **{"solver.method": "steady"}))
     run.record = False
     run.solve()
     return run

@@ -200,8 +200,8 @@ class ContactEndSearch:
     in sign and shrinking by only 0.7 an update). A step is at most ``trust`` long: one
     element, halved whenever p_end changes sign (the root lies behind) and doubled back
     towards an element only while |p_end| falls on the same side (a trust that grew whenever
-    the sign held let a search near the gap cycle with period four). p_end is read from a flow converged to the
-    coupling threshold and, at the gap, from a P1 multiplier that averages the rigid-plastic
+    the sign held let a search near the gap cycle with period four). p_end is read from a
+    flow converged to the coupling threshold and, at the gap, from a P1 multiplier that averages the rigid-plastic
     strip's pressure jump there: near the gap it need not be monotone (a pass rolled by the
     PyRolL plugin cycled between the gap and 0.1 element before it), and the halving ends such
     a search at a sign change of p_end in a bounded number of updates."""
@@ -226,8 +226,9 @@ class ContactEndSearch:
         if len(neg):             # tensile before the end: the first crossing after the peak
             i = int(neg[0])
             self.trust = h
-            new = x[i - 1] + p[i - 1] * (x[i] - x[i - 1]) / (p[i - 1] - p[i])
-            return float(np.clip(new, lo_b, hi_b)), abs(float(np.clip(new, lo_b, hi_b)) - x_e)
+            new = float(np.clip(x[i - 1] + p[i - 1] * (x[i] - x[i - 1]) / (p[i - 1] - p[i]),
+                                lo_b, hi_b))
+            return new, abs(new - x_e)
         if p[-2] > p_e:          # falling towards the end: where its line reaches zero
             new = x_e + p_e * h / (p[-2] - p_e)
         else:                    # not falling: the contact goes on

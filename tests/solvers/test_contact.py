@@ -480,12 +480,9 @@ def test_pressure_last_update_is_the_last_newton_step(tmp_path, monkeypatch):
 # --- the steady solver's Solution (moved from the removed test_active_set.py) ---------------
 @pytest.fixture(scope=shared_scope)
 def steady_unilateral():
-    from hotroll.solvers.steady import SteadyRun
-    from hotroll.workflows.runner import build_model, steady_settings
+    from casebuild import steady_run
 
-    case = case_from_dict(example1_coarse("unilateral_run"))
-    model, _ = build_model(case)
-    run = SteadyRun(model, steady_settings(case), case.plate.length)
+    run = steady_run(case_from_dict(example1_coarse("unilateral_run")))
     run.run()
     return run
 
