@@ -117,9 +117,13 @@ def contact_end_text(s: dict) -> str | None:
         a = s.get("separation_angle")
         return (f"the strip leaves the roll {math.degrees(a):.3g}° ({a:.4g} rad) before the gap, "
                 f"where the contact pressure falls to zero; after it the top is free")
+    if kind == "recovery":
+        return ("the strip follows the rising roll past the gap while it recovers elastically; "
+                "the contact ends where its pressure falls to zero")
     if kind == "bound":
-        return ("the contact's end reached its lowest allowed position (half a contact length "
-                "before the gap): where the strip leaves the roll is not resolved")
+        return ("the contact's end reached the end of its allowed range (half a contact length "
+                "before the gap, or a quarter after it): where the strip leaves the roll is not "
+                "resolved")
     if kind == "gap" and finite(p):
         return f"the contact reaches the roll gap; the pressure there is {p / 1e6:.4g} MPa"
     if kind == "held" and finite(p):

@@ -173,8 +173,8 @@ class Summary(Mapping):
     unilateral: bool = _f(None, "unilateral", "the strip may leave the roll (true, the default) "
                           "or is held to it up to the gap (false: bilateral)")
     contact_end_kind: str | None = _f(None, "contact end", "`gap`, `separation` (the strip "
-                                      "leaves the roll before the gap), `bound` or `held` "
-                                      "(bilateral)")
+                                      "leaves the roll before the gap), `recovery` (an elastic "
+                                      "strip past it), `bound` or `held` (bilateral)")
     separation_angle: float | None = _f("rad", "separation angle", "where the strip leaves "
                                         "the roll before the gap (angle from the gap)",
                                         group="Pass")
