@@ -18,6 +18,7 @@ from casebuild import shared_scope
 
 import hotroll
 from hotroll.config.case import CaseError
+from hotroll.results.report_run import run_warnings
 
 E, NU = 1.2e11, 0.3
 
@@ -53,9 +54,7 @@ def test_the_strip_recovers_past_the_gap_as_a_winkler_layer(elastic):
     c_e = 0.5 * h1 * (1.0 - NU**2) / E
     assert s["contact_end"][0] - gap == pytest.approx(math.sqrt(2.0 * R * c_e * p_gap), rel=0.05)
     assert s["exit_thickness"] - h1 == pytest.approx(2.0 * c_e * p_gap, rel=0.05)
-    from hotroll.results.report_run import run_warnings      # the page says it in words
-
-    assert any("past the gap" in w["text"] for w in run_warnings(s))
+    assert any("past the gap" in w["text"] for w in run_warnings(s))   # the page says it
 
 
 def test_a_stiff_strip_is_the_rigid_plastic_one(elastic):
