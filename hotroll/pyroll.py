@@ -24,7 +24,8 @@ What the FE pass takes from PyRolL:
   ``surface_velocity`` or ``working_velocity``, or the pass's ``velocity`` (PyRolL's strip
   speed at the neutral point, U cos(phi_n)); tensions ``back_tension``, ``front_tension``;
 - the roll's ``elastic_modulus`` and ``poissons_ratio`` (an elastic roll; ``Config.ROLL``
-  the case's [roll] otherwise);
+  the case's [roll] otherwise); the in profile's ``elastic_modulus`` and ``poissons_ratio``
+  (the strip's, in the contact; else its grade's E(T), or rigid-plastic without a grade);
 - the strip: ``in_profile.temperature``, ``in_profile.strain``; the flow stress
   ``in_profile.flow_stress_function`` (e.g. pyroll-freiberg-flow-stress) as a Hensel-Spittel
   law fitted over the pass's range (``model/flow_stress_fit.py``; the fit's error is in
@@ -280,8 +281,23 @@ def pass_case(rp) -> tuple[Case, dict]:
         "output": {"figures": False, "vtk": False},
         "thermal": thermal,
         "roll": _roll_table(rp.roll),
+        "contact": _contact_table(ip),
     }
     return case_from_dict(d), fit
+
+
+def _contact_table(ip) -> dict:
+    """The case's [contact]: the strip's elastic_modulus and poissons_ratio where the in
+    profile gives them (its elastic exit zone, docs/theory.md 1e); else the grade's E(T), or
+    rigid-plastic for a flow_stress_function without a grade (``strip_youngs_modulus =
+    "auto"``)."""
+    E, nu = _value(ip, "elastic_modulus", None), _value(ip, "poissons_ratio", None)
+    table = {}
+    if E is not None:
+        table["strip_youngs_modulus"] = float(E)
+    if nu is not None:
+        table["strip_poissons_ratio"] = float(nu)
+    return table
 
 
 def _roll_table(roll) -> dict:

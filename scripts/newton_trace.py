@@ -3,10 +3,12 @@ study of where the iterations go; docs/validation/speed.md).
 
     python scripts/newton_trace.py hotroll/examples/schedules/ten_stand_finishing.toml [--passes N]
     python scripts/newton_trace.py --example 2
+    python scripts/newton_trace.py --case hotroll/examples/cases/thin_strip.toml
 
 One line per FE solve: the roll speed, the wall time, the Newton steps as L(update, step
 length) and each coupling update as a two-letter name and its change in tolerances (st
-strain, te temperature, a_ a_f, fr free surface, ro roll, sp a tandem stand's speed).
+strain, te temperature, a_ a_f, fr free surface, co the contact's end, ro roll, sp a tandem
+stand's speed).
 
 ``--flow-alone`` (a diagnosis, issue 34 session 10): every pass started from the previous one
 is first solved with its couplings frozen at the warm start's values (the flow's own Newton
@@ -32,6 +34,7 @@ def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("schedule", type=Path, nargs="?", default=None)
     p.add_argument("--example", default=None, help="a bundled example's name instead")
+    p.add_argument("--case", type=Path, default=None, help="a case file instead")
     p.add_argument("--passes", type=int, default=None, help="the first N passes only")
     p.add_argument("--flow-alone", action="store_true",
                    help="each warm pass first solved with its couplings frozen")
@@ -54,8 +57,8 @@ def main(argv=None) -> int:
             log.append(f"L({update:.0e},{alpha:g})")
 
     NL.TRACE = step
-    classes = (C.StrainTransport, C.Temperature, C.AfEstimate, C.FreeSurface, C.RollFlattening,
-               C.TandemSpeed)
+    classes = (C.StrainTransport, C.Temperature, C.AfEstimate, C.FreeSurface, C.ContactEnd,
+               C.RollFlattening, C.TandemSpeed)
     frozen = {n for n in args.freeze.split(",") if n}
     unknown = frozen - {cls.name for cls in classes}
     if unknown:
@@ -98,6 +101,11 @@ def main(argv=None) -> int:
         return out
 
     S.SteadyRun.run = traced_run
+    if args.case is not None:
+        with tempfile.TemporaryDirectory() as tmp:
+            app(["run", str(args.case), "--out", str(Path(tmp) / "out"), "--no-figures"],
+                standalone_mode=False)
+        return 0
     if args.example is not None:
         with tempfile.TemporaryDirectory() as tmp:
             app(["example", args.example, "--out", str(Path(tmp) / "out")], standalone_mode=False)

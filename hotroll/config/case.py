@@ -35,6 +35,8 @@ from hotroll.config.sections import (  # noqa: F401 (re-exported)
 )
 from hotroll.config.thermal import ThermalConfig
 from hotroll.model.geometry import auto_contact_size
+from hotroll.model.grades import get_grade
+from hotroll.model.strip_elasticity import family_modulus
 
 __all__ = ["MESH_TABLE", "Case", "CaseError", "FrictionConfig", "MaterialConfig", "case_from_dict",
            "case_from_toml", "load_case", "flat"]
@@ -98,12 +100,16 @@ class Case(Section):
             problems.append('contact.method: "multiplier" needs solver.method = "steady" (the '
                             'report\'s scheme has the penalty contact of Table 1), got '
                             f'"{self.solver.method}"')
-        if self.contact.strip_youngs_modulus is not None and (
-                self.solver.method != "steady" or self.contact.resolved(self.solver.method)
-                != "multiplier"):
-            problems.append("contact.strip_youngs_modulus: needs solver.method = \"steady\" "
-                            "with exact contact (the strip's elasticity enters the multiplier's "
-                            "constraint)")
+        if self.contact.strip_youngs_modulus not in ("auto", "off") and not self._exact_steady:
+            problems.append("contact.strip_youngs_modulus: a number needs solver.method = "
+                            "\"steady\" with exact contact (the strip's elasticity enters the "
+                            "multiplier's constraint); \"auto\" or \"off\" otherwise")
+        if self.contact.strip_youngs_modulus == "auto" and self._auto_family is not None:
+            try:
+                family_modulus(self._auto_family).youngs_modulus(self.plate.temperature)
+            except ValueError as e:
+                problems.append(f"contact.strip_youngs_modulus: \"auto\": {e} (the "
+                                f"plate.temperature); give the modulus in Pa or \"off\"")
         if self.contact.unilateral is True and self.plate.free_surface != "traced":
             problems.append("contact.unilateral: true needs plate.free_surface = \"traced\" "
                             "(the top after the contact's end is a traced free surface)")
@@ -124,6 +130,40 @@ class Case(Section):
         if problems:
             raise Problems(problems)
         return self
+
+    @property
+    def _exact_steady(self) -> bool:
+        return (self.solver.method == "steady"
+                and self.contact.resolved(self.solver.method) == "multiplier")
+
+    @property
+    def _auto_family(self) -> str | None:
+        """The grade family whose E(T) ``strip_youngs_modulus = "auto"`` takes, or None (no
+        grade, or not the steady solver's exact contact with traced tops: rigid-plastic)."""
+        if not (self._exact_steady and self.plate.free_surface == "traced"
+                and self.material.grade is not None):
+            return None
+        return get_grade(self.material.grade).family
+
+    @property
+    def strip_elasticity(self) -> tuple[float, float] | None:
+        """(E_s Pa, nu_s) of the strip in the contact (docs/theory.md 1e), or None:
+        rigid-plastic. ``strip_youngs_modulus = "auto"``: the grade family's E(T) at
+        plate.temperature (model/strip_elasticity.py)."""
+        c = self.contact
+        if c.strip_youngs_modulus == "off":
+            return None
+        family = self._auto_family
+        if c.strip_youngs_modulus == "auto":
+            if family is None:
+                return None
+            law = family_modulus(family)
+            nu = law.nu if c.strip_poissons_ratio == "auto" else c.strip_poissons_ratio
+            return law.youngs_modulus(self.plate.temperature), nu
+        nu = c.strip_poissons_ratio
+        if nu == "auto":
+            nu = family_modulus(family).nu if family is not None else 0.3
+        return float(c.strip_youngs_modulus), nu
 
     @property
     def dt(self) -> float:

@@ -10,6 +10,7 @@
     [friction]         default of every pass (a pass may give its own table)
     [thermal]          as in a case: roll contact, air; required (a schedule carries T)
     [roll]             the work rolls of every stand: rigid, hitchcock or elastic (as a case)
+    [contact]          the roll contact of every stand (as a case)
     [microstructure]   recrystallisation between the passes (config/microstructure.py)
     [mesh] [solver] [output]   defaults of every pass's case
     [[pass]]           roll_radius, exit_thickness (or roll_gap with mill_modulus),
@@ -33,6 +34,7 @@ from hotroll.config.base import PosFloat, Problems, Section, field, problem_line
 from hotroll.config.case import (
     Case,
     CaseError,
+    ContactConfig,
     FrictionConfig,
     MaterialConfig,
     MeshConfig,
@@ -156,6 +158,7 @@ class Schedule(Section):
     friction: FrictionConfig = Field(default_factory=FrictionConfig)
     thermal: ThermalConfig
     roll: RollConfig = Field(default_factory=RollConfig)
+    contact: ContactConfig = Field(default_factory=ContactConfig)
     mesh: MeshConfig = Field(default_factory=MeshConfig)
     solver: SolverConfig = Field(default_factory=SolverConfig)
     output: OutputConfig = Field(default_factory=OutputConfig)
@@ -239,6 +242,7 @@ class Schedule(Section):
             "output": self.output.model_dump(exclude_none=True),
             "thermal": self.thermal.model_dump(exclude_none=True),
             "roll": self.roll.model_dump(exclude_none=True),
+            "contact": self.contact.model_dump(exclude_none=True),
         }
         for key in ("exit_thickness", "roll_gap", "mill_modulus"):
             if getattr(p, key) is not None:

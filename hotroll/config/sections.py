@@ -4,9 +4,9 @@
 
 from __future__ import annotations
 
-from typing import Any, Literal
+from typing import Annotated, Any, Literal
 
-from pydantic import PrivateAttr, StrictBool, field_validator, model_validator
+from pydantic import Field, PrivateAttr, StrictBool, field_validator, model_validator
 
 from hotroll.config.base import MESH_TABLE, MeshName, PosFloat, Problems, Section, field
 from hotroll.model.geometry import RollPass
@@ -245,13 +245,17 @@ class ContactConfig(Section):
         "the pressure; auto: true for the steady solver with traced tops, false otherwise (the "
         "report's scheme: its (2.28a))", "", '"auto", true (steady solver, traced tops) or false')
 
-    strip_youngs_modulus: PosFloat | None = field(
-        None, "the strip's Young's modulus at the pass temperature: its elastic thickness strain "
-        "in the contact (elastic entry and exit zones, the strip recovering past the gap); omit: "
-        "rigid-plastic (steady solver, exact contact)", "Pa", "> 0", gt=0)
-    strip_poissons_ratio: float = field(0.3, "the strip's Poisson's ratio (with "
-                                        "strip_youngs_modulus)", "", ">= 0 and < 0.5",
-                                        ge=0.0, lt=0.5)
+    strip_youngs_modulus: Literal["auto", "off"] | PosFloat = field(
+        "auto", "the strip's Young's modulus at the pass temperature: its elastic thickness "
+        "strain in the contact (elastic entry and exit zones, the strip recovering past the "
+        "gap; steady solver, exact contact); auto: the grade's E(T) at plate.temperature "
+        "(model/strip_elasticity.py: steels Ghosh and Olson 2002, aluminium Frost and Ashby "
+        "1982) where the run has a grade and exact contact with traced tops, else off; off: "
+        "rigid-plastic", "Pa", '"auto", "off" or a number > 0')
+    strip_poissons_ratio: Literal["auto"] | Annotated[float, Field(ge=0.0, lt=0.5)] = field(
+        "auto", "the strip's Poisson's ratio (with its elasticity); auto: the grade family's "
+        "(steel 0.3, aluminium 0.35), 0.3 without a grade", "",
+        '"auto" or a number >= 0 and < 0.5')
 
     def resolved(self, solver_method: str) -> str:
         """The method a run uses: "auto" resolved by the solver."""

@@ -24,6 +24,7 @@ about 10x per update (measured, docs/theory.md 4b).
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Callable
 
 import numpy as np
 
@@ -206,19 +207,33 @@ class ContactEndSearch:
     PyRolL plugin cycled between the gap and 0.1 element before it), and the halving ends such
     a search at a sign change of p_end in a bounded number of updates."""
 
+    #: an elastic strip's first steps (``winkler``) may reach this many elements
+    WINKLER_ELEMENTS = 4.0
+
     def __init__(self):
         self.last: tuple[float, float] | None = None
         self.trust: float | None = None
+        self.signs = 0           # sign changes of p_end so far
 
-    def step(self, x: np.ndarray, pressure: np.ndarray,
-             bounds: tuple[float, float]) -> tuple[float, float]:
+    def step(self, x: np.ndarray, pressure: np.ndarray, bounds: tuple[float, float],
+             winkler: Callable[[float, float], float] | None = None) -> tuple[float, float]:
         """(new x_e clipped to ``bounds``, the residual: its distance from the current end, m)
-        from the pressure at the arc's vertices (``x`` increasing, the last at the end)."""
+        from the pressure at the arc's vertices (``x`` increasing, the last at the end).
+        ``winkler(x, p)``: an elastic strip's end predicted from a vertex in its elastic exit
+        zone (where the rising roll has taken up the strip's elastic recovery c_e p), taken
+        until p_end first changes sign, up to ``WINKLER_ELEMENTS`` elements a step."""
         lo_b, hi_b = bounds
         p = np.asarray(pressure, dtype=float)
         x = np.asarray(x, dtype=float)
         x_e, p_e = float(x[-1]), float(p[-1])
         h = x_e - float(x[-2])                         # the last element's length
+        if self.last is not None and (self.last[1] < 0.0) != (p_e < 0.0):
+            self.signs += 1
+        if winkler is not None and self.signs == 0 and p_e > 0.0:
+            new = float(np.clip(winkler(x_e, p_e), x_e, x_e + self.WINKLER_ELEMENTS * h))
+            self.last, self.trust = (x_e, p_e), h
+            new = float(np.clip(new, lo_b, hi_b))
+            return new, abs(new - x_e)
         peak = int(np.argmax(p))
         neg = np.flatnonzero(p[:-1] < 0.0)
         neg = neg[neg > peak]

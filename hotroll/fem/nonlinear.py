@@ -225,7 +225,7 @@ def newton(
     tol: float = 1e-5,
     max_it: int = 20,
     min_step: float = 1.0 / 64,
-    couple: Callable[[], bool] | None = None,
+    couple: Callable[[float], bool] | None = None,
     couple_below: float = 1e-3,
     full_step: bool = False,
     chord: bool = False,
@@ -235,7 +235,8 @@ def newton(
     (``min_step = 1``: no search, the full step).
 
     ``couple`` (optional) updates data the form depends on (a_f, the free surface) once the
-    velocity update is below ``couple_below``; it returns True while that data still moves,
+    velocity update is below ``couple_below`` (it is given that update, over the velocity
+    scale); it returns True while that data still moves,
     and the iteration only stops when it returns False and the update is below ``tol``.
     ``chord``: the Jacobian's kept factors instead of new ones (Newton-chord). ``full_step``:
     the steady solver's final solve (a direction below ``tol`` is taken whole; a search that
@@ -311,7 +312,7 @@ def newton(
             TRACE(problem, it, stats.update, alpha, r0, r1)
         residual_ready = True
         if couple is not None and stats.update <= couple_below:
-            if couple():
+            if couple(stats.update):
                 residual_ready = False   # the form changed: its residual must be re-evaluated
                 continue
         # a contact multiplier's own test (its DOFs are not velocity nodes). In a sticking zone

@@ -135,7 +135,7 @@ class RollingForm:
                  penalties: PenaltyTable, free_surface: str, tensions: tuple = (0.0, 0.0),
                  consistency=1.0, rate_offset=None, contact: str = "penalty",
                  contact_regions: str = TOP, primal_dual: bool = True,
-                 strip_compliance: float | None = None):
+                 strip_compliance: float | None = None, strip_depth: float | None = None):
         from ngsolve import FacetFESpace, GridFunction, Parameter
 
         if contact not in CONTACT_METHODS:
@@ -146,6 +146,9 @@ class RollingForm:
         #: the strip's elastic compliance (1 - nu_s^2) / E_s times K (per unit of reduced
         #: pressure), or None: rigid-plastic contact (``constraint``)
         self.compliance = strip_compliance
+        #: the elastic layer's largest depth (m): c_e = compliance min(y, depth) (``Problem.
+        #: strip_layer_depth``); None: the half thickness y
+        self.strip_depth = strip_depth
         # what follows the roll speed is a Parameter (``set_roll_speed``: a tandem stand's speed
         # found inside the solve, issue 34): the surface speed U, the friction's v_reg, the
         # viscosity scale mu_ref of the penalties, and the multiplier's scale
@@ -314,6 +317,14 @@ class RollingForm:
             cached = self._mult_vertices = (verts, np.array([found[v] for v in verts], int))
         return cached
 
+    def layer_compliance(self, y):
+        """c_e per unit reduced pressure at half thicknesses ``y`` (m, numbers): compliance
+        min(y, strip_depth) (``constraint``)."""
+        import numpy as np
+
+        depth = y if self.strip_depth is None else np.minimum(y, self.strip_depth)
+        return self.compliance * depth
+
     def vertex_pressure(self):
         """The multiplier's contact pressure (reduced) at every mesh vertex (0 off the arc)."""
         import numpy as np
@@ -404,8 +415,9 @@ class RollingForm:
 
         With the strip's compliance (``compliance``): the strip's surface sits c_e p below its
         plastic flow's (its elastic thickness strain, c_e = (h/2)(1 - nu_s^2)/E_s, h = 2y the
-        local thickness), so the roll is impermeable to u.n - c_e (u.t) dp/ds (the elastic
-        surface's rate along the flow): int w u.n - c_e (u.t) dp/ds = 0, w the test function
+        local thickness; at most ``strip_depth``), so the roll is impermeable to u.n - c_e
+        (u.t) dp/ds (the elastic surface's rate along the flow): int w u.n - c_e (u.t) dp/ds
+        = 0, w the test function
         upwinded along t (each segment's constant dp/ds on its downstream node: an advection
         of p along a rigid stretch). ``u_w``, ``lam_w``: the Jacobian at that iterate along
         (u, lam)."""
@@ -416,9 +428,11 @@ class RollingForm:
         if regularise:
             term = term - regularise * self._lam * lam * xi
         if self.compliance:
-            from ngsolve import grad, specialcf, y
+            from ngsolve import IfPos, grad, specialcf, y
 
-            c = self.compliance * y * self._lam           # c_e K s: per unit lambda~
+            depth = y if self.strip_depth is None else IfPos(y - self.strip_depth,
+                                                               self.strip_depth, y)
+            c = self.compliance * depth * self._lam       # c_e K s: per unit lambda~
             w = xi + 0.5 * specialcf.mesh_size * (xi.Trace().Deriv() * t)
             ds_lam = lam.Trace().Deriv() * t
             if u_w is None:

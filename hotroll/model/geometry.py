@@ -221,6 +221,19 @@ class RollPass:
             return self.u_roll + 0.0 * np.asarray(xy, dtype=float)[..., 0]
         return self.u_roll * (1.0 + self.shape.strain(self.angle(xy)))
 
+    @property
+    def gap_radius(self) -> float:
+        """The radius of curvature (m) of the roll's surface at its lowest point: R for the
+        rigid roll; a flattened roll's r(t) = R + w(t) there, (r^2 + r'^2)^1.5 / (r^2 + 2 r'^2
+        - r r'')."""
+        if self.shape is None:
+            return self.radius
+        t, r = self.shape.lowest(self.radius)
+        d1 = float(self.shape.slope(t))
+        d2 = float(self.shape._dw.derivative()(t))
+        den = r * r + 2.0 * d1 * d1 - r * d2
+        return (r * r + d1 * d1) ** 1.5 / den if den > 0.0 else math.inf
+
     def height(self, x) -> np.ndarray:
         """The height of the roll's lower surface at x (its lowest point: the gap)."""
         cx, cy = self.centre

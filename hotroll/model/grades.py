@@ -57,6 +57,8 @@ class GradeData:
     aliases: Tuple[str, ...] = ()
     notes: str = ""
     kind: str = "HenselSpittel"
+    #: the family whose elastic moduli E(T) the strip takes (model/strip_elasticity.py)
+    family: str = "steel"
 
     @property
     def validity(self) -> ValidityRange:
@@ -81,6 +83,7 @@ class GradeData:
             "source": self.source,
             "read_at": self.read_at,
             "notes": self.notes,
+            "elastic family": self.family,
         }
 
 
@@ -154,6 +157,7 @@ _GRADES = (
                  "Spittel's form, the first drops the theta factors (a transcription slip: "
                  "m8 = 0.000241 alone would make the law rate-insensitive)"),
         aliases=("AL995", "EN AW-1050A", "AA1050A", "1050A", "3.0255"),
+        family="aluminium",
         notes=("The only aluminium Hensel-Spittel set found in a readable text. Rate exponent "
                "m8*T_C = 0.060 at 250 degC .. 0.133 at 550 degC."),
     ),

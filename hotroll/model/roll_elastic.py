@@ -306,12 +306,15 @@ class FlatteningRoll:
         return float(np.sum(0.5 * (fy[1:] + fy[:-1]) * np.diff(theta))) * R
 
     def update(self, theta, pressure, shear, force=None) -> float:
-        """One relaxed update of the shape; the largest change of the surface (m)."""
+        """One relaxed update of the shape; the residual: the largest distance between the
+        surface and the one its tractions give (m), before the step (with ``relaxation`` < 1
+        the step is that share of it: the residual, not the step, says whether it settled)."""
         grid, w, hoop = self.target(np.asarray(theta, float), np.asarray(pressure, float),
                                     np.asarray(shear, float), force)
         old = self.shape.offset(grid)
-        new = old + self.relaxation * (w - old)
+        r = w - old
         old_hoop = self.shape.strain(grid)
-        self.shape.set(grid, new, old_hoop + self.relaxation * (hoop - old_hoop))
+        self.shape.set(grid, old + self.relaxation * r,
+                       old_hoop + self.relaxation * (hoop - old_hoop))
         self.updates += 1
-        return float(np.max(np.abs(new - old)))
+        return float(np.max(np.abs(r)))

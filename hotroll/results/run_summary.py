@@ -169,6 +169,27 @@ def _nanmean(values) -> float:
     return float(vals.mean()) if len(vals) else math.nan
 
 
+#: the share of the contact length from its start over which ``entry_pressure`` is averaged
+ENTRY_SHARE = 0.05
+
+
+def entry_pressure(prof: dict) -> float | None:
+    """The contact pressure's entry value (Pa): its mean over the first ``ENTRY_SHARE`` of the
+    contact's length along the arc. The corner's own nodal value is not a limit: a rate-
+    dependent strip's stress is singular at the entry corner, about r^-m (the flow turns
+    there, its strain rate ~ 1/r), so the first vertex's pressure grows as h^-m under
+    refinement (measured, docs/validation/contact.md); its mean over a fixed length
+    converges."""
+    x, y = np.asarray(prof["x"], dtype=float), np.asarray(prof["y"], dtype=float)
+    if len(x) < 2:
+        return None
+    p = -np.asarray(prof["normal_stress"], dtype=float)
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x), np.diff(y)))])
+    L = ENTRY_SHARE * s[-1]
+    t = np.linspace(0.0, L, 401)
+    return float(np.trapezoid(np.interp(t, s, p), t) / L)
+
+
 def roll_figures(case: Case, run, prof: dict) -> dict:
     """A flattening roll's figures (m): the flattening (how far the flattened surface lies
     below the rigid roll through the same gap, largest over the contact: at its entry) and the
@@ -186,7 +207,25 @@ def roll_figures(case: Case, run, prof: dict) -> dict:
     return {"roll_model": case.roll.model,
             "roll_flattening": flattening(rp, float(np.min(X)) + rp.centre[0]),
             "roll_equivalent_radius": float(np.sqrt(c[2] + (c[0] / 2) ** 2 + (c[1] / 2) ** 2)),
-            "roll_updates": roll.updates, "roll_last_move": roll.last_move}
+            "roll_updates": roll.updates, "roll_last_move": roll.last_move,
+            "roll_shape_error": shape_error(roll, prof)}
+
+
+def shape_error(roll, prof: dict) -> float:
+    """How far the roll's surface lies from the one its final tractions give (the elastic
+    disc's rim, or Hitchcock's circle): max |w - w(p, q)| over the contact's angles, over
+    max |w(p, q)| there (-). Checks the fixed point at the end, not only its last move."""
+    ang = np.asarray(prof["angle"], dtype=float)
+    if len(ang) < 2:
+        return math.nan
+    order = np.argsort(ang)
+    grid, w, _ = roll.target(ang[order], -np.asarray(prof["normal_stress"])[order],
+                             np.asarray(prof["shear_stress"])[order])
+    inside = (grid >= ang.min()) & (grid <= ang.max())
+    scale = float(np.max(np.abs(w[inside]), initial=0.0))
+    if not scale > 0.0:
+        return math.nan
+    return float(np.max(np.abs(roll.shape.offset(grid[inside]) - w[inside]))) / scale
 
 
 def flattening(rp, x_start: float) -> float:
@@ -243,6 +282,7 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "contact_end_angle": float(prof["angle"][-1]) if len(prof["angle"]) else None,
         "min_contact_pressure": float(-np.max(prof["normal_stress"]))
         if len(prof["normal_stress"]) else None,
+        "entry_pressure": entry_pressure(prof),
     }
     sn_raw, sn_cor = prof["normal_stress"], prof["normal_stress_corrected"]
     seg = np.hypot(np.diff(prof["x"]), np.diff(prof["y"])) if len(prof["x"]) > 1 else []

@@ -184,6 +184,9 @@ class Summary(Mapping):
     contact_end_angle: float | None = _f("rad", "contact end angle", "")
     min_contact_pressure: float | None = _f("Pa", "min contact pressure", "the most tensile "
                                             "(lowest) contact pressure")
+    entry_pressure: float | None = _f("Pa", "entry pressure", "the contact pressure's mean "
+                                      "over the first 5 % of the contact from its start (the "
+                                      "corner's own value is singular, growing as h^-m)")
     exit_thickness: float = _f("m", "exit thickness", "measured (unilateral: below the gap)")
     pressure_last_update: float | None = _f("Pa", "pressure last update", "exact contact: the "
                                             "last Newton step's multiplier change")
@@ -233,6 +236,10 @@ class Summary(Mapping):
                                        group="Pass", when="roll")
     roll_updates: int = _f("-", "roll updates", "the surface's updates in the fixed point",
                            when="roll")
+    roll_shape_error: float = _f("-", "roll shape error", "max |w - w(p, q)| / max |w(p, q)| over "
+                                 "the contact: how far the roll's surface lies from the one its "
+                                 "final tractions give (the disc's rim or Hitchcock's circle)",
+                                 when="roll")
     roll_last_move: float = _f("m", "roll's last move", "the largest move of the arc the strip "
                                "lies on (its height at fixed x, the roll's axis shift included) "
                                "in the roll's last update: below roll.tolerance x h1/2 once "

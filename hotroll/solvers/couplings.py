@@ -25,6 +25,11 @@ class Coupling:
     #: its change decides whether the steady fixed point has settled (the active set's does
     #: not: it is updated with the others but never keeps the iteration going on its own)
     in_fixed_point = True
+    #: the couplings whose change it does not wait for (``after_others``)
+    waits_not_on: tuple[str, ...] = ()
+    #: it reads the contact pressure (with the strip's compliance it waits for a tight flow:
+    #: ``steady.COUPLE_BELOW_ELASTIC``)
+    reads_pressure = False
 
     def update(self, result) -> float:
         """Steady fixed point: one update; its change over its tolerance."""
@@ -102,6 +107,7 @@ class ContactEnd(Coupling):
     is the move in units of ``tol`` (m)."""
 
     name = "contact_end"
+    reads_pressure = True
     #: its tolerance in units of the traced tops' (1e-2 h by default): the end's pressure
     #: p_end(x_e) carries the flow's coupling noise, about 1e-3 of the peak pressure, which
     #: moves its root by several of the tops' 1e-3 h
@@ -150,6 +156,7 @@ class RollFlattening(Coupling):
     of ``tol`` (m)."""
 
     name = "roll"
+    reads_pressure = True
     #: moved only once the flow's other couplings are within 10 tolerances of their fixed
     #: point: the tractions of an unsettled flow (a_f far off) would throw the roll far off
     #: (the thin strip from the slab guess: unsettled after 30 roll updates when the roll
@@ -160,6 +167,10 @@ class RollFlattening(Coupling):
     after_others = 10.0
     #: points along the arc where the surface's move is measured
     PROBES = 200
+    #: the contact's end follows the roll's surface: the roll does not wait for it (an end
+    #: re-found after every roll move, and the roll waiting for it, took 3-4 rounds a roll
+    #: update on thin_strip)
+    waits_not_on = ("contact_end",)
 
     def __init__(self, roll, loads: Callable[[], tuple], apply: Callable[[], None], tol: float,
                  wait: bool = True):

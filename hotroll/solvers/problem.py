@@ -52,6 +52,28 @@ class Problem:
         return (1.0 - nu * nu) / E * self.material.K
 
     @property
+    def strip_layer_depth(self) -> float | None:
+        """The strip's elastic layer's largest depth (m), with its elasticity: a thin strip's
+        elastic thickness strain is its whole half thickness's (a Winkler layer, c_e = (h/2)
+        (1 - nu^2)/E), a thick one's reaches as deep as its elastic exit zone is long, which
+        for a thick strip recovering over about its thickness is 2 R (1 - nu^2) 2k / E (the
+        strip's recovery slope delta/h against the roll's rise x^2/2R, delta = h (1 - nu^2)
+        2k / E). The layer is min(h/2, this): its Winkler zone sqrt(2 R c_e 2k) then equals it
+        (docs/theory.md 1e). 2k = 2/sqrt3 sigma_ef at the pass's mean strain rate; R the
+        surface's radius of curvature at the gap when the solve starts (a flattened roll's
+        start: the rigid circle, or Hitchcock's)."""
+        if self.strip_elasticity is None:
+            return None
+        import math
+
+        E, nu = self.strip_elasticity
+        rp = self.rp
+        rate = rp.u_roll / rp.contact_length * 2.0 / math.sqrt(3.0) * math.log(
+            rp.half_entry / rp.half_exit)
+        two_k = 2.0 / math.sqrt(3.0) * self.material.sigma_ef(rate)
+        return 2.0 * min(rp.gap_radius, 1e3 * rp.radius) * (1.0 - nu * nu) * two_k / E
+
+    @property
     def v_reg(self) -> float:
         return self.friction.v_reg
 

@@ -51,11 +51,12 @@ from hotroll.solvers.threads import solver_threads
 #: how far past the gap an elastic strip's contact may reach, in contact lengths (its elastic
 #: exit zone is sqrt(2 R c_e p), a few percent of the contact length: docs/theory.md 1e)
 PAST_GAP = 0.25
-#: the couplings' threshold (Newton update over U) with the strip's compliance: the pressure
-#: in its elastic zones follows dp/ds = u.n / (c_e u.t), so an error of 1e-2 U in u.n moved p
-#: by about 200 MPa over one element of a finishing pass and the contact's end wandered
-#: (unsettled after 30 rounds); on a flow converged to 1e-4 U it settled in 13
-COUPLE_BELOW_ELASTIC = 1e-4
+#: with the strip's compliance, the threshold (Newton update over U) of the couplings that
+#: read the contact pressure (the contact's end, the roll): the pressure in its elastic zones
+#: follows dp/ds = u.n / (c_e u.t), so an error of 1e-2 U in u.n moved p by about 200 MPa over
+#: one element of a finishing pass and the contact's end wandered (unsettled after 30 rounds);
+#: on a flow converged to 1e-4 U it settled in 13. The others update at ``couple_below``.
+COUPLE_BELOW_ELASTIC = 1e-3
 
 
 class SteadyRun:
@@ -82,7 +83,8 @@ class SteadyRun:
                                 rate_offset=self.thermal.rate_offset()
                                 if self.thermal is not None else None,
                                 contact=settings.contact, contact_regions="arc",
-                                strip_compliance=problem.strip_compliance)
+                                strip_compliance=problem.strip_compliance,
+                                strip_depth=problem.strip_layer_depth)
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.d = self.disp.vec.FV().NumPy()
@@ -302,12 +304,16 @@ class SteadyRun:
         f.m.Set(path[-1])
         state = {"settled": False, "updates": 0}
 
-        def couple() -> bool:
+        def couple(update: float) -> bool:
             """One a_f / surface update; False once settled (or at the cap): freeze."""
             if state["settled"] or state["updates"] >= s.max_outer:
                 return False
-            state["updates"] += 1
-            state["settled"] = self._update_coupled(res) <= 1.0
+            # a round on a flow not yet tight enough for the pressure's readers (the strip's
+            # compliance: COUPLE_BELOW_ELASTIC) is a Newton step with the others' updates, not
+            # one of the max_outer rounds
+            if not (self.form.compliance and update > COUPLE_BELOW_ELASTIC):
+                state["updates"] += 1
+            state["settled"] = self._update_coupled(res, update) <= 1.0
             if f.friction_dual is not None:      # the form's data moved (fem/primal_dual.py)
                 f.friction_dual.restart()
             record(SolveStats(iterations=0, converged=False))
@@ -316,8 +322,7 @@ class SteadyRun:
         coupled = any(c.in_fixed_point for c in self.couplings)
         st = newton(f.nonlinear, s.tol, s.max_it + 3 * s.max_outer,
                     couple=couple if coupled else None,
-                    couple_below=(COUPLE_BELOW_ELASTIC if self.form.compliance else
-                                  s.couple_below if couple_below is None else couple_below),
+                    couple_below=s.couple_below if couple_below is None else couple_below,
                     full_step=True)
         res.stats.append(st)
         res.settled = state["settled"] or not coupled
@@ -383,18 +388,23 @@ class SteadyRun:
         return (prof["angle"][order], -prof["normal_stress"][order],
                 prof["shear_stress"][order], force)
 
-    def _update_coupled(self, res: SteadyResult) -> float:
-        """One update of every coupling; the largest change in units of its tolerance. A
-        coupling with ``after_others`` waits (its change counts as infinite) until the others
-        before it have changed by at most that many tolerances."""
-        changes: list[float] = []
+    def _update_coupled(self, res: SteadyResult, update: float = 0.0) -> float:
+        """One update of every coupling on a flow whose last Newton update was ``update`` (over
+        U); the largest change in units of its tolerance. A coupling with ``after_others``
+        waits (its change counts as infinite) until the others before it have changed by at
+        most that many tolerances; one that reads the contact pressure (``reads_pressure``)
+        waits, with the strip's compliance, for a flow converged to ``COUPLE_BELOW_ELASTIC``."""
+        changes: dict[str, float] = {}
+        tight = self.form.compliance and update > COUPLE_BELOW_ELASTIC
         for c in self.couplings:
             wait = getattr(c, "after_others", None)
-            if wait is not None and max(changes, default=0.0) > wait:
-                changes.append(math.inf)
+            before = [v for k, v in changes.items() if k not in c.waits_not_on]
+            if (wait is not None and max(before, default=0.0) > wait) or (
+                    tight and c.reads_pressure):
+                changes[c.name] = math.inf
                 continue
-            changes.append(c.update(res))
-        return max(changes, default=0.0)
+            changes[c.name] = c.update(res)
+        return max(changes.values(), default=0.0)
 
     def _set_contact(self) -> None:
         """The contact edges: the arc's chain (mapped from x_c to x_e); the friction indicator
@@ -465,13 +475,55 @@ class SteadyRun:
         p = self.form.vertex_pressure()[verts]
         rp, sh = self.problem.rp, self.shape
         old = sh.end(rp)
-        new, residual = self.end_search.step(x[order], p[order], self.end_bounds())
+        new, residual = self.end_search.step(x[order], p[order], self.end_bounds(),
+                                             self._winkler if self.form.compliance else None)
         # the exit top moves with its start, which stays on the roll
         sh.exit_x = sh.exit_x + (new - old)
         sh.exit_y = sh.exit_y + float(rp.height(new) - rp.height(old))
         sh.x_e = new
         self._set_shape()
+        self._carry_multiplier(verts, x, p, order, old)
         return max(residual, abs(new - old))
+
+    def _winkler(self, x_ref: float, p_ref: float) -> float:
+        """An elastic strip's contact end seen from a point of its elastic exit zone (x_ref, m;
+        reduced pressure p_ref): where the roll has risen by the strip's elastic recovery there,
+        y_roll(x) = y_roll(x_ref) + c_e p_ref (a Winkler layer on the roll's shape, docs/theory.md
+        1e); the first such x within a contact length."""
+        rp = self.problem.rp
+        y0 = float(rp.height(x_ref))
+        rise = self.form.layer_compliance(y0) * p_ref
+        xs = np.linspace(x_ref, x_ref + rp.contact_length, 257)
+        g = rp.height(xs) - y0 - rise
+        up = np.flatnonzero(g >= 0.0)
+        if not len(up):
+            return float(xs[-1])
+        i = int(up[0])
+        if i == 0:
+            return x_ref
+        return float(xs[i - 1] - g[i - 1] * (xs[i] - xs[i - 1]) / (g[i] - g[i - 1]))
+
+    def _carry_multiplier(self, verts, x_old, p_old, order, end_old) -> None:
+        """After the contact's end moved, the arc's vertices slid along it: the multiplier
+        carried with the position (interpolated at the new vertices), not with the vertex; past
+        the old end, an elastic strip's pressure continued by its Winkler layer
+        (p = p_end - (y_roll - y_roll(x_end)) / c_e, docs/theory.md 1e), a rigid-plastic one's
+        held at its end value."""
+        f, rp = self.form, self.problem.rp
+        x_new = self.top.vertex_positions(self.d, verts)[:, 0]
+        xs, ps = x_old[order], p_old[order]
+        p_new = np.interp(x_new, xs, ps)
+        ahead = x_new > xs[-1]
+        if np.any(ahead) and f.compliance:
+            y = rp.height(x_new[ahead])
+            c = f.layer_compliance(y)
+            p_new[ahead] = np.maximum(ps[-1] - (y - float(rp.height(xs[-1]))) / c, 0.0)
+        _, dofs = f.multiplier_vertices()
+        # multiplier_vertices and vertex_pressure share the vertex order
+        vec = f.multiplier.vec.FV().NumPy()
+        lookup = dict(zip(f.multiplier_vertices()[0].tolist(), dofs.tolist()))
+        for v, pv in zip(verts.tolist(), p_new.tolist()):
+            vec[lookup[v]] = pv / f.lam_scale
 
     def _set_shape(self) -> None:
         """Map the mesh onto ``self.shape``; the contact is the arc's chain of edges."""

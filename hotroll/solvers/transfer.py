@@ -82,7 +82,18 @@ class SimilarPass:
         entry_x[-1] = x_c
         entry_y = rd.half_entry + (sh.entry_y - rs.half_entry) * scale
         exit_y = rd.half_exit + (sh.exit_y - rs.half_exit) * (rd.half_exit / rs.half_exit)
-        return StripShape(x_c, entry_x, entry_y, knot_map(sh.exit_x, a, b), exit_y)
+        exit_x = knot_map(sh.exit_x, a, b)
+        if sh.x_e is None:
+            return StripShape(x_c, entry_x, entry_y, exit_x, exit_y)
+        # the contact's end: before the gap by the knot map; past it (an elastic strip's exit
+        # zone, sqrt(2 R c_e p) with c_e ~ h) by sqrt(R h)
+        past = sh.x_e - rs.axis_x
+        x_e = (float(knot_map(sh.x_e, a, b)) if past <= 0.0 else
+               rd.axis_x + past * math.sqrt(rd.radius * rd.half_exit / (rs.radius * rs.half_exit)))
+        x_e = float(np.clip(x_e, *dst.end_bounds()))
+        exit_x = exit_x + (x_e - exit_x[0])
+        exit_y = exit_y + (float(roll_height(rd, x_e)) - exit_y[0])
+        return StripShape(x_c, entry_x, entry_y, exit_x, exit_y, x_e)
 
     def apply(self, dst, vec: np.ndarray) -> None:
         """Set ``dst``'s shape and its velocity-pressure vector ``vec`` from the solved pass."""

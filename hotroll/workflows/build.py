@@ -59,9 +59,7 @@ def build_model(case: Case):
                          strain_profile=e_profile,
                          v_reg_per_speed=None if case.friction.v_reg is not None
                          else case.friction.regularisation_velocity(1.0),
-                         strip_elasticity=None if case.contact.strip_youngs_modulus is None
-                         else (case.contact.strip_youngs_modulus,
-                               case.contact.strip_poissons_ratio))
+                         strip_elasticity=case.strip_elasticity)
     if case.roll.model != "rigid":
         shaped, roll = FlatteningRoll.start(
             rp, case.roll.model, RollElasticity(case.roll.youngs_modulus, case.roll.poissons_ratio),

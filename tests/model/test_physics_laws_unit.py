@@ -550,6 +550,7 @@ def test_grade_describe_literal():
         "source": "a source",
         "read_at": "read here",
         "notes": "some notes",
+        "elastic family": "steel",
     }
 
 

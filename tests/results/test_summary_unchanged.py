@@ -10,7 +10,10 @@ torque 3.2e-7, a_f 4.3e-7; docs/validation/speed.md); the friction's primal-dual
 tolerance), and the golden summary is that run's. Issue 50 made contact unilateral by default
 (an intended change of the model: Example 2's thick strip now leaves the roll 0.039 rad before
 the gap; force +3.1 %, forward slip 3.39 -> 4.10 %, measured against the summary before), and
-the golden summary is that run's.
+the golden summary is that run's. Issue 50 session 2 carries the multiplier with the position
+when the contact's end moves (another path to the same fixed point: a_f 1.05e-8, the separation
+angle 2.6e-8, the end's residual pressure -5.75e-4 -> -5.75e-4 of a peak near 3, all within
+the couplings' tolerances) and adds entry_pressure; the golden summary is that run's.
 
 The whole set (every bundled example, the schedule and a study) is compared by
 ``python scripts/summary_diff.py run DIR`` on two commits and ``... compare BEFORE AFTER``

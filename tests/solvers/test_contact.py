@@ -185,7 +185,7 @@ def test_coulomb_shear_follows_the_multiplier_at_vertices_and_midpoints(finishin
     for k, (s, prof) in finishing_runs.items():
         U = s["roll_surface_speed"]
         slip = np.abs(prof["v_slip"]) > 0.01 * U
-        p = -prof["normal_stress"]
+        p = -prof["normal_stress_multiplier"]     # the multiplier's own nodal values
         limit = np.minimum(0.3 * p, prof["shear_flow_stress"])
         ok = slip & (p > 0)
         for vertex in (0, 1):

@@ -138,7 +138,8 @@ def test_tresca_shear_is_factor_times_k(tresca):
 def test_coulomb_shear_is_mu_p_below_the_cap(coulomb):
     summary, contact, fields = coulomb
     assert summary["converged"] and summary["power_balance_error"] < 1e-2
-    p, slip = -contact["normal_stress"], contact["v_slip"]
+    # the shear is the law of the multiplier's own nodal values (as the form evaluates it)
+    p, slip = -contact["normal_stress_multiplier"], contact["v_slip"]
     k = _k_from_fields(contact, fields)
     reg = np.abs(slip) / np.hypot(slip, 1e-3 * summary["roll_surface_speed"])  # (2.29a)-like
     # away from the law's rounded kinks (p = 0 and mu p = k, rounded over 1 % of k)
@@ -166,7 +167,8 @@ def test_coulomb_friction_power_is_mu_p_slip(tmp_path_factory):
     (bite angle 0.26 rad: at mu = 0.2 the strip is drawn in; Example 1's 0.41 rad is not)."""
     summary, contact, fields = _run(tmp_path_factory, "coulomb_low", THIN_MU02, **THIN)
     assert summary["converged"] and not summary["outlet_driven"]
-    p = np.maximum(-contact["normal_stress"], 0.0)
+    # the multiplier's own nodal values: the P1 function the form's friction term integrates
+    p = np.maximum(-contact["normal_stress_multiplier"], 0.0)
     slip, v_reg = contact["v_slip"], 1e-3 * summary["roll_surface_speed"]
     arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(contact["x"]), np.diff(contact["y"])))])
     k = _k_from_fields(contact, fields)

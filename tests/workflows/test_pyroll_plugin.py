@@ -96,8 +96,13 @@ def test_the_passes_are_hotrolls_own_runs(sequence, tmp_path):
         assert rp.out_profile.strain == pytest.approx(e_out, rel=1e-9)
         # PyRolL's own bookkeeping: the entry velocity from the FE exit by volume constancy
         assert ip.velocity == pytest.approx(s["exit_velocity"] * h1 / h0, rel=1e-9)
-        # ... which differs from the FE's entry velocity by the run's discrete flux error
-        assert abs(ip.velocity / s["entry_velocity"] - 1.0) <= 1.05 * s["mass_flux_error"] + 1e-6
+        # ... which differs from the FE's entry velocity by the run's discrete flux error and
+        # by how far the FE's exit thickness lies from h1 (a strip that leaves the roll before
+        # the gap thins on; one that recovers elastically past it thickens: a few 1e-4)
+        off = abs(s["exit_thickness"] / h1 - 1.0)
+        assert off < 1e-3
+        assert abs(ip.velocity / s["entry_velocity"] - 1.0) <= (
+            1.05 * s["mass_flux_error"] + off + 1e-6)
     # strain: 0 into both passes (PyRolL's transport recrystallises), more than homogeneous out
     assert r2.in_profile.strain == 0.0
     assert r1.out_profile.strain > 2.0 / math.sqrt(3.0) * math.log(0.1 / 0.08)
@@ -142,12 +147,16 @@ def test_a_flow_stress_function_is_fitted_and_used(sequence, tmp_path):
     """The in profile's flow_stress_function (here hotroll's S355J2 law as a plain Python
     function, PyRolL's convention for an explicit hook: a function of the profile returning
     it) is fitted over the pass's range (error < 1 %, the fit has no e^(m4/eps) term) and
-    rolls R1 within 1 % of the force the grade itself gives."""
+    rolls R1 within 1 % of the force the grade itself gives (the strip's modulus given as
+    the profile's elastic_modulus, the grade's E(T): without it a function without a grade is
+    rigid-plastic)."""
     from hotroll.model.grades import get_grade
+    from hotroll.model.strip_elasticity import FAMILIES
 
     law = get_grade("S355J2").law()
     ip = pr.Profile.box(height=0.1, width=WIDTH, temperature=1373.15, strain=0.0,
-                        flow_stress_function=lambda profile: law.sigma, **PROPS)
+                        flow_stress_function=lambda profile: law.sigma,
+                        elastic_modulus=FAMILIES["steel"].youngs_modulus(1373.15), **PROPS)
     rp = _flat("R1fit", 0.08, 0.3)
     before = dict(hp.STATS)
     rp.solve(ip)
