@@ -285,7 +285,7 @@ class RollConfig(Section):
                                   ">= 0 and < 0.5", ge=0.0, lt=0.5)
     relaxation: float = field(1.0, "the share of each surface update taken (under-relaxation)",
                               "", "> 0 and <= 1", gt=0.0, le=1.0)
-    tolerance: float = field(1e-4, "the roll has settled when its surface moves less than this "
+    tolerance: float = field(1e-5, "the roll has settled when its surface moves less than this "
                              "x the exit half-thickness per update", "", "> 0 and < 1",
                              gt=0.0, lt=1.0)
 

@@ -64,14 +64,20 @@ class Problem:
         start: the rigid circle, or Hitchcock's)."""
         if self.strip_elasticity is None:
             return None
+        E, nu = self.strip_elasticity
+        rp, two_k = self.rp, self.mean_two_k
+        return 2.0 * min(rp.gap_radius, 1e3 * rp.radius) * (1.0 - nu * nu) * two_k / E
+
+    @property
+    def mean_two_k(self) -> float:
+        """2k = (2/sqrt3) sigma_ef (Pa) at the pass's mean strain rate U/l 2/sqrt3 ln(h0/h1)
+        (the reference law's, at the entry strain): the plane-strain flow stress of estimates."""
         import math
 
-        E, nu = self.strip_elasticity
         rp = self.rp
         rate = rp.u_roll / rp.contact_length * 2.0 / math.sqrt(3.0) * math.log(
             rp.half_entry / rp.half_exit)
-        two_k = 2.0 / math.sqrt(3.0) * self.material.sigma_ef(rate)
-        return 2.0 * min(rp.gap_radius, 1e3 * rp.radius) * (1.0 - nu * nu) * two_k / E
+        return 2.0 / math.sqrt(3.0) * self.material.sigma_ef(rate)
 
     @property
     def v_reg(self) -> float:

@@ -269,6 +269,7 @@ class SteadyRun:
         self.shape = StripShape.flat(self.problem.rp)
         self.end_search = ContactEndSearch()
         self._set_shape()
+        self._predict_end()
         self._kinematic_guess()
         self._update_strain()
         self.form.a_f.Set(self.s.a_f if self.s.a_f is not None else self._estimate_a_f())
@@ -343,8 +344,9 @@ class SteadyRun:
         if s.free_surface == "traced":
             out.append(C.FreeSurface(self.update_surface, s.surface_tol * self.problem.h))
         if self.unilateral:
-            out.append(C.ContactEnd(self.move_contact_end,
-                                    C.ContactEnd.TOLERANCE * s.surface_tol * self.problem.h))
+            tol = (C.ContactEnd.TOLERANCE_ELASTIC if self.form.compliance
+                   else C.ContactEnd.TOLERANCE)
+            out.append(C.ContactEnd(self.move_contact_end, tol * s.surface_tol * self.problem.h))
         if self.problem.roll is not None:
             out.append(C.RollFlattening(self.problem.roll, self._roll_loads, self._set_shape,
                                         s.roll_tol * self.problem.rp.half_exit,
@@ -473,17 +475,32 @@ class SteadyRun:
         x = top.vertex_positions(self.d, verts)[:, 0]
         order = np.argsort(x)
         p = self.form.vertex_pressure()[verts]
-        rp, sh = self.problem.rp, self.shape
-        old = sh.end(rp)
+        old = self.shape.end(self.problem.rp)
         new, residual = self.end_search.step(x[order], p[order], self.end_bounds(),
                                              self._winkler if self.form.compliance else None)
-        # the exit top moves with its start, which stays on the roll
+        self._set_end(new)
+        self._carry_multiplier(verts, x, p, order, old)
+        return max(residual, abs(new - old))
+
+    def _predict_end(self) -> None:
+        """An elastic strip's contact end to start from: where its layer, at 2k at the gap,
+        meets the roll (``_winkler``; hot_strip_finishing: 15 Newton iterations, as many as the
+        rigid-plastic strip's, against 23 from the gap)."""
+        if self.unilateral and self.form.compliance:
+            pb = self.problem
+            lo, hi = self.end_bounds()
+            self._set_end(float(np.clip(self._winkler(pb.rp.axis_x,
+                                                      pb.mean_two_k / pb.material.K), lo, hi)))
+
+    def _set_end(self, new: float) -> None:
+        """The contact's end at ``new``; the exit top moves with its start, which stays on the
+        roll."""
+        rp, sh = self.problem.rp, self.shape
+        old = sh.end(rp)
         sh.exit_x = sh.exit_x + (new - old)
         sh.exit_y = sh.exit_y + float(rp.height(new) - rp.height(old))
         sh.x_e = new
         self._set_shape()
-        self._carry_multiplier(verts, x, p, order, old)
-        return max(residual, abs(new - old))
 
     def _winkler(self, x_ref: float, p_ref: float) -> float:
         """An elastic strip's contact end seen from a point of its elastic exit zone (x_ref, m;

@@ -29,7 +29,7 @@ class SteadySettings:
     core_factor: float = 4.0         # mesh size on the axis / h (at most half_exit/8)
     free_surface: str = "traced"     # "traced": streamline tops; "constrained": flat, (3.2d)
     surface_tol: float = 1e-3        # shape converged when no traced top moves more than this x h
-    roll_tol: float = 1e-4           # a flattening roll settled when its surface moves less than
+    roll_tol: float = 1e-5           # a flattening roll settled when its surface moves less than
                                      # this x the exit half-thickness per update
     max_outer: int = 30              # a_f / free-surface updates at the target m
     couple_below: float = 1e-2       # update them once the Newton update (at the P2 nodes) is
