@@ -38,7 +38,7 @@ VARIANTS = {
     "elastic roll": {},
     "elastic roll, relaxation 0.5": {"roll.relaxation": 0.5},
     "elastic roll, relaxation 0.3": {"roll.relaxation": 0.3},
-    "elastic roll, tolerance / 10": {"roll.tolerance": 1e-5},
+    "elastic roll, tolerance / 10": {"roll.tolerance": 1e-6},
     "elastic roll, rigid-plastic strip": {"contact.strip_youngs_modulus": "off"},
 }
 
