@@ -169,8 +169,9 @@ def finishing_runs():
 
 
 def test_the_pressure_is_smooth_up_to_the_arcs_ends(finishing_runs):
-    """Raw nodal normal stress within 10 % of the peak of its local smooth curve over the
-    inner 96 % of the arc, on the automatic mesh and on one twice as fine; no tensile value
+    """The nodal normal stress (the multiplier's nodal forces over their lengths) within 10 %
+    of the peak of its local smooth curve over the inner 96 % of the arc, on the automatic
+    mesh and on one twice as fine; no tensile value
     beyond the contact end's tolerance (the end is iterated to p = 0 within 1e-3 h: a pressure
     of about 1e-4 of the peak)."""
     for k, (s, prof) in finishing_runs.items():
