@@ -37,6 +37,7 @@ from hotroll.fem.top_boundary import TopBoundary
 from hotroll.model.friction_estimate import estimate_a_f
 from hotroll.model.material import NortonHoff
 from hotroll.solvers import couplings as C
+from hotroll.solvers.contact_end import ContactEndMixin
 from hotroll.solvers.problem import Problem, Solution
 from hotroll.solvers.steady_settings import (
     SteadyResult,
@@ -48,18 +49,16 @@ from hotroll.solvers.steady_settings import (
 )
 from hotroll.solvers.threads import solver_threads
 
-#: how far past the gap an elastic strip's contact may reach, in contact lengths (its elastic
-#: exit zone is sqrt(2 R c_e p), a few percent of the contact length: docs/theory.md 1e)
-PAST_GAP = 0.25
 #: with the strip's compliance, the threshold (Newton update over U) of the couplings that
 #: read the contact pressure (the contact's end, the roll): the pressure in its elastic zones
 #: follows dp/ds = u.n / (c_e u.t), so an error of 1e-2 U in u.n moved p by about 200 MPa over
 #: one element of a finishing pass and the contact's end wandered (unsettled after 30 rounds);
-#: on a flow converged to 1e-4 U it settled in 13. The others update at ``couple_below``.
+#: at 1e-3 U thin_strip's force is that at 1e-4 U to 1e-6 (at 1e-2 U: 7e-4 off). The others
+#: update at ``couple_below``.
 COUPLE_BELOW_ELASTIC = 1e-3
 
 
-class SteadyRun:
+class SteadyRun(ContactEndMixin):
     """The steady strip, its form and the coupled Newton solve."""
 
     def __init__(self, problem: Problem, settings: SteadySettings, plate_length: float):
@@ -459,88 +458,6 @@ class SteadyRun:
                                                 self.map.x_bounds())
         self._set_shape()
         return residual
-
-    def end_bounds(self) -> tuple[float, float]:
-        """The contact end's range (``StripMap.end_bounds``): up to the gap for a rigid-plastic
-        strip; past it (``PAST_GAP``) for an elastic one, which follows the rising roll while
-        its pressure falls."""
-        return self.map.end_bounds(PAST_GAP if self.form.compliance else 0.0)
-
-    def move_contact_end(self) -> float:
-        """Unilateral contact: move the contact's end by ``ContactEndSearch``'s step from the
-        pressure at the arc's vertices and remap the mesh; its residual or move (m), the
-        larger."""
-        top = self.top
-        verts = top.verts[top.vertex_contact]
-        x = top.vertex_positions(self.d, verts)[:, 0]
-        order = np.argsort(x)
-        p = self.form.vertex_pressure()[verts]
-        old = self.shape.end(self.problem.rp)
-        new, residual = self.end_search.step(x[order], p[order], self.end_bounds(),
-                                             self._winkler if self.form.compliance else None)
-        self._set_end(new)
-        self._carry_multiplier(verts, x, p, order, old)
-        return max(residual, abs(new - old))
-
-    def _predict_end(self) -> None:
-        """An elastic strip's contact end to start from: where its layer, at 2k at the gap,
-        meets the roll (``_winkler``; hot_strip_finishing: 15 Newton iterations, as many as the
-        rigid-plastic strip's, against 23 from the gap)."""
-        if self.unilateral and self.form.compliance:
-            pb = self.problem
-            lo, hi = self.end_bounds()
-            self._set_end(float(np.clip(self._winkler(pb.rp.axis_x,
-                                                      pb.mean_two_k / pb.material.K), lo, hi)))
-
-    def _set_end(self, new: float) -> None:
-        """The contact's end at ``new``; the exit top moves with its start, which stays on the
-        roll."""
-        rp, sh = self.problem.rp, self.shape
-        old = sh.end(rp)
-        sh.exit_x = sh.exit_x + (new - old)
-        sh.exit_y = sh.exit_y + float(rp.height(new) - rp.height(old))
-        sh.x_e = new
-        self._set_shape()
-
-    def _winkler(self, x_ref: float, p_ref: float) -> float:
-        """An elastic strip's contact end seen from a point of its elastic exit zone (x_ref, m;
-        reduced pressure p_ref): where the roll has risen by the strip's elastic recovery there,
-        y_roll(x) = y_roll(x_ref) + c_e p_ref (a Winkler layer on the roll's shape, docs/theory.md
-        1e); the first such x within a contact length."""
-        rp = self.problem.rp
-        y0 = float(rp.height(x_ref))
-        rise = self.form.layer_compliance(y0) * p_ref
-        xs = np.linspace(x_ref, x_ref + rp.contact_length, 257)
-        g = rp.height(xs) - y0 - rise
-        up = np.flatnonzero(g >= 0.0)
-        if not len(up):
-            return float(xs[-1])
-        i = int(up[0])
-        if i == 0:
-            return x_ref
-        return float(xs[i - 1] - g[i - 1] * (xs[i] - xs[i - 1]) / (g[i] - g[i - 1]))
-
-    def _carry_multiplier(self, verts, x_old, p_old, order, end_old) -> None:
-        """After the contact's end moved, the arc's vertices slid along it: the multiplier
-        carried with the position (interpolated at the new vertices), not with the vertex; past
-        the old end, an elastic strip's pressure continued by its Winkler layer
-        (p = p_end - (y_roll - y_roll(x_end)) / c_e, docs/theory.md 1e), a rigid-plastic one's
-        held at its end value."""
-        f, rp = self.form, self.problem.rp
-        x_new = self.top.vertex_positions(self.d, verts)[:, 0]
-        xs, ps = x_old[order], p_old[order]
-        p_new = np.interp(x_new, xs, ps)
-        ahead = x_new > xs[-1]
-        if np.any(ahead) and f.compliance:
-            y = rp.height(x_new[ahead])
-            c = f.layer_compliance(y)
-            p_new[ahead] = np.maximum(ps[-1] - (y - float(rp.height(xs[-1]))) / c, 0.0)
-        _, dofs = f.multiplier_vertices()
-        # multiplier_vertices and vertex_pressure share the vertex order
-        vec = f.multiplier.vec.FV().NumPy()
-        lookup = dict(zip(f.multiplier_vertices()[0].tolist(), dofs.tolist()))
-        for v, pv in zip(verts.tolist(), p_new.tolist()):
-            vec[lookup[v]] = pv / f.lam_scale
 
     def _set_shape(self) -> None:
         """Map the mesh onto ``self.shape``; the contact is the arc's chain of edges."""

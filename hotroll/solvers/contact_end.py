@@ -1,0 +1,96 @@
+"""The unilateral contact's end on the steady strip (docs/theory.md 1e): the search's steps
+(``fem/free_surface.py: ContactEndSearch``) applied to the strip map, its range, and an elastic
+strip's exit zone (a Winkler layer on the roll's shape: the end predicted, the multiplier
+carried with the end's moves). A mixin of ``SteadyRun`` (``solvers/steady.py``), which holds the
+strip map, the shape, the form and the problem these methods use."""
+from __future__ import annotations
+
+import numpy as np
+
+#: how far past the gap an elastic strip's contact may reach, in contact lengths (its elastic
+#: exit zone is sqrt(2 R c_e p), a few percent of the contact length: docs/theory.md 1e)
+PAST_GAP = 0.25
+
+
+class ContactEndMixin:
+    """The contact's end x_e of ``SteadyRun``."""
+
+    def end_bounds(self) -> tuple[float, float]:
+        """The contact end's range (``StripMap.end_bounds``): up to the gap for a rigid-plastic
+        strip; past it (``PAST_GAP``) for an elastic one, which follows the rising roll while
+        its pressure falls."""
+        return self.map.end_bounds(PAST_GAP if self.form.compliance else 0.0)
+
+    def move_contact_end(self) -> float:
+        """Unilateral contact: move the contact's end by ``ContactEndSearch``'s step from the
+        pressure at the arc's vertices and remap the mesh; its residual or move (m), the
+        larger."""
+        top = self.top
+        verts = top.verts[top.vertex_contact]
+        x = top.vertex_positions(self.d, verts)[:, 0]
+        order = np.argsort(x)
+        p = self.form.vertex_pressure()[verts]
+        old = self.shape.end(self.problem.rp)
+        new, residual = self.end_search.step(x[order], p[order], self.end_bounds(),
+                                             self._winkler if self.form.compliance else None)
+        self._set_end(new)
+        self._carry_multiplier(verts, x, p, order)
+        return max(residual, abs(new - old))
+
+    def _predict_end(self) -> None:
+        """An elastic strip's contact end to start from: where its layer, at 2k at the gap,
+        meets the roll (``_winkler``; hot_strip_finishing: 15 Newton iterations, as many as the
+        rigid-plastic strip's, against 23 from the gap)."""
+        if self.unilateral and self.form.compliance:
+            pb = self.problem
+            lo, hi = self.end_bounds()
+            self._set_end(float(np.clip(self._winkler(pb.rp.axis_x,
+                                                      pb.mean_two_k / pb.material.K), lo, hi)))
+
+    def _set_end(self, new: float) -> None:
+        """The contact's end at ``new``; the exit top moves with its start, which stays on the
+        roll."""
+        rp, sh = self.problem.rp, self.shape
+        old = sh.end(rp)
+        sh.exit_x = sh.exit_x + (new - old)
+        sh.exit_y = sh.exit_y + float(rp.height(new) - rp.height(old))
+        sh.x_e = new
+        self._set_shape()
+
+    def _winkler(self, x_ref: float, p_ref: float) -> float:
+        """An elastic strip's contact end seen from a point of its elastic exit zone (x_ref, m;
+        reduced pressure p_ref): where the roll has risen by the strip's elastic recovery there,
+        y_roll(x) = y_roll(x_ref) + c_e p_ref (a Winkler layer on the roll's shape, docs/theory.md
+        1e); the first such x within a contact length."""
+        rp = self.problem.rp
+        y0 = float(rp.height(x_ref))
+        rise = self.form.layer_compliance(y0) * p_ref
+        xs = np.linspace(x_ref, x_ref + rp.contact_length, 257)
+        g = rp.height(xs) - y0 - rise
+        up = np.flatnonzero(g >= 0.0)
+        if not len(up):
+            return float(xs[-1])
+        i = int(up[0])
+        if i == 0:
+            return x_ref
+        return float(xs[i - 1] - g[i - 1] * (xs[i] - xs[i - 1]) / (g[i] - g[i - 1]))
+
+    def _carry_multiplier(self, verts, x_old, p_old, order) -> None:
+        """After the contact's end moved, the arc's vertices slid along it: the multiplier
+        carried with the position (interpolated at the new vertices), not with the vertex; past
+        the old end, an elastic strip's pressure continued by its Winkler layer
+        (p = p_end - (y_roll - y_roll(x_end)) / c_e, docs/theory.md 1e), a rigid-plastic one's
+        held at its end value."""
+        f, rp = self.form, self.problem.rp
+        x_new = self.top.vertex_positions(self.d, verts)[:, 0]
+        xs, ps = x_old[order], p_old[order]
+        p_new = np.interp(x_new, xs, ps)
+        ahead = x_new > xs[-1]
+        if np.any(ahead) and f.compliance:
+            y = rp.height(x_new[ahead])
+            c = f.layer_compliance(y)
+            p_new[ahead] = np.maximum(ps[-1] - (y - float(rp.height(xs[-1]))) / c, 0.0)
+        mv, dofs = f.multiplier_vertices()           # sorted vertex numbers and their DOFs
+        vec = f.multiplier.vec.FV().NumPy()
+        vec[dofs[np.searchsorted(mv, verts)]] = p_new / f.lam_scale
+
