@@ -40,12 +40,13 @@ def fig_contact(run: RunFiles, path: Path) -> Path | None:
     sn, snc = column(c, "normal_stress"), column(c, "normal_stress_corrected")
     sns = column(c, "normal_stress_smooth")
     exact = run.summary.get("contact_method") == "multiplier"
-    if exact:        # the multiplier is P1 already: its nodes, no projection or correction
+    if exact:        # the multiplier's nodal forces over their lengths: no projection or correction
         sns = snc = None
     if sn is not None or snc is not None:
         if sn is not None:
             a_sn.plot(x, sn, ".-" if exact else ".", ms=2.5, color="C0" if exact else "0.6",
-                      label="contact multiplier (nodal)" if exact
+                      label="contact pressure (the multiplier's nodal forces / lengths)"
+                      if exact
                       else "raw (nodal penalty reaction)")
         if sns is not None:
             a_sn.plot(x, sns, "-", lw=1.5, color="C0", label="P1 projection")
