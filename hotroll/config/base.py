@@ -38,11 +38,35 @@ class Problems(ValueError):
         super().__init__("; ".join(problems))
 
 
-def field(default: Any, text: str, unit: str, allowed: str, **constraints: Any) -> Any:
-    """Field whose description and error messages carry unit and allowed range."""
+def field(default: Any, text: str, unit: str, allowed: str, *,
+          columns: tuple[str, ...] | None = None, **constraints: Any) -> Any:
+    """Field whose description and error messages carry unit and allowed range. A number field
+    in a unit pint knows also takes text with a unit ("6 mm", config/units.py); ``columns``:
+    a table of pairs' unit per column (``unit`` is then the one the text names)."""
     allowed_u = f"{allowed} [{unit}]" if unit else allowed
     desc = f"{text} [{unit or '-'}]; allowed: {allowed}"
-    return Field(default, description=desc, json_schema_extra={"allowed": allowed_u}, **constraints)
+    extra: dict[str, Any] = {"allowed": allowed_u, "unit": unit}
+    if columns is not None:
+        extra["columns"] = list(columns)
+    return Field(default, description=desc, json_schema_extra=extra, **constraints)
+
+
+def with_units(value: Any, unit: str, words=(), columns=None) -> Any:
+    """``value`` with every text that carries a unit ("6 mm") converted to the SI ``unit``
+    (config/units.py), inside lists too, a table's pairs by ``columns``; the field's words
+    ("auto") and the rest as they are (refused after, by ``has_text``)."""
+    from hotroll.config.units import takes_units, to_si
+
+    if isinstance(value, str) and value not in words and value.strip()[:1] in "+-.0123456789":
+        if takes_units(unit):
+            return to_si(value, unit)
+        return value
+    if isinstance(value, (list, tuple)):
+        if columns is not None and all(isinstance(r, (list, tuple)) for r in value):
+            return [[with_units(x, u) for x, u in zip(row, columns)] + list(row[len(columns):])
+                    for row in value]
+        return [with_units(x, unit, words) for x in value]
+    return value
 
 
 def _number_field(annotation: Any) -> tuple[bool, set]:
@@ -82,8 +106,13 @@ class Section(BaseModel):
     def _number_not_text(cls, v: Any, info) -> Any:
         """A number field takes numbers: not text ("0.5": pydantic would convert it) nor a
         boolean (true would be 1), also not inside a table of pairs; its words ("auto", ...)
-        stay allowed. The error carries the field's allowed range (config._message)."""
-        number, words = _number_field(cls.model_fields[info.field_name].annotation)
+        stay allowed; a number with a unit ("6 mm") is converted to the field's SI unit
+        (``with_units``). The error carries the field's allowed range (config._message)."""
+        info_f = cls.model_fields[info.field_name]
+        number, words = _number_field(info_f.annotation)
+        if number:
+            extra = info_f.json_schema_extra if isinstance(info_f.json_schema_extra, dict) else {}
+            v = with_units(v, extra.get("unit", ""), words, extra.get("columns"))
         if number and has_text(v, words):
             raise ValueError(f"numbers, got {v!r}")
         return v

@@ -34,6 +34,7 @@ from hotroll.config.sections import (  # noqa: F401 (re-exported)
     check_profile,
 )
 from hotroll.config.thermal import ThermalConfig
+from hotroll.config.units import UnitError
 from hotroll.model.geometry import auto_contact_size
 from hotroll.model.grades import get_grade
 from hotroll.model.strip_elasticity import family_modulus
@@ -216,7 +217,7 @@ def case_from_dict(d: Any, source: str | None = None) -> Case:
     try:
         return Case.model_validate(d)
     except ValidationError as e:
-        raise CaseError(_problems(e), source) from None
+        raise CaseError(_problems(e, d), source) from None
 
 
 def case_from_toml(text: str, source: str | None = None) -> Case:
@@ -255,8 +256,19 @@ def _model_of(model: type[BaseModel], key: str) -> type[BaseModel] | None:
     return None
 
 
-def _problems(err: ValidationError) -> list[str]:
-    """Turn pydantic errors into ``section.key: message`` lines (one per field)."""
+def _given(raw: Any, loc) -> Any:
+    """What the file said at ``loc`` (None where it said nothing there)."""
+    for item in loc:
+        try:
+            raw = raw[item]
+        except (KeyError, IndexError, TypeError):
+            return None
+    return raw
+
+
+def _problems(err: ValidationError, raw: Any = None) -> list[str]:
+    """Turn pydantic errors into ``section.key: message`` lines (one per field); ``raw``: the
+    input, whose text with a unit ("-300 degC") a range error quotes beside its SI value."""
     out: dict[str, str] = {}
     for e in err.errors():
         exc = (e.get("ctx") or {}).get("error")
@@ -273,7 +285,11 @@ def _problems(err: ValidationError) -> list[str]:
             if parent is None:
                 break
         dotted = ".".join(path)
-        out.setdefault(dotted, f"{dotted}: {_message(e, path, parent, info)}")
+        message = _message(e, path, parent, info)
+        given = _given(raw, e["loc"])
+        if isinstance(given, str) and e["type"] != "value_error" and given != e.get("input"):
+            message += f" (from {given!r})"
+        out.setdefault(dotted, f"{dotted}: {message}")
     return list(out.values())
 
 
@@ -290,6 +306,9 @@ def _message(e: dict, path: list[str], parent: type[BaseModel] | None, info: Fie
     if is_section:
         return f"must be a table [{path[0]}], got {got!r}"
     allowed = (info.json_schema_extra or {}).get("allowed") if info else None
+    exc = (e.get("ctx") or {}).get("error")
+    if isinstance(exc, UnitError):
+        return f"{exc}; must be {allowed}" if allowed else str(exc)
     if allowed:
         return f"must be {allowed}, got {got!r}"
     return e["msg"][0].lower() + e["msg"][1:]

@@ -61,7 +61,7 @@ class StripConfig(Section):
                                 "profile)", "K", "> 0", gt=0)
     temperature_profile: list[tuple[float, float]] | None = field(
         None, "entry temperature through the half thickness [[eta, T], ...]", "K",
-        "pairs with eta increasing strictly from 0 to 1 and T > 0")
+        "pairs with eta increasing strictly from 0 to 1 and T > 0", columns=("", "K"))
     strain: float = field(0.0, "equivalent strain the strip enters with", "", ">= 0", ge=0)
     strain_profile: list[tuple[float, float]] | None = field(
         None, "entry strain through the half thickness [[eta, strain], ...]", "",

@@ -154,7 +154,7 @@ class PlateConfig(Section):
         None, "entry temperature through the half thickness, [[eta, T], ...] with eta = "
         "y / half thickness from 0 (centre) to 1 (surface), linear between (omit: uniform "
         "plate.temperature; needs [thermal] and the steady method)", "K",
-        "pairs with eta increasing strictly from 0 to 1 and T > 0")
+        "pairs with eta increasing strictly from 0 to 1 and T > 0", columns=("", "K"))
     strain_profile: list[tuple[float, float]] | None = field(
         None, "entry strain through the half thickness, [[eta, strain], ...] as "
         "temperature_profile (omit: uniform plate.entry_strain; steady method)", "",
@@ -193,7 +193,9 @@ class MeshConfig(Section):
     def _upper_name(cls, v: Any) -> Any:
         if isinstance(v, str):
             v = v.strip()
-            return "auto" if v.lower() == "auto" else v.upper()
+            if v.lower() == "auto":
+                return "auto"
+            return v.upper() if v.upper() in MESH_TABLE else v     # "c2"; "20 mm" a length
         return v
 
     @property
@@ -221,7 +223,10 @@ class SolverConfig(Section):
     max_steps: int = field(100000, "maximum number of time steps", "", "an integer >= 1", ge=1)
     wall_time_limit: PosFloat | None = field(None, "wall-clock limit (omit: none)", "s", "> 0")
     checkpoint_every: int = field(25, "steps between checkpoints", "", "an integer >= 1", ge=1)
-    threads: int = field(2, "worker threads", "", "an integer in [1, 1024]", ge=1, le=1024)
+    threads: Literal["auto"] | Annotated[int, Field(ge=1, le=1024)] = field(
+        "auto", "threads for the assembly (the rest of a solve is serial); at most this many, "
+        "and never a core another running process wants (fem/reproducible.py); auto: up to "
+        "4", "", '"auto" or an integer in [1, 1024]')
     memory_limit: PosFloat | None = field(
         None, "refuse a mesh whose estimated memory is above this (omit: the machine's free "
         "memory; workflows/estimate.py)", "B", "> 0")

@@ -37,7 +37,7 @@ from typing import Any, Literal
 
 from pydantic import Field, ValidationError, field_validator, model_validator
 
-from hotroll.config.base import Problems, Section, field, fields_of, problem_lines
+from hotroll.config.base import Problems, Section, field, fields_of, problem_lines, with_units
 from hotroll.config.case import Case, CaseError, case_from_dict, set_dotted
 from hotroll.config.schedule import PassEntry, Schedule, schedule_from_dict
 from hotroll.examples import example_path, schedule_path
@@ -124,6 +124,23 @@ class Study(Section):
     run: RunConfig = Field(default_factory=RunConfig)
     plot: PlotConfig | None = None
 
+    @field_validator("vary", mode="before")
+    @classmethod
+    def _vary_units(cls, v: Any) -> Any:
+        """Values with units ("5 mm", a range's start, stop and step) in the key's SI unit."""
+        if not isinstance(v, dict):
+            return v
+        out = {}
+        for key, values in v.items():
+            unit = key_unit(key) if isinstance(key, str) else "-"
+            if isinstance(values, dict):
+                values = {k: with_units(x, unit) if k in ("start", "stop", "step") else x
+                          for k, x in values.items()}
+            elif isinstance(values, list):
+                values = [with_units(x, unit) for x in values]
+            out[key] = values
+        return out
+
     @field_validator("vary")
     @classmethod
     def _vary(cls, v: dict) -> dict:
@@ -141,7 +158,7 @@ class Study(Section):
                 raise ValueError("an empty row of [[cases]]")
             for key in row:
                 _dotted(key)
-        return v
+        return [{k: with_units(x, key_unit(k)) for k, x in row.items()} for row in v]
 
     @model_validator(mode="after")
     def _lengths(self) -> Study:
@@ -251,7 +268,8 @@ def load_study(path: str | Path, overrides: dict[str, Any] | None = None) -> tup
 
 
 def _read_cases(csv_path: Path, source: str) -> list[dict[str, Any]]:
-    """The rows of a CSV of cases; a cell that reads as a number is one."""
+    """The rows of a CSV of cases; a cell that reads as a number is one, a number with a unit
+    ("6 mm") the key's SI value."""
     import csv
 
     try:
@@ -270,7 +288,8 @@ def _read_cases(csv_path: Path, source: str) -> list[dict[str, Any]]:
         if None in r:
             raise CaseError(f"cases_file: {csv_path} line {n} has more cells than the header",
                             source, "study")
-    return [{k: parse_value(v) for k, v in r.items() if v not in ("", None)} for r in rows]
+    return [{k: with_units(parse_value(v), key_unit(k)) for k, v in r.items() if v not in ("", None)}
+            for r in rows]
 
 
 def parse_value(text: str) -> Any:
@@ -321,8 +340,9 @@ def _read_base(study: Study, root: Path) -> dict:
 
 
 def expand(study: Study, base: dict) -> list[StudyCase]:
-    """Every combination as a case, or a schedule (``StudyCase.case`` a ``Schedule``), one
-    thread each (a worker is one core); an invalid one keeps its reason."""
+    """Every combination as a case, or a schedule (``StudyCase.case`` a ``Schedule``); an
+    invalid one keeps its reason. The threads stay the case's: a worker's assembly takes a
+    second core only while no other worker wants it (``fem/reproducible.threads_now``)."""
     out, seen = [], set()
     for i, values in enumerate(study.combinations()):
         name = label(values)
@@ -330,7 +350,7 @@ def expand(study: Study, base: dict) -> list[StudyCase]:
             name = f"{name}-{i}"
         seen.add(name)
         try:
-            data = _set(study, copy.deepcopy(base), {**values, "solver.threads": 1})
+            data = _set(study, copy.deepcopy(base), values)
             data["name"] = f"{base.get('name', 'case')} {name}"
             out.append(StudyCase(i, name, values, _validate(study, data)))
         except CaseError as e:

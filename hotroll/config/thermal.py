@@ -13,7 +13,7 @@ from typing import Any, Literal, Union
 
 from pydantic import create_model, model_validator
 
-from hotroll.config.base import Problems, Section, field, has_text
+from hotroll.config.base import Problems, Section, field, has_text, with_units
 from hotroll.config.law_section import parameter_fields
 from hotroll.model.heat_transfer import HEAT_TRANSFER_LAWS, KINDS, laws_of
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalInputError
@@ -31,6 +31,8 @@ def check_property(key: str, value: Any) -> Any:
     The case error names ``material.<key>`` and the allowed form."""
     if value is None:
         return None
+    unit = PROPERTY_UNITS[key]
+    value = with_units(value, unit, columns=("K", unit))      # "7.85 t/m^3", [["1000 degC", ..]]
     if has_text(value):         # numpy would read "7800" and true as numbers
         raise ValueError(f"numbers, got {value!r}")
     try:

@@ -37,6 +37,7 @@ import numpy as np
 
 from hotroll.fem.forms import NonlinearProblem
 from hotroll.fem.krylov import apply_inverse, make_inverse
+from hotroll.fem.reproducible import parallel
 
 
 class NonlinearSystem(Protocol):
@@ -153,18 +154,20 @@ def _linear_step(form, problem, ws, stats, residual_ready: bool = False,
     t0 = time.perf_counter()
     ws.achieved = float("inf")
     if not residual_ready:
-        form.Apply(problem.gf.vec, ws.r)
+        with parallel():
+            form.Apply(problem.gf.vec, ws.r)
     kept = problem.inverses.get(id(jacobian if jacobian is not None else form))
     rtol = problem.linear_rtol if rtol is None else rtol
     if chord and kept is not None:
         apply_inverse(kept, ws.r, ws.du, GMRES_MARGIN * rtol, ws.weights())
         stats.time_linear += time.perf_counter() - t0
         return
-    if jacobian is None:
-        form.AssembleLinearization(problem.gf.vec)
-        jacobian = form
-    else:
-        jacobian.Assemble()
+    with parallel():
+        if jacobian is None:
+            form.AssembleLinearization(problem.gf.vec)
+            jacobian = form
+        else:
+            jacobian.Assemble()
     t1 = time.perf_counter()
     rnorm = max(ws.norm(ws.r), 1e-300)
     cached = problem.inverses.get(id(jacobian))
@@ -288,7 +291,8 @@ def newton(
             break
         while True:
             problem.gf.vec.data = ws.backup - alpha * ws.du
-            form.Apply(problem.gf.vec, ws.r)
+            with parallel():
+                form.Apply(problem.gf.vec, ws.r)
             r1 = ws.norm(ws.r)
             if (not search or r1 <= (1.0 - 1e-4 * alpha) * r0 or alpha <= min_step
                     or r0 == 0.0):
@@ -304,7 +308,8 @@ def newton(
         if watched:
             alpha = 1.0
             problem.gf.vec.data = ws.backup - ws.du
-            form.Apply(problem.gf.vec, ws.r)
+            with parallel():
+                form.Apply(problem.gf.vec, ws.r)
             r1 = ws.norm(ws.r)
         stats.iterations = it
         stats.residual = r1

@@ -22,7 +22,7 @@ from hotroll.fem.profile_figures import (  # noqa: F401 (re-exported)
     smoothed,
     sticking_zone,
 )
-from hotroll.fem.reproducible import fe_space, integrate
+from hotroll.fem.reproducible import fe_space, integrate, parallel
 from hotroll.fem.rolling_form import TOP, RollingForm
 from hotroll.fem.top_boundary import TopBoundary
 from hotroll.model.material import edot_squared
@@ -295,7 +295,8 @@ def force_balance(form: RollingForm, K: float) -> dict:
     # (the constant e_y has coefficient 1 there and 0 on the edge bubbles)
     problem = form.nonlinear
     r = problem.gf.vec.CreateVector()
-    problem.a_newton.Apply(problem.gf.vec, r)
+    with parallel():
+        problem.a_newton.Apply(problem.gf.vec, r)
     nv = problem.n_velocity_dofs() // 2
     rows = np.arange(nv, nv + form.mesh.nv)
     fixed = ~problem.free_mask[rows]

@@ -17,22 +17,32 @@ calls, 10 of 10 factor+solves, on 2 threads). Hence:
   ``element_wise=True``) summed in Python (``math.fsum``: correctly rounded, so independent of
   the order too). ``tests/fem/test_reproducible.py`` fails where a module calls NGSolve's
   ``Integrate`` itself.
-- ``threaded``: the task manager hotroll runs in, its thread count set (BLAS held to one thread).
+- ``threaded``: a run's thread count (BLAS held to one thread); ``parallel``: the task manager
+  around assembly only, with the threads no other busy process wants (``threads_now``).
 - The flow's linear solver is UMFPACK (``forms.LINEAR_SOLVERS``): sequential, the same factors
-  in every run. ``sparsecholesky`` is not with 2 threads, and it cannot be made so from
-  outside: with no task manager it starts one of its own with every core
-  (``SparseCholeskyTM::FactorSPD1``: ``RunWithTaskManager``), so factorising outside the task
-  manager did not help (a Taylor-Hood Stokes matrix: 8 distinct solutions of 8 with no task
-  manager, 8 of 8 in a 2-thread one, 1 of 8 in a 1-thread one), and under load each re-entry
-  waited for the workers' start (a 0.4 s pass took 3-7 s).
+  in every run. ``sparsecholesky`` is not with 2 threads: with no task manager it starts one of
+  its own (``SparseCholeskyTM::FactorSPD1``: ``RunWithTaskManager``) with ``SetNumThreads``'s
+  count (a Taylor-Hood Stokes matrix: 8 distinct solutions of 8 with 2 threads, 1 of 8 with
+  one). ``threaded`` sets that count to 1 and only ``parallel`` raises it, so it factorises in
+  one thread.
 """
 from __future__ import annotations
 
 import math
+import os
 from contextlib import contextmanager
 
-#: the task manager ``threaded`` entered, while it runs
+#: the task manager ``parallel`` entered, while it runs
 _running: list = []
+#: the thread count the run asked for (``threaded``): an int, or "auto"
+_requested: list = ["auto"]
+#: set while ``threaded`` runs (the outer one holds)
+_threaded: list = []
+#: the thread counts ``parallel`` used in this process (``threads_used``)
+_used: set = set()
+#: "auto": at most this many threads. The 2D assembly of a pass has a few 10^4 elements; more
+#: threads than this were not measured (a 2-core machine, [E]) and cost a thread start each
+AUTO_MAX = 4
 
 
 def integrate(f, mesh, vb=None, order: int = 5, definedon=None) -> float:
@@ -42,39 +52,114 @@ def integrate(f, mesh, vb=None, order: int = 5, definedon=None) -> float:
     from ngsolve import VOL, Integrate
     from ngsolve.comp import SumOfIntegrals
 
-    if isinstance(f, SumOfIntegrals):
-        values = Integrate(f, mesh, element_wise=True)
-    else:
-        values = Integrate(f, mesh, VOL if vb is None else vb, order=order, definedon=definedon,
-                           element_wise=True)
+    with parallel():
+        if isinstance(f, SumOfIntegrals):
+            values = Integrate(f, mesh, element_wise=True)
+        else:
+            values = Integrate(f, mesh, VOL if vb is None else vb, order=order,
+                               definedon=definedon, element_wise=True)
     return math.fsum(values.NumPy())
 
 
+def cores() -> int:
+    """The cores this process may run on (its affinity; ``os.cpu_count`` elsewhere)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:          # not Linux
+        return os.cpu_count() or 1
+
+
+def others_running() -> int:
+    """How many other threads want a core now: the kernel's count of runnable threads
+    (``/proc/loadavg``'s fourth field, this thread included; read in about 10 us) minus one;
+    elsewhere the one-minute load average (it lags by about a minute) minus one."""
+    try:
+        with open("/proc/loadavg", "rb") as f:
+            running = int(f.read().split()[3].split(b"/")[0])
+    except (OSError, IndexError, ValueError):
+        try:
+            running = round(os.getloadavg()[0])
+        except (AttributeError, OSError):
+            return 0
+    return max(0, running - 1)
+
+
+def threads_now(requested: int | str | None = None) -> int:
+    """The threads to assemble with now: ``requested`` (an int, or "auto": ``AUTO_MAX``; None:
+    what ``threaded`` set) capped by the cores no other runnable thread wants. NGSolve's
+    workers wait actively and every parallel loop waits for all of them: a worker that shares
+    its core with another busy process made a pass 4-8x slower than one thread (issue 51), so a
+    core another process wants is never taken."""
+    req = _requested[0] if requested is None else requested
+    n = AUTO_MAX if req == "auto" else int(req)
+    n = min(n, cores())
+    if n <= 1:
+        return 1
+    return max(1, min(n, cores() - others_running()))
+
+
+def threads_used() -> list[int]:
+    """The thread counts ``parallel`` assembled with in this process, sorted (1 when it never
+    went parallel)."""
+    return sorted(_used) or [1]
+
+
 @contextmanager
-def threaded(threads: int | None = None):
-    """``with threaded(n):`` NGSolve's task manager with ``n`` threads (the count set before it
-    starts; None: as it stands), BLAS held to one thread. Nested: the outer one holds."""
-    if _running:
+def threaded(threads: int | str | None = None):
+    """``with threaded(n):`` a run with up to ``n`` threads (an int, "auto"; None: as set).
+    Outside ``parallel`` NGSolve runs serially (``SetNumThreads(1)``: no task manager, whose
+    idle workers spin, and ``sparsecholesky`` starts none of its own); BLAS held to one
+    thread. Nested: the outer one holds."""
+    if _threaded:
         yield
         return
     import ngsolve
     from threadpoolctl import threadpool_limits
 
+    previous = _requested[0]
     if threads is not None:
-        ngsolve.SetNumThreads(int(threads))
-    with threadpool_limits(limits=1, user_api="blas"):
-        tm = ngsolve.TaskManager()
-        tm.__enter__()
-        _running.append(tm)
-        try:
+        _requested[0] = threads
+    ngsolve.SetNumThreads(1)
+    _threaded.append(threads)
+    try:
+        with threadpool_limits(limits=1, user_api="blas"):
             yield
-        finally:
-            _running.pop().__exit__(None, None, None)
+    finally:
+        _threaded.pop()
+        _requested[0] = previous
+
+
+@contextmanager
+def parallel():
+    """``with parallel():`` NGSolve's task manager with ``threads_now()`` threads around
+    assembly-type work (``Apply``, ``AssembleLinearization``, ``Assemble``, ``Set``,
+    element-wise ``Integrate``): coloured, so the same numbers at any thread count. Not around
+    factorisations and solves (UMFPACK is sequential; ``sparsecholesky`` adds under locks),
+    nor around Python: idle workers spin. One thread, or already inside: nothing to do.
+    Entering and leaving cost 0.1 ms on a quiet machine (``serial``)."""
+    n = 1 if _running else threads_now()
+    if n == 1:
+        if not _running:
+            _used.add(1)
+        yield
+        return
+    import ngsolve
+
+    _used.add(n)
+    ngsolve.SetNumThreads(n)
+    tm = ngsolve.TaskManager()
+    tm.__enter__()
+    _running.append(tm)
+    try:
+        yield
+    finally:
+        _running.pop().__exit__(None, None, None)
+        ngsolve.SetNumThreads(1)
 
 
 @contextmanager
 def serial():
-    """``with serial():`` the code inside runs without the task manager ``threaded`` started
+    """``with serial():`` the code inside runs without the task manager ``parallel`` started
     (left and entered again: 0.1 ms on a quiet machine; for rare calls only)."""
     if not _running:
         yield

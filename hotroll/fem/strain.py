@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from hotroll.fem.forms import strain_rate
-from hotroll.fem.reproducible import fe_space, integrate
+from hotroll.fem.reproducible import fe_space, integrate, parallel
 from hotroll.model.material import edot_squared
 
 
@@ -63,8 +63,9 @@ class StrainField:
         if kept is None or kept[0] is not velocity:
             kept = self._steady = [velocity, *self._forms(velocity), None]
         _, a, f, inv = kept
-        a.Assemble()
-        f.Assemble()
+        with parallel():
+            a.Assemble()
+            f.Assemble()
         if inv is None:
             inv = kept[3] = a.mat.Inverse(self.space.FreeDofs(), inverse="umfpack")
         else:
@@ -92,7 +93,8 @@ class StrainField:
 
     def integrate(self, velocity, dt: float) -> None:
         """One step of the material update: eps += dt edot at the (material) nodes."""
-        self._edot.Set(self._rate(velocity))
+        with parallel():
+            self._edot.Set(self._rate(velocity))
         self.values[:] += dt * np.maximum(self._edot.vec.FV().NumPy(), 0.0)
 
     def mean_where(self, vertex_mask) -> float:

@@ -53,7 +53,7 @@ import numpy as np
 
 from hotroll.fem.heat_p1 import SteadyP1Operator
 from hotroll.fem.nonlinear import newton
-from hotroll.fem.reproducible import fe_space, integrate
+from hotroll.fem.reproducible import fe_space, integrate, parallel
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 
 
@@ -228,7 +228,8 @@ class TemperatureField:
     def _assemble_load(self, f) -> None:
         """Assemble the load f; the steady form built without its volume source gets it from
         ``element_load`` (at the current tau)."""
-        f.Assemble()
+        with parallel():
+            f.Assemble()
         hook = self._load_hook
         if hook is not None and hook[0] is f:
             f.vec.FV().NumPy()[:] += self.bc.taylor_quinney * hook[1](
@@ -301,7 +302,8 @@ class TemperatureField:
         if not (sources_unchanged and constant and self._f_assembled is f):
             self._assemble_load(f)
         res = self.gf.vec.CreateVector()
-        a.Apply(self.gf.vec, res)
+        with parallel():
+            a.Apply(self.gf.vec, res)
         res.data -= f.vec
         return float(np.sum(res.FV().NumPy()[rows]))
 

@@ -1,13 +1,14 @@
-"""Threads for a solve: NGSolve's task manager, with the BLAS libraries held to one thread.
+"""Threads for a solve: NGSolve's task manager around assembly only, BLAS held to one thread.
 
 numpy's OpenBLAS (and the one NGSolve ships) spin-wait on their own threads after every call;
 with NGSolve's task manager on the same cores, that doubled the time of assembly, residuals and
 refactorisations (Example 1 on C2, 2 cores: 20.5 s -> 9.5-10.9 s of steady solving). Inside a solve
 numpy only handles vectors, for which one thread is plenty.
 
-The task manager's own threads wait actively too: two runs of 2 threads each on 2 cores took
-114 s each for finishing_mill against 7.5 s alone (one thread each: 8.4-8.7 s; issue 34
-session 10). Concurrent runs on the same cores want ``[solver] threads = 1`` (README).
+The task manager's own threads wait actively: a whole run inside it, beside one other busy
+process, took 4-8x the time of one thread (issue 51: 16.8 s against 3.0 s). So the run is
+serial but for its assembly (``fem/reproducible.parallel``), which takes only the cores no
+other runnable thread wants, sampled at each assembly (``threads_now``).
 """
 from __future__ import annotations
 
@@ -17,9 +18,9 @@ from hotroll.fem.reproducible import threaded
 
 
 @contextmanager
-def solver_threads(threads: int | None = None):
-    """``with solver_threads(n):`` NGSolve's TaskManager with ``n`` threads (None: the count
-    as set), BLAS limited to 1 thread; the direct solvers step out of it
+def solver_threads(threads: int | str | None = None):
+    """``with solver_threads(n):`` a solve with up to ``n`` threads for its assembly (an int,
+    "auto"; None: as set by an outer call, else "auto"), BLAS limited to 1 thread
     (``fem/reproducible.py``)."""
     with threaded(threads):
         yield

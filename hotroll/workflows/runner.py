@@ -70,9 +70,9 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
     ckpt = out / "checkpoint"
     if not resume and (ckpt / "state.npz").exists():
         (ckpt / "state.npz").unlink()
-    # the whole run in NGSolve's task manager ([solver] threads, set here): netgen's mesh
-    # optimisation, the forms' set-up and the measures run in parallel too, the same mesh to
-    # the last bit (the solves enter it again: nested, a no-op; the direct solvers step out)
+    # the run's thread count ([solver] threads, set here; the solves' own calls are nested
+    # no-ops): the assembly takes up to that many threads where no other process wants the
+    # cores (fem/reproducible.parallel); meshing, set-up, the direct solvers and Python serial
     with solver_threads(case.solver.threads):
         t0 = time.perf_counter()
         model, settings = build_model(case)

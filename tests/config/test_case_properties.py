@@ -157,7 +157,7 @@ def documented_bounds(info) -> dict | None:
     "an integer >= 1", '"auto", ... or a number > 0'), read from the text the user sees;
     None where the text states none in numbers (tables, names, symbolic bounds only)."""
     text = info.description.split("; allowed: ")[-1]
-    text = re.sub(r"^.* or a number ", "", re.sub(r"^an integer ", "", text))
+    text = re.sub(r"^.* or (a number|an integer) ", "", re.sub(r"^an integer ", "", text))
     m = re.fullmatch(rf"in ([\[(])({_NUM}), ({_NUM})([\])])", text)
     if m:
         return {"ge" if m[1] == "[" else "gt": float(m[2]),

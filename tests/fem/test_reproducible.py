@@ -12,7 +12,8 @@ import pytest
 from casebuild import EXAMPLE1_COARSE, build_case
 
 import hotroll
-from hotroll.fem.reproducible import fe_space, integrate, serial, threaded
+from hotroll.fem import reproducible
+from hotroll.fem.reproducible import fe_space, integrate, parallel, serial, threaded, threads_now
 
 PACKAGE = Path(hotroll.__file__).resolve().parent
 #: a call of NGSolve's Integrate, or an import of it, anywhere but in the helper
@@ -33,7 +34,14 @@ def test_the_grep_sees_a_raw_integrate():
     assert not RAW.search('"""Integrate the fraction of points"""')
 
 
-def test_integrate_is_the_element_sum_at_any_thread_count():
+@pytest.fixture
+def idle(monkeypatch):
+    """No other process wants a core: ``parallel`` takes the threads asked for (up to the
+    cores), whatever else runs on the machine (another test worker)."""
+    monkeypatch.setattr(reproducible, "others_running", lambda: 0)
+
+
+def test_integrate_is_the_element_sum_at_any_thread_count(idle):
     from netgen.geom2d import unit_square
     from ngsolve import BND, Integrate, Mesh, dx, sin, x, y
 
@@ -84,7 +92,7 @@ def test_the_check_sees_a_raw_space():
     assert _raw_space_calls("V = fe_space(VectorH1, mesh, order=2)") == []
 
 
-def test_a_space_made_under_the_task_manager_assembles_as_one_made_in_one_thread():
+def test_a_space_made_under_the_task_manager_assembles_as_one_made_in_one_thread(idle):
     """``fe_space`` under 2 threads: Set and a nonlinear form's Apply give the bits of a space
     made with no task manager (one thread's colouring), in every repeat. (A raw ``VectorH1`` made
     under 2 threads on this mesh: 4 distinct results in 20, 5 of them not these.)"""
@@ -106,23 +114,63 @@ def test_a_space_made_under_the_task_manager_assembles_as_one_made_in_one_thread
         a.Apply(gf.vec, r)
         return tuple(hashlib.sha1(w.FV().NumPy().tobytes()).hexdigest() for w in (gf.vec, r))
 
-    with threaded(2):
+    with threaded(2), parallel():
         with serial():
             ref = bits(VectorH1(mesh, order=2))
         got = [bits(fe_space(VectorH1, mesh, order=2)) for _ in range(6)]
     assert got == [ref] * len(got)
 
 
-def test_threaded_sets_the_count_and_the_outer_one_holds():
+def test_threaded_sets_the_count_and_the_outer_one_holds(idle):
+    """A run is serial (no task manager: its idle workers spin) but inside ``parallel``,
+    which takes the count ``threaded`` set, the outer one holding."""
     import ngsolve
 
+    if reproducible.cores() < 2:
+        pytest.skip("one core")
     with threaded(2):
-        assert ngsolve.GetNumThreads() == 2
-        with threaded(1):
-            assert ngsolve.GetNumThreads() == 2
-    assert ngsolve.GetNumThreads() == 1          # no task manager
-    with threaded(1):
         assert ngsolve.GetNumThreads() == 1
+        with parallel():
+            assert ngsolve.GetNumThreads() == 2
+            with parallel():                       # nested: a no-op
+                assert ngsolve.GetNumThreads() == 2
+        assert ngsolve.GetNumThreads() == 1
+        with threaded(1), parallel():
+            assert ngsolve.GetNumThreads() == 2
+    with threaded(1), parallel():
+        assert ngsolve.GetNumThreads() == 1
+
+
+def test_the_count_leaves_every_core_another_process_wants(monkeypatch):
+    """threads_now: the count asked for, capped by the cores and by the cores no other runnable
+    thread wants; "auto" asks for AUTO_MAX. Worked by hand for each line."""
+    monkeypatch.setattr(reproducible, "cores", lambda: 2)
+    for others, asked, expected in [(0, 2, 2), (1, 2, 1), (5, 2, 1), (0, 1, 1), (0, 8, 2),
+                                    (0, "auto", 2), (1, "auto", 1)]:
+        monkeypatch.setattr(reproducible, "others_running", lambda o=others: o)
+        assert threads_now(asked) == expected, (others, asked)
+    monkeypatch.setattr(reproducible, "cores", lambda: 16)
+    for others, asked, expected in [(0, "auto", reproducible.AUTO_MAX), (13, "auto", 3),
+                                    (3, 8, 8), (10, 8, 6), (16, 8, 1)]:
+        monkeypatch.setattr(reproducible, "others_running", lambda o=others: o)
+        assert threads_now(asked) == expected, (others, asked)
+
+
+def test_a_busy_process_is_seen_running():
+    """others_running sees a CPU-bound process beside this one (the kernel's runnable count):
+    a busy loop is runnable at every instant."""
+    import subprocess
+    import sys
+    import time
+
+    busy = subprocess.Popen([sys.executable, "-c", "while True: pass"])
+    try:
+        time.sleep(0.3)
+        seen = [reproducible.others_running() for _ in range(20)]
+    finally:
+        busy.kill()
+        busy.wait()
+    assert min(seen) >= 1
 
 
 def _figures(out: Path) -> dict:
@@ -173,7 +221,7 @@ CASES = {"viscoplastic": EXAMPLE1_COARSE, "coulomb_thermal": _thermal_coulomb()}
 
 
 @pytest.mark.parametrize("base", CASES.values(), ids=CASES.keys())
-def test_a_pass_is_the_same_bits_in_every_run_and_at_1_and_2_threads(base, tmp_path,
+def test_a_pass_is_the_same_bits_in_every_run_and_at_1_and_2_threads(base, tmp_path, idle,
                                                                      monkeypatch):
     runs = [_solve(build_case(base, **{"solver.threads": n}), tmp_path / f"{k}_{n}",
                    monkeypatch) for k, n in enumerate((2, 2, 1))]

@@ -97,9 +97,13 @@ def test_the_transports_cool_by_hotrolls_model(rolled):
         assert 5.0 < T0 - want < 60.0
 
 
-def test_the_rolls_elastic_data_come_from_pyroll():
+def test_the_rolls_elastic_data_come_from_pyroll(monkeypatch):
     """A Roll with elastic_modulus and poissons_ratio rolls with hotroll's elastic roll of
     that modulus: R' > R, flattening_ratio = R'/R, and a softer roll flattens more."""
+    # this file's mesh, whatever test ran before (another file's coarser mesh does not fit
+    # this strip: a test run in another order failed on it)
+    monkeypatch.setattr(hp.Config, "MESH", {"h_contact": 0.0011})
+    monkeypatch.setattr(hp.Config, "SOLVER", {"threads": 1})
     out = {}
     for E in (210e9, 70e9):
         roll = pr.Roll(groove=pr.FlatGroove(usable_width=300e-3), nominal_radius=R,
