@@ -11,11 +11,21 @@ import numpy as np
 
 from hotroll.fem.free_surface import StripShape
 
+#: Newton iterations of a continuation stage when the case leaves ``solver.max_iterations``
+#: out (the coupled solve at the target m adds 3 per a_f / free-surface update, ``max_outer``).
+STAGE_ITERATIONS = 30
+
+
+def stage_iterations(given: int | None) -> int:
+    """The Newton limit of a continuation stage: the case's ``solver.max_iterations`` where
+    given (below 30 too: issue 51 item 7), else ``STAGE_ITERATIONS``."""
+    return STAGE_ITERATIONS if given is None else int(given)
+
 
 @dataclass
 class SteadySettings:
     tol: float = 1e-5
-    max_it: int = 30                 # Newton iterations per continuation stage
+    max_it: int = STAGE_ITERATIONS   # Newton iterations per continuation stage
     a_f: float | None = None         # None: (3.15), iterated to its fixed point
     a_f_max: float = 1e6
     a_f_rtol: float = 1e-2           # fixed point of the a_f rule reached at this change
