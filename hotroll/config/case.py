@@ -19,6 +19,7 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 from pydantic.fields import FieldInfo
 
+from hotroll.config import plausibility
 from hotroll.config.base import MESH_TABLE, CaseError, Problems, Section, fields_of
 from hotroll.config.friction import FrictionConfig
 from hotroll.config.material import MaterialConfig
@@ -34,7 +35,7 @@ from hotroll.config.sections import (  # noqa: F401 (re-exported)
     check_profile,
 )
 from hotroll.config.thermal import ThermalConfig
-from hotroll.config.units import UnitError
+from hotroll.config.units import ENGINEERING, UnitError, shown
 from hotroll.model.geometry import auto_contact_size
 from hotroll.model.grades import get_grade
 from hotroll.model.strip_elasticity import family_modulus
@@ -128,9 +129,18 @@ class Case(Section):
         if self.plate.temperature_profile is not None and self.thermal is None:
             problems.append("plate.temperature_profile: needs a [thermal] section (an isothermal "
                             "run has one temperature, plate.temperature)")
+        if not problems and not self.solver.force:
+            problems += [f"{line} (solver.force = true or --force runs it anyway)"
+                         for line in plausibility.refusals(self)]
         if problems:
             raise Problems(problems)
         return self
+
+    def warnings(self) -> list[str]:
+        """What a run of this case reports and goes on with (``config/plausibility.py``): a
+        pass outside its flow-stress fit's ranges, a steel below austenite, a nondimensional
+        case; each a ``section.key: ...`` line."""
+        return plausibility.warnings(self)
 
     @property
     def _exact_steady(self) -> bool:
@@ -181,7 +191,9 @@ class Case(Section):
         return case_from_dict(set_dotted(self.to_dict(), dotted))
 
     def to_toml(self) -> str:
-        """TOML text that round-trips through :func:`case_from_toml`."""
+        """TOML text that round-trips through :func:`case_from_toml`: SI numbers, each line's
+        comment the key's description, led by the value in an engineer's unit where it has one
+        ("= 6 mm", "= 1000 degC": ``config/units.shown``)."""
         data = self.to_dict()
         lines = [f"name = {_toml_value(data.pop('name'))}"]
         for section, values in data.items():
@@ -189,7 +201,13 @@ class Case(Section):
             lines += ["", f"[{section}]"]
             for key, value in values.items():
                 info = fields_of(model)[key]
-                lines.append(f"{key} = {_toml_value(value)}".ljust(36) + f"  # {info.description}")
+                unit = (info.json_schema_extra or {}).get("unit", "") \
+                    if isinstance(info.json_schema_extra, dict) else ""
+                eng = (f"= {shown(float(value), unit)}; "
+                       if unit in ENGINEERING and isinstance(value, (int, float))
+                       and not isinstance(value, bool) else "")
+                lines.append(f"{key} = {_toml_value(value)}".ljust(36)
+                             + f"  # {eng}{info.description}")
         return "\n".join(lines) + "\n"
 
 

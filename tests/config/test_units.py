@@ -190,3 +190,19 @@ def test_six_mm_and_0_006_give_the_same_summary_bit_for_bit(tmp_path):
                           if "wall_time" not in k and not k.startswith("estimated_")})
     assert summaries[0]["converged"]
     assert summaries[1] == summaries[0]
+
+
+def test_the_readmes_first_case_is_the_bundled_pass():
+    """The README's first case, written with units, is the bundled hot_strip_finishing to the
+    last bit (the README's own words)."""
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text()
+    block = readme.split("## A first case", 1)[1].split("```toml", 1)[1].split("```", 1)[0]
+    written = tomllib.loads(block)
+    assert written["pass"]["roll_radius"] == "350 mm"
+    bundled = tomllib.loads(example_path("hot_strip_finishing").read_text())
+    for sec in written:
+        for key, value in written[sec].items():
+            if isinstance(value, str) and key not in ("law", "grade"):
+                assert bundled[sec][key] != value                # the file says it in SI
+    keep = {k: bundled[k] for k in written}
+    assert case_from_dict(written).model_dump() == case_from_dict(keep).model_dump()
