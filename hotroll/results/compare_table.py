@@ -95,7 +95,9 @@ DEFINITIONS = [
     "FE roll torque = `roll_torque` = int tau r ds of the upper roll; slab `torque` = "
     "R^2 int (-s) tau dphi per roll. FE `roll_power` is one roll; slab `power` is both rolls "
     "(the table halves it).",
-    "Neutral angle: both from the roll's vertical centre line, positive towards the entry. "
+    "Neutral angle: both from the roll's vertical centre line, positive towards the entry; "
+    "the FE's none (-) where its arc sticks and the slip's sign is noise (summary.json "
+    "`neutral` says so, docs/theory.md 1e). "
     "Forward slip: both (v_exit - omega R)/(omega R); the slab's is h_n cos(phi_n)/h1 - 1 "
     "(uniform velocity over the section at the neutral point), the FE's the mean exit velocity.",
     "FE pressure = -normal_stress of contact.csv (the contact penalty's reaction, Pa, negative "

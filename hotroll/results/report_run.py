@@ -14,6 +14,7 @@ import re
 import tomllib
 from pathlib import Path
 
+from hotroll.results.neutral import LABEL, Neutral
 from hotroll.results.run_dir import RunDir
 from hotroll.results.summary import Summary
 from hotroll.results.units import UNITS
@@ -57,7 +58,7 @@ def scale(key: str, unit: str, magnitude: float) -> tuple[float, float, str]:
         return 0.01, 0.0, "%"
     if unit == "K":
         return 1.0, 273.15, "°C"
-    if unit == "rad" and "angle" in key:
+    if unit == "rad":                    # angles and the sticking zone's, in degrees
         return math.pi / 180.0, 0.0, "°"
     if unit == "m" and 0 < magnitude < 1.0:
         return 1e-3, 0.0, "mm"
@@ -162,8 +163,9 @@ def run_warnings(s: dict) -> list[dict]:
     end = contact_end_text(s)
     if end:
         add("warn" if s.get("contact_end_kind") == "bound" else "info", end)
-    if s.get("neutral_angle_reason"):
-        add("info", f"no neutral angle: {s['neutral_angle_reason']}")
+    neutral = Neutral.from_summary(s)
+    if neutral.kind == "sticking":     # a skidding strip: the error above says it
+        add("info", neutral.label + (f" ({neutral.reason})" if neutral.reason else ""))
     if (s.get("unconverged_steps_in_window") or 0) > 0:
         add("warn", f"{s['unconverged_steps_in_window']} step(s) of the averaging window did "
                     f"not converge (left out of the means)")
@@ -280,14 +282,32 @@ def run_context(d: Path) -> dict:
         figures.append((FIGURE_CAPTIONS["compare.png"], compare["figure"]))
     code = s.get("exit_code")
     ok = code == 0 or (code is None and s.get("converged"))
-    headline = [r for k in ("roll_force", "roll_force_total", "roll_torque", "forward_slip",
-                            "exit_temperature_mean", "roll_power")
+    headline = [r for k in HEADLINE
                 if k in s and (r := show(k, s[k], unit_of(k, s.get("units") or {})))]
+    headline.append(neutral_card(s))
     return {"kind": "run", "title": s.get("case_name") or name or d.name,
             "status": s.get("status"), "exit_code": code, "ok": bool(ok),
-            "facts": _facts(s), "headline": headline[:6], "groups": summary_groups(s),
+            "facts": _facts(s), "headline": headline, "groups": summary_groups(s),
             "inputs": inputs, "compare": compare, "figures": figures,
             "warnings": run_warnings(s), "run_dir": run_dir}
+
+
+#: The page's key figures (those the summary has), then the neutral point's card.
+HEADLINE = ("roll_force", "roll_force_total", "roll_torque", "roll_power", "forward_slip",
+            "contact_length", "exit_temperature_mean")
+
+
+def neutral_card(s: dict) -> dict:
+    """The neutral point's key figure, as the summary tells it (``results/neutral.py``): its
+    angle in degrees and the story below (degrees and radians, a sticking stretch around it),
+    or "none" and the sticking zone (or why)."""
+    n = Neutral.from_summary(s)
+    card = {"key": "neutral", "label": LABEL, "value": ""}
+    if n.kind == "point":
+        return card | {"text": number(n.angle_deg), "unit": "°", "si": n.text, "si_unit": "",
+                       "value": repr(n.angle)}
+    return card | {"text": "none", "unit": "", "si": n.text.removeprefix("none: "),
+                   "si_unit": ""}
 
 
 def _facts(s: dict) -> list[tuple[str, str]]:

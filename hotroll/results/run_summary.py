@@ -12,6 +12,7 @@ import numpy as np
 from hotroll.config.case import Case
 from hotroll.fem import quantities as Q
 from hotroll.results.engineering import gap_means, mill_setup, width_totals
+from hotroll.results.neutral import decide
 from hotroll.results.outcome import conservation_problem, exit_code, leak_to_slip
 from hotroll.results.output import vertex_fields, write_csv, write_json, write_npz, write_vtk
 from hotroll.results.profiles import exit_profiles
@@ -134,7 +135,7 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
                                 if summary.get("contact_length") else None)
     summary.update(width_totals(summary, case.pass_.width))
     summary.update(mill_setup(summary, case.pass_.exit_thickness, case.pass_.mill_modulus))
-    summary["temperature"] = case.plate.temperature
+    summary["temperature"] = case.plate.temperature if uses_temperature(case) else None
 
     profile = exit_profiles(run)
     summary["exit_profile"] = profile      # eta, temperature (K), strain (-) at the outlet
@@ -151,6 +152,21 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
     return typed
 
 
+def uses_temperature(case: Case) -> bool:
+    """Whether anything of the run depends on the plate temperature: a ``[thermal]`` section,
+    or a flow-stress law whose K or m changes with it (not Norton-Hoff's K, m): the summary
+    gives the temperature only then (an isothermal K = 1 case has none to show)."""
+    if case.thermal is not None:
+        return True
+    law, T = case.material.flow_stress(), case.plate.temperature
+    strain = case.plate.mean_entry_strain
+    try:
+        return any(float(f(T)) != float(f(1.05 * T)) for f in (
+            law.rate_exponent, lambda t: law.consistency(max(strain, 0.1), t)))
+    except (ValueError, ArithmeticError):      # outside the law's temperatures: it depends
+        return True
+
+
 def shift_positions(summary: dict, shift: float) -> None:
     """Move the summary's x positions by ``shift`` (the roll's frame to the case's)."""
     if not shift:
@@ -158,6 +174,8 @@ def shift_positions(summary: dict, shift: float) -> None:
     for key in ("neutral_point", "roll_centre", "contact_start", "contact_end"):
         if summary.get(key) is not None:
             summary[key] = [summary[key][0] + shift, summary[key][1]]
+    if summary.get("sticking_zone_x") is not None:
+        summary["sticking_zone_x"] = [x + shift for x in summary["sticking_zone_x"]]
     summary["contact_loss"] = [[a + shift, b + shift] for a, b in summary["contact_loss"]]
 
 
@@ -248,22 +266,14 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
     steady_solver = case.solver.method == "steady"
     mean = {k: float(np.nanmean([r[k] for r in solved])) if any(
         math.isfinite(r[k]) for r in solved) else math.nan for k in AVERAGED}
-    # the neutral angle: the split of the slip's signs (``Q.neutral_index``). Where it lies in
-    # a sticking zone (slip below 1e-3 U) in which the slip changes sign more than once, the
-    # sign is noise and no point is neutral: null with the reason. The flux's (slab) neutral
-    # angle, which needs no slip sign, is given beside it
-    ang = mean["neutral_angle"]
-    ang_flux = Q.flux_neutral_angle(rp, mean["mass_flux_in"])
-    stick = Q.sticking_zone(prof, rp.u_roll, 2.0 * run.problem.h)
-    in_stick = stick is not None and math.isfinite(ang) and (
-        stick[1] - run.problem.h / rp.radius <= ang <= stick[0] + run.problem.h / rp.radius)
-    flips = Q.slip_sign_changes(prof, stick) if in_stick else 0
-    no_neutral = (
-        f"the slip changes sign {flips} times in the sticking zone {stick[0]:.4g} .. "
-        f"{stick[1]:.4g} rad (|v_s| below {Q.STICKING_FLOOR:g} of the roll speed): the strip "
-        "moves with the roll, no point is neutral") if flips > 1 else None
-    cx, cy = rp.centre
     outlet_driven = mean["outlet_penalty_power"] < -0.05 * mean["plastic_power"]
+    # the neutral story, decided once (results/neutral.py; docs/theory.md 1e): the split of the
+    # slip's signs (``Q.neutral_index``), none where it is noise in a sticking zone or the
+    # strip skids. The flux angle (the strip's mean speed = the roll's horizontal speed) is
+    # given beside it: it needs no slip sign, and it is not the neutral point
+    neutral = decide(prof, rp, run.problem.h, mean["neutral_angle"], bool(outlet_driven))
+    ang_flux = Q.flux_neutral_angle(rp, mean["mass_flux_in"])
+    cx, cy = rp.centre
     steady = state.status == "steady"
     exact = run.form.exact
     # exact contact: every tensile node of the raw multiplier (bilateral), and the stretch of the
@@ -293,12 +303,8 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "failure": state.failure or None,
         "converged": bool(steady and last["solver_converged"] and not outlet_driven),
         "steady_state": steady, "outlet_driven": bool(outlet_driven),
-        # docs/theory.md 1e: null with the reason where the slip's sign is noise
-        "neutral_point": None if no_neutral else [cx - rp.radius * math.sin(ang),
-                                                  cy - rp.radius * math.cos(ang)],
-        "neutral_angle": None if no_neutral else ang, "neutral_angle_reason": no_neutral,
-        "neutral_angle_in_sticking_zone": bool(in_stick), "neutral_angle_flux": ang_flux,
-        "sticking_zone": stick,
+        # docs/theory.md 1e: the one neutral story (results/neutral.py)
+        **neutral.to_summary(), "neutral_angle_flux": ang_flux,
         **{k: mean[k] for k in ("roll_force", "roll_torque", "roll_power", "forward_slip",
                                 "entry_velocity", "exit_velocity", "mass_flux_in",
                                 "mass_flux_out", "plastic_power", "friction_power",

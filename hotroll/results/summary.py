@@ -64,14 +64,20 @@ class Summary(Mapping):
     mill_power: float = _f("W", "mill power, both rolls", "both rolls' power",
                            group="Pass", when="width")
     forward_slip: float = _f("-", "forward slip", "v_exit / |U_roll| - 1", group="Pass")
+    neutral: str = _f(None, "neutral point", "the neutral story in words, the one every "
+                      "output shows (`results/neutral.py`): the point's angle in degrees and "
+                      "radians, or `none: sticking zone from ... to ...` (the strip skids, "
+                      "no slip measured)", group="Pass")
     neutral_angle: float | None = _f("rad", "neutral angle", "from the roll's vertical centre "
-                                     "line, positive towards the entry; null where the slip's "
-                                     "sign is noise", group="Pass")
-    neutral_point: list | None = _f("m", "neutral point (x, y)", "(x, y) on the roll",
-                                    group="Pass")
+                                     "line, positive towards the entry; null where no point is "
+                                     "neutral (`neutral`)", group="Pass")
+    neutral_point: list | None = _f("m", "neutral point (x, y)", "(x, y) on the roll; null "
+                                    "where no point is neutral", group="Pass")
     sticking_zone: list | None = _f("rad", "sticking zone (from, to)", "start and end angle of "
                                     "the longest stretch slipping below 1e-3 of the roll speed",
                                     group="Pass")
+    sticking_zone_x: list | None = _f("m", "sticking zone (x from, x to)", "where "
+                                      "`sticking_zone` starts and ends", group="Pass")
     mean_pressure: float | None = _f("Pa", "mean roll pressure", "roll force over contact "
                                      "length", group="Pass")
     mean_flow_stress: float = _f("Pa", "mean flow stress in the gap", "mean over the roll gap",
@@ -148,12 +154,15 @@ class Summary(Mapping):
                                   group="Solver")
     wall_time_s: float = _f("s", "wall time", "of the solve and the files", group="Solver")
     # --- the rest -----------------------------------------------------------------------------
-    neutral_angle_reason: str | None = _f(None, "why no neutral angle", "why `neutral_angle` "
+    neutral_angle_reason: str | None = _f(None, "why no neutral point", "why `neutral_angle` "
                                           "is null")
     neutral_angle_in_sticking_zone: bool = _f(None, "neutral angle in sticking zone", "the sign "
                                               "change lies in the sticking zone")
-    neutral_angle_flux: float | None = _f("rad", "neutral angle (flux)", "the slab neutral angle "
-                                          "of the computed flux")
+    neutral_angle_flux: float | None = _f("rad", "angle where the strip's mean speed is the "
+                                          "roll's horizontal speed", "from the mass flux: "
+                                          "y(phi) U cos(phi) = q, slab theory's neutral angle "
+                                          "of the computed flux; not the neutral point "
+                                          "(`neutral`), defined on a sticking arc too")
     mass_flux_in: float = _f("m^2/s", "mass flux in", "half strip")
     mass_flux_out: float = _f("m^2/s", "mass flux out", "half strip")
     plastic_power: float = _f("W/m", "plastic power", "")
@@ -258,7 +267,9 @@ class Summary(Mapping):
                              "slip")
     not_conserved: bool = _f(None, "not conserved", "a conservation check failed")
     width: float | None = _f("m", "width", "`[pass] width`")
-    temperature: float = _f("K", "plate temperature", "")
+    temperature: float | None = _f("K", "plate temperature", "the plate's uniform (or entry) "
+                                   "temperature; null where nothing depends on it (no "
+                                   "`[thermal]`, a flow-stress law without temperature)")
     exit_profile: dict | None = _f(None, "exit profile", "the outlet's temperature and strain "
                                    "profiles over eta; in a thermal run each streamline's pass "
                                    "strain and strain-weighted means of ln(edot) and 1/T")

@@ -188,11 +188,13 @@ class SteadyRun(ContactEndMixin):
         self.couplings = self._couplings(warm=hasattr(warm, "apply"))
         self.end_search = ContactEndSearch()     # the contact end's search afresh each solve
 
-        def record(st):
+        def record(st, coupling: dict | None = None):
+            """One history row (a Newton solve, or a coupling update: ``coupling``) and its
+            progress report: Newton iterations and coupling updates, not time steps."""
             if self.record:
                 res.rows.append(self.measure(st, len(res.rows)))
-                if progress:
-                    progress(res.rows[-1])
+            if progress:
+                progress(self._progress(st, coupling, res))
 
         target = self.problem.material.m
         t0 = time.perf_counter()
@@ -302,7 +304,7 @@ class SteadyRun(ContactEndMixin):
             self._update_coupled(res)
             record(st)
         f.m.Set(path[-1])
-        state = {"settled": False, "updates": 0}
+        state = {"settled": False, "updates": 0, "rounds": 0}
 
         def couple(update: float) -> bool:
             """One a_f / surface update; False once settled (or at the cap): freeze."""
@@ -313,10 +315,14 @@ class SteadyRun(ContactEndMixin):
             # one of the max_outer rounds
             if not (self.form.compliance and update > COUPLE_BELOW_ELASTIC):
                 state["updates"] += 1
-            state["settled"] = self._update_coupled(res, update) <= 1.0
+            change = self._update_coupled(res, update)
+            state["settled"] = change <= 1.0
+            state["rounds"] += 1
             if f.friction_dual is not None:      # the form's data moved (fem/primal_dual.py)
                 f.friction_dual.restart()
-            record(SolveStats(iterations=0, converged=False))
+            record(SolveStats(iterations=0, converged=False),
+                   {"round": state["rounds"], "newton_update": update, "change": change,
+                    "changes": dict(self.last_changes), "settled": state["settled"]})
             return True
 
         coupled = any(c.in_fixed_point for c in self.couplings)
@@ -405,7 +411,36 @@ class SteadyRun(ContactEndMixin):
                 changes[c.name] = math.inf
                 continue
             changes[c.name] = c.update(res)
+        self.last_changes = changes      # each coupling's change, for the progress report
         return max(changes.values(), default=0.0)
+
+    def _progress(self, st: SolveStats, coupling: dict | None, res: SteadyResult) -> dict:
+        """The progress report of one history row: a Newton solve (its iterations, residual
+        and last update; the roll force of the solution) or a coupling update (the Newton
+        update it came at, each coupling's change in units of its tolerance), in ``message``
+        and as figures. A steady solve has no time steps: no ``step`` or ``time``."""
+        if coupling is None:
+            n, m = len(res.stats), self.form.m.Get()
+            info = {"stage": "newton", "newton_solve": n, "newton_iterations": st.iterations,
+                    "newton_residual": st.residual, "newton_update": st.update,
+                    "newton_converged": st.converged, "rate_exponent": m}
+            force = res.rows[-1].get("roll_force") if self.record and res.rows else None
+            info["message"] = (
+                f"Newton solve {n} at m = {m:.4g}: "
+                f"{'converged' if st.converged else 'NOT converged'} after {st.iterations} "
+                f"iterations, residual norm {st.residual:.3g}, last update {st.update:.3g} of "
+                f"the roll speed" + (f"; roll force {force:.6g} N/m" if force is not None
+                                     and math.isfinite(force) else ""))
+            return info
+        parts = ", ".join(f"{k} {v:.3g}" if math.isfinite(v) else f"{k} waiting"
+                          for k, v in coupling["changes"].items())
+        return {"stage": "coupling", "coupling_update": coupling["round"],
+                "newton_update": coupling["newton_update"],
+                "coupling_change": coupling["change"], "coupling_settled": coupling["settled"],
+                "message": (f"coupling update {coupling['round']} at a Newton update of "
+                            f"{coupling['newton_update']:.3g} of the roll speed: changes in "
+                            f"units of their tolerances: {parts or 'none'}; "
+                            + ("settled" if coupling["settled"] else "not settled"))}
 
     def _set_contact(self) -> None:
         """The contact edges: the arc's chain (mapped from x_c to x_e); the friction indicator

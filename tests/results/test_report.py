@@ -146,13 +146,14 @@ def test_run_page_numbers_are_the_summary_with_their_units(compared, key):
 
 def test_run_page_says_why_there_is_no_neutral_angle(compared):
     """Example 1 sticks (a_f from (3.15)): the page has no neutral-angle number but the
-    summary's reason as a note, and the sticking zone in its unit."""
+    summary's story and reason as a note, and the sticking zone in its unit."""
     s = json.loads((compared / "fe" / "summary.json").read_text())
     page = _page(compared / "report.html")
     assert s["neutral_angle"] is None
     assert not [c for a, c in page.rows if a.get("data-key") == "neutral_angle"]
     text = " ".join((compared / "report.html").read_text().split())
-    assert f"no neutral angle: {s['neutral_angle_reason']}" in html.unescape(text)
+    assert (f"neutral point: {s['neutral']} ({s['neutral_angle_reason']})"
+            in html.unescape(text))
     shown, unit, _, _ = _summary_row(page, "sticking_zone")
     assert _si(shown, unit) == pytest.approx(s["sticking_zone"], rel=6e-4)
 

@@ -6,7 +6,7 @@ from typing import Mapping
 
 import matplotlib.pyplot as plt
 
-from hotroll.results.figures.draw import draw_vline, save_figure
+from hotroll.results.figures.draw import draw_neutral, draw_vline, save_figure
 from hotroll.results.figures.profiles import zoom_slip
 from hotroll.results.figures.run_files import RunFiles, column
 
@@ -14,8 +14,8 @@ from hotroll.results.figures.run_files import RunFiles, column
 def plot_compare(runs: Mapping[str, Path], out_png: Path, *, title: str = "") -> Path:
     """Overlay contact profiles and top-boundary velocities of several runs.
 
-    Panels: (a) v_slip, (b) v_slip around the neutral points, (c) normal
-    contact stress (exit-corrected where available), (d) tangential stress,
+    Panels: (a) v_slip, (b) v_slip around the neutral points, (c) contact
+    pressure (compressive positive; exit-corrected where available), (d) tangential stress,
     (e) v1 and (f) v2 along the top boundary.  Labels are the dict keys.
     """
     loaded = [(RunFiles(Path(d)), str(label)) for label, d in runs.items()]
@@ -33,14 +33,16 @@ def plot_compare(runs: Mapping[str, Path], out_png: Path, *, title: str = "") ->
             sn = column(c, "normal_stress_corrected")
             if sn is None:
                 sn = column(c, "normal_stress")
-            if sn is not None:
-                a_sn.plot(x, sn, ".-", ms=3, color=colour, label=label)
+            if sn is not None:         # the contact pressure, compressive positive
+                a_sn.plot(x, -sn, ".-", ms=3, color=colour, label=label)
             st = column(c, "shear_stress")
             if st is not None:
                 a_st.plot(x, st, ".-", ms=3, color=colour, label=label)
-            xn = r.neutral_x()
+            # each run's neutral point, or its sticking zone, as its summary tells it
+            marks = [(kind, pos, f"{label}: {text}") for kind, pos, text in r.neutral().marks("x")]
             for ax in (a_vs, a_sn, a_st):
-                draw_vline(ax, xn, None, color=colour, ls=":", lw=0.9)
+                draw_neutral(ax, marks if ax is a_vs else [(k, p, None) for k, p, _ in marks],
+                             color=colour)
         t = r.top
         xt = column(t, "x")
         if xt is not None:
@@ -60,7 +62,7 @@ def plot_compare(runs: Mapping[str, Path], out_png: Path, *, title: str = "") ->
     panels = (
         (a_vs, r"(a) relative velocity $v_s$", r"$v_s$ [m/s]"),
         (a_zoom, r"(b) $v_s$ around the neutral points", r"$v_s$ [m/s]"),
-        (a_sn, r"(c) normal stress $T_n\cdot n$ [Pa]", "[Pa]"),
+        (a_sn, r"(c) contact pressure $p = -T_n\cdot n$ (compressive > 0) [Pa]", "[Pa]"),
         (a_st, r"(d) tangential stress $T_\tau\cdot n_\tau$ [Pa]", "[Pa]"),
         (a_v1, r"(e) $v_1$ along the top boundary (-- entry, -. exit)", r"$v_1$ [m/s]"),
         (a_v2, r"(f) $v_2$ along the top boundary", r"$v_2$ [m/s]"),

@@ -146,6 +146,30 @@ def draw_vline(ax, x, label, **kw):
     ax.axvline(x, label=label, **style)
 
 
+def draw_neutral(ax, marks, **style) -> None:
+    """The neutral story's marks (``Neutral.marks``): a neutral point's line, or the sticking
+    zone's span where no point is neutral, each with the story as its label."""
+    for kind, at, label in marks:
+        if kind == "line":
+            ax.axvline(at[0], label=label, **{"color": "k", "ls": ":", "lw": 1.2, **style})
+        else:
+            ax.axvspan(at[0], at[1], label=label,
+                       **{"color": "tab:purple", "alpha": 0.12, "lw": 0, **style})
+
+
+#: (factor, unit) of a stress shown in the largest unit its magnitude reaches
+STRESS_UNITS = ((1e6, "MPa"), (1e3, "kPa"), (1.0, "Pa"))
+
+
+def stress_unit(*values) -> tuple[float, str]:
+    """(factor, unit) to show stresses (Pa) in Pa, kPa or MPa by their largest magnitude: a
+    K = 1 case's stresses of about 1 Pa are not drawn as 1e-6 MPa."""
+    vals = [np.asarray(v, dtype=float) for v in values if v is not None]
+    vals = [v[np.isfinite(v)] for v in vals]
+    big = max((float(np.max(np.abs(v))) for v in vals if v.size), default=0.0)
+    return next(((f, u) for f, u in STRESS_UNITS if big >= f), STRESS_UNITS[-1])
+
+
 def not_available(ax, text="not available") -> None:
     ax.text(0.5, 0.5, text, ha="center", va="center", transform=ax.transAxes,
             color="0.4")

@@ -2,14 +2,20 @@
 around the neutral point."""
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Sequence
 
 import matplotlib.pyplot as plt
 import numpy as np
 
-from hotroll.results.figures.draw import draw_vline, not_available, run_title, save_figure
+from hotroll.results.figures.draw import (
+    draw_neutral,
+    draw_vline,
+    not_available,
+    run_title,
+    save_figure,
+    stress_unit,
+)
 from hotroll.results.figures.run_files import RunFiles, column
 from hotroll.results.figures.slab import plot_compare_profiles
 
@@ -26,11 +32,15 @@ def profile_panel(ax, x, y, ylabel: str, title: str, what: str, **style) -> None
 
 
 def fig_contact(run: RunFiles, path: Path) -> Path | None:
+    """Slip, contact pressure (compressive positive, as every figure draws it) and shear
+    along x, and the slip around the neutral point; the neutral story of the summary on every
+    panel (``RunFiles.neutral``)."""
     c = run.contact
     x = column(c, "x")
     if x is None:
         return None
-    xn = run.neutral_x()
+    neutral = run.neutral()
+    marks = neutral.marks("x")
     fig, axes = plt.subplots(2, 2, figsize=(11, 8), layout="constrained")
     (a_vs, a_sn), (a_st, a_zoom) = axes
 
@@ -43,53 +53,54 @@ def fig_contact(run: RunFiles, path: Path) -> Path | None:
     if exact:        # the multiplier's nodal forces over their lengths: no projection or correction
         sns = snc = None
     if sn is not None or snc is not None:
+        # the contact pressure p = -T_n.n (compressive positive), as fig_contact_angle
+        f, unit = stress_unit(sn, sns, snc)
         if sn is not None:
-            a_sn.plot(x, sn, ".-" if exact else ".", ms=2.5, color="C0" if exact else "0.6",
+            a_sn.plot(x, -sn / f, ".-" if exact else ".", ms=2.5, color="C0" if exact else "0.6",
                       label="contact pressure (the multiplier's nodal forces / lengths)"
                       if exact
                       else "raw (nodal penalty reaction)")
         if sns is not None:
-            a_sn.plot(x, sns, "-", lw=1.5, color="C0", label="P1 projection")
+            a_sn.plot(x, -sns / f, "-", lw=1.5, color="C0", label="P1 projection")
         if snc is not None:
-            a_sn.plot(x, snc, "--", lw=1.2, color="C1", label="exit-corrected (raw)")
-        a_sn.set_ylabel(r"$T_n\cdot n$ [Pa]")
-        a_sn.set_title(r"normal contact stress $T_n\cdot n$ [Pa]")
+            a_sn.plot(x, -snc / f, "--", lw=1.2, color="C1", label="exit-corrected (raw)")
+        a_sn.axhline(0.0, color="0.5", lw=0.8)
+        a_sn.set_ylabel(f"$p = -T_n\\cdot n$ [{unit}]")
+        a_sn.set_title(f"contact pressure p (compressive > 0) [{unit}]")
         a_sn.legend(fontsize=8)
     else:
         not_available(a_sn, "normal stress not available")
 
     st, sts = column(c, "shear_stress"), column(c, "shear_stress_smooth")
+    f, unit = stress_unit(st, sts)
+    ylabel = f"$T_\\tau\\cdot n_\\tau$ [{unit}]"
+    title = f"shear stress on the strip (> 0: the roll drags it forward) [{unit}]"
     if sts is not None:
-        a_st.plot(x, st, ".", ms=2.5, color="0.6", label="raw (friction law at the nodes)")
-        profile_panel(a_st, x, sts, r"$T_\tau\cdot n_\tau$ [Pa]",
-                       r"tangential stress $T_\tau\cdot n_\tau$ [Pa]", "shear stress",
-                       color="tab:green", label="P1 projection")
+        a_st.plot(x, st / f, ".", ms=2.5, color="0.6", label="raw (friction law at the nodes)")
+        profile_panel(a_st, x, sts / f, ylabel, title, "shear stress",
+                      color="tab:green", label="P1 projection")
         a_st.legend(fontsize=8)
     else:
-        profile_panel(a_st, x, st, r"$T_\tau\cdot n_\tau$ [Pa]",
-                       r"tangential stress $T_\tau\cdot n_\tau$ [Pa]", "shear stress",
-                       color="tab:green")
+        profile_panel(a_st, x, None if st is None else st / f, ylabel, title, "shear stress",
+                      color="tab:green")
 
     if vs is not None:
         zoom_slip(a_zoom, [(run, None)])
-        a_zoom.set_title(r"$v_s$ around the neutral point")
+        a_zoom.set_title(r"$v_s$ around the neutral point" if neutral.kind == "point"
+                         else r"$v_s$ along the contact (no neutral point)")
     else:
         not_available(a_zoom)
 
     for ax in (a_vs, a_sn, a_st, a_zoom):
         ax.set_xlabel("x [m]")
         ax.grid(alpha=0.3)
-        draw_vline(ax, xn, "neutral point")
-    a_vs.legend(fontsize=8)
-    extra = []
-    ang = run.summary.get("neutral_angle")
-    if ang is not None and np.isfinite(ang):
-        extra.append(f"neutral angle {math.degrees(ang):.3g}°")
+        draw_neutral(ax, marks)
+    a_vs.legend(fontsize=7, loc="lower right")
+    extra = [neutral.label]
     fs = run.summary.get("forward_slip")
     if fs is not None and np.isfinite(fs):
-        extra.append(f"forward slip {fs:.3g}")
-    fig.suptitle(run_title(run, "contact profiles") + (" (" + ", ".join(extra) + ")"
-                                                      if extra else ""))
+        extra.append(f"forward slip {100 * fs:.3g} %")
+    fig.suptitle(run_title(run, "contact profiles") + "\n" + ", ".join(extra))
     return save_figure(fig, path)
 
 
@@ -99,7 +110,7 @@ def fig_top(run: RunFiles, path: Path) -> Path | None:
     if x is None:
         return None
     rng = run.contact_range()
-    xn = run.neutral_x()
+    marks = run.neutral().marks("x")
     fig, axes = plt.subplots(2, 1, figsize=(9, 7), sharex=True, layout="constrained")
     for ax, key, lab in ((axes[0], "v1", r"$v_1$ [m/s]"), (axes[1], "v2", r"$v_2$ [m/s]")):
         y = column(t, key)
@@ -113,7 +124,7 @@ def fig_top(run: RunFiles, path: Path) -> Path | None:
             ax.axvspan(rng[0], rng[1], color="tab:orange", alpha=0.12, label="contact")
             draw_vline(ax, rng[0], "first touching point", color="tab:orange")
             draw_vline(ax, rng[1], "contact exit", color="tab:red")
-        draw_vline(ax, xn, "neutral point", color="k", ls=":")
+        draw_neutral(ax, marks)
     vr = run.summary.get("roll_surface_speed")
     if vr is not None and np.isfinite(vr) and column(t, "v1") is not None:
         axes[0].axhline(vr, color="0.4", lw=1.0, ls="-.", label="roll surface speed")
@@ -121,8 +132,6 @@ def fig_top(run: RunFiles, path: Path) -> Path | None:
     axes[0].set_title(run_title(run, "velocity along the top boundary"))
     axes[1].set_xlabel("x [m]")
     return save_figure(fig, path)
-
-
 
 
 # ---------------------------------------------------------------------------
@@ -149,7 +158,7 @@ def zoom_slip(ax, runs: Sequence[tuple[RunFiles, str | None]]) -> None:
         rng = r.contact_range()
         if rng is not None:
             lengths.append(rng[1] - rng[0])
-    if not neutral or not lengths:
+    if (not neutral or not lengths) and len(runs) > 1:   # one run: its title says why
         ax.text(0.5, 0.5, "no neutral point", ha="center", va="center",
                 transform=ax.transAxes, color="0.4")
     half = 0.12 * max(lengths) if lengths else None

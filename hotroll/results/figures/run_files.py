@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.tri import Triangulation
 
+from hotroll.results.neutral import Neutral
 from hotroll.results.run_dir import RunDir
 
 Table = dict  # column name -> 1D float array
@@ -54,14 +55,15 @@ class RunFiles:
             return None
         return centre[:2], float(np.asarray(radius, dtype=float))
 
+    def neutral(self) -> Neutral:
+        """The run's neutral story, as its summary tells it (``results/neutral.py``): every
+        figure draws this one, never a sign change of its own."""
+        return Neutral.from_summary(self.summary or {})
+
     def neutral_x(self) -> float | None:
-        p = self.summary.get("neutral_point")
-        if p is not None and len(p) >= 1 and p[0] is not None and np.isfinite(p[0]):
-            return float(p[0])
-        x, vs = column(self.contact, "x"), column(self.contact, "v_slip")
-        if x is None or vs is None:
-            return None
-        return zero_crossing(x, vs)
+        """x of the neutral point (m), None where the summary says there is none."""
+        n = self.neutral()
+        return n.point[0] if n.kind == "point" and n.point else None
 
     def contact_range(self) -> tuple[float, float] | None:
         """x of the first touching point and of the contact exit."""
@@ -110,17 +112,3 @@ class RunFiles:
         if ymax is None:
             ymax = length
         return x0, x1, 0.0, 1.12 * ymax
-
-
-def zero_crossing(x: np.ndarray, y: np.ndarray) -> float | None:
-    """x of the first sign change of y from negative to positive (linear interp.)."""
-    ok = np.isfinite(x) & np.isfinite(y)
-    x, y = x[ok], y[ok]
-    order = np.argsort(x)
-    x, y = x[order], y[order]
-    for i in range(len(x) - 1):
-        if y[i] <= 0.0 < y[i + 1] or y[i] < 0.0 <= y[i + 1]:
-            if y[i + 1] == y[i]:
-                return float(x[i])
-            return float(x[i] - y[i] * (x[i + 1] - x[i]) / (y[i + 1] - y[i]))
-    return None

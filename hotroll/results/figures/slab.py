@@ -2,9 +2,11 @@
 
 x axis: roll angle in degrees from the roll's vertical centre line (0 = roll gap), drawn with
 the entry on the left (the axis decreases to the right, in the rolling direction). Pressure is
-the compressive normal stress (FE: -normal_stress) in MPa; the shear is the stress on the strip
-along the roll's direction of motion in MPa (> 0 where the roll drags the strip forward, i.e.
-between the entry and the neutral point; the slab's shear magnitude gets that sign).
+the compressive normal stress (FE: -normal_stress) in Pa, kPa or MPa (by its magnitude); the
+shear is the stress on the strip along the roll's direction of motion in the same unit (> 0
+where the roll drags the strip forward, i.e. between the entry and the neutral point; the
+slab's shear magnitude gets that sign). The FE run's neutral point, or its sticking zone where
+no point is neutral, as its summary tells it (``results/neutral.py``).
 """
 from __future__ import annotations
 
@@ -14,7 +16,8 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from hotroll.results.figures.draw import save_figure
+from hotroll.results.figures.draw import draw_neutral, save_figure, stress_unit
+from hotroll.results.neutral import Neutral, angle_text
 
 
 def _clip_limits(ax, curves, raw, pad=0.12):
@@ -38,7 +41,7 @@ def _clip_limits(ax, curves, raw, pad=0.12):
             ax.plot([xi], [edge], marker="^" if yi > hi else "v", color="0.35", ms=6,
                     clip_on=False, zorder=5)
             left_half = (xi - x0) / (x1 - x0) < 0.5          # in axis fraction (x1 < x0 allowed)
-            ax.annotate(f"raw {yi:.0f} (off scale)", (xi, edge), textcoords="offset points",
+            ax.annotate(f"raw {yi:.3g} (off scale)", (xi, edge), textcoords="offset points",
                         xytext=(8 if left_half else -8, -12 if yi > hi else 5),
                         ha="left" if left_half else "right", fontsize=7, color="0.3")
 
@@ -51,12 +54,15 @@ def plot_compare_profiles(contact: dict | None, slab, summary: dict, out_png: Pa
     profiles alone, the run's own figure ``fig_contact_angle.png``)."""
     fig, (ap, at) = plt.subplots(2, 1, figsize=(8.5, 8), sharex=True, layout="constrained")
     pcurves, tcurves, praw, traw = [], [], None, None
-    if contact is not None and len(contact.get("angle", [])):
+    has_fe = contact is not None and len(contact.get("angle", []))
+    f, unit = stress_unit(*([contact["normal_stress"], contact["shear_stress"]] if has_fe else []),
+                          *([slab.pressure] if slab is not None else []))
+    if has_fe:
         deg = np.degrees(contact["angle"])
-        p_raw = -contact["normal_stress"] * 1e-6
-        p_s = -contact.get("normal_stress_smooth", contact["normal_stress"]) * 1e-6
-        t_raw = contact["shear_stress"] * 1e-6
-        t_s = contact.get("shear_stress_smooth", contact["shear_stress"]) * 1e-6
+        p_raw = -contact["normal_stress"] / f
+        p_s = -contact.get("normal_stress_smooth", contact["normal_stress"]) / f
+        t_raw = contact["shear_stress"] / f
+        t_s = contact.get("shear_stress_smooth", contact["shear_stress"]) / f
         ap.plot(deg, p_s, "-", color="C0", lw=1.8, label="FE, smoothed (P1 projection)")
         ap.plot(deg, p_raw, ".", color="0.45", ms=4, label="FE, raw nodal values")
         at.plot(deg, t_s, "-", color="C0", lw=1.8, label="FE, smoothed (P1 projection)")
@@ -67,27 +73,27 @@ def plot_compare_profiles(contact: dict | None, slab, summary: dict, out_png: Pa
     if slab is not None:
         deg = np.degrees(slab.angle)
         sign = np.where(slab.angle > slab.neutral_angle, 1.0, -1.0)
-        ap.plot(deg, slab.pressure * 1e-6, "--", color="C3", lw=1.8, label="slab (Orowan)")
-        at.plot(deg, sign * slab.shear * 1e-6, "--", color="C3", lw=1.8, label="slab (Orowan)")
-        pcurves.append(slab.pressure * 1e-6)
-        tcurves.append(sign * slab.shear * 1e-6)
+        ap.plot(deg, slab.pressure / f, "--", color="C3", lw=1.8, label="slab (Orowan)")
+        at.plot(deg, sign * slab.shear / f, "--", color="C3", lw=1.8, label="slab (Orowan)")
+        pcurves.append(slab.pressure / f)
+        tcurves.append(sign * slab.shear / f)
     elif not fe_only:
         ap.text(0.5, 0.95, "slab theory not solved (see compare.md)", transform=ap.transAxes,
                 ha="center", va="top", color="C3")
+    # the FE run's neutral story as its summary tells it (results/neutral.py)
+    marks = [(kind, pos, f"FE {label}") for kind, pos, label in
+             Neutral.from_summary(summary or {}).marks("angle")] if has_fe else []
     for ax in (ap, at):
         ax.axhline(0.0, color="0.6", lw=0.8)
         ax.grid(alpha=0.3)
-        fe_n = summary.get("neutral_angle")
-        if fe_n is not None and math.isfinite(fe_n):
-            ax.axvline(math.degrees(fe_n), color="C0", lw=1.0, ls=":",
-                       label=f"FE neutral angle {math.degrees(fe_n):.2f}°")
+        draw_neutral(ax, marks, color="C0")
         if slab is not None:
             ax.axvline(math.degrees(slab.neutral_angle), color="C3", lw=1.0, ls=":",
-                       label=f"slab neutral angle {math.degrees(slab.neutral_angle):.2f}°")
+                       label=f"slab neutral angle {angle_text(slab.neutral_angle)}")
         ax.legend(fontsize=8, loc="best")
-    ap.set_ylabel("contact pressure [MPa]")
+    ap.set_ylabel(f"contact pressure [{unit}]")
     ap.set_title("contact pressure (compressive normal stress)")
-    at.set_ylabel("shear stress [MPa]")
+    at.set_ylabel(f"shear stress [{unit}]")
     at.set_title("shear stress on the strip (> 0: roll drags the strip forward)")
     at.set_xlabel("roll angle from the vertical centre line [deg]  (entry left, exit = 0 right)")
     lo, hi = at.get_xlim()
