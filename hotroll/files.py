@@ -7,6 +7,7 @@ import errno
 import os
 import shutil
 import tempfile
+import threading
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -32,12 +33,35 @@ def disk_full(path: Path, err: OSError) -> DiskFullError:
                          f"then run the command again: finished work is read back")
 
 
+_UMASK_LOCK = threading.Lock()
+
+
+def umask() -> int:
+    """The process's file-creation mask, read without changing it where Linux shows it
+    (/proc/self/status, since 4.7); else set and restored at once under a lock, the
+    restrictive 0o077 in between, so that a file another thread creates then is private
+    rather than open."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as f:
+            for line in f:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    with _UMASK_LOCK:
+        mask = os.umask(0o077)
+        os.umask(mask)
+    return mask
+
+
 @contextmanager
 def atomic(path: Path):
     """Yields a temporary path beside ``path`` (``name.tmpXXXXXX.ext``, unique: two writers of
     one file never share it; the same extension); on success it replaces ``path`` in one
     step, on failure it is removed (``path`` untouched). A full disk raises
-    ``DiskFullError``."""
+    ``DiskFullError``. The file gets the mode any new file gets, 0o666 less the umask (the
+    temporary file is created 0o600: without the chmod no one else could read the results
+    on a shared machine)."""
     path = Path(path)
     try:
         fd, name = tempfile.mkstemp(prefix=f"{path.stem}.tmp", suffix=path.suffix,
@@ -50,6 +74,7 @@ def atomic(path: Path):
     tmp = Path(name)
     try:
         yield tmp
+        os.chmod(tmp, 0o666 & ~umask())
         os.replace(tmp, path)
     except BaseException as e:
         try:

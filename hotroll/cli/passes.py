@@ -1,26 +1,36 @@
-"""Commands on one pass: ``hotroll run | compare | example | sweep | validate | meshes``
-(registered on the app in ``cli/__init__.py``)."""
+"""Commands on one pass: ``hotroll run | compare | example | sweep | meshes`` (registered on
+the app in ``cli/__init__.py``; ``validate`` is ``cli/validate.py``)."""
 
+import math
 import time
 from pathlib import Path
 from typing import Annotated, Any
 
 import typer
-from rich.markup import escape
-from rich.table import Table
 from rich.text import Text
 
 from hotroll.cli.common import (
+    Column,
     EndOpt,
     ForceOpt,
+    Format,
+    FormatOpt,
     MeshOpt,
     MethodOpt,
     NonlinOpt,
     OutOpt,
+    Printer,
+    ResultTable,
     ResumeOpt,
+    RunClock,
+    Shown,
+    bundled_names,
     console,
     err_console,
+    eta_text,
     fail,
+    find_file,
+    print_table,
 )
 from hotroll.config.case import MESH_TABLE, Case, CaseError, load_case
 from hotroll.examples import EXAMPLES, example_path
@@ -28,6 +38,7 @@ from hotroll.results.engineering import display
 from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv
 from hotroll.results.units import UNITS
+from hotroll.solvers.settling import default_end_time
 from hotroll.workflows.estimate import ResourceError, check
 from hotroll.workflows.runner import run_case
 from hotroll.workflows.sweep import Sweep
@@ -93,20 +104,49 @@ def _load(path: Path, over: dict[str, Any]) -> Case:
 
 
 class _Progress:
-    """Throttled one-line progress report from the runner's progress dicts."""
+    """Throttled one-line progress report from the runner's progress dicts; on a time-stepped
+    run (``end_time``: the simulated time it stops at, s) with the time left to that end,
+    estimated from the measured rate of the steps so far."""
 
-    def __init__(self, every: float = 2.0):
-        self.every, self.last = every, 0.0
+    def __init__(self, every: float = 2.0, end_time: float | None = None, clock=None):
+        self.every, self.last, self.end_time = every, -math.inf, end_time
+        self.clock = clock or time.monotonic
+        self.start: tuple[float, float] | None = None      # (wall s, simulated s) of a step
 
     def __call__(self, info: dict) -> None:
-        now = time.monotonic()
+        now = self.clock()
+        eta = self._eta(now, info.get("time"))
         if now - self.last < self.every and "message" not in info:
             return
         self.last = now
         keys = [k for k in PROGRESS_KEYS if k in info] or list(info)
         parts = [f"{k}={_fmt(info[k])}" + (f" {UNITS[k]}" if k in UNITS and UNITS[k] != "-" else "")
                  for k in keys if isinstance(info[k], (int, float, str, bool))]
+        if eta is not None:
+            parts.append(eta)
         console.print(Text("  " + "  ".join(parts), style="dim"), soft_wrap=True)
+
+    def _eta(self, now: float, t: Any) -> str | None:
+        """The time left to ``end_time`` at the rate measured since the first step seen
+        (a resumed run's first step is its own start; a new run restarts the clock)."""
+        if self.end_time is None or not isinstance(t, (int, float)) or not math.isfinite(t):
+            return None
+        if self.start is None or t <= self.start[1]:
+            self.start = (now, t)
+            return None
+        rate = (now - self.start[0]) / (t - self.start[1])        # wall s per simulated s
+        return eta_text(rate * max(self.end_time - t, 0.0),
+                        f"the steps so far, to end_time {self.end_time:.4g} s; a steady state "
+                        f"ends the run sooner")
+
+
+def _end_time(case: Case) -> float | None:
+    """The simulated time a time-stepped run stops at (s): the case's, else the automatic
+    one (``solvers/settling.default_end_time``), capped by its step limit; None when steady."""
+    if case.solver.method != "transient":
+        return None
+    end = case.solver.end_time or default_end_time(case.pass_.roll_pass())
+    return min(end, case.solver.max_steps * case.dt)
 
 
 def _fmt(v: Any) -> str:
@@ -117,29 +157,35 @@ def _fmt(v: Any) -> str:
     return f"{v:.6g}" if isinstance(v, float) else str(v)
 
 
-def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
+def _summary_table(case: Case, summary: dict) -> ResultTable:
+    """The run's figures: shown in the units a person reads (MN/m, kN m/m, ...) to 4-6
+    digits, written unrounded in the SI unit of summary.json (csv, json)."""
+    table = ResultTable(f"{case.name}: summary", [Column("quantity", left=True),
+                                                  Column("value"), Column("unit", left=True)])
+    thermal = THERMAL_KEYS if summary.get("thermal") else []
+    # absent keys are not shown; the contact length only beside a flattened roll's figures
+    mill = [k for k in MILL_KEYS if k != "contact_length" or summary.get("roll_model")]
+    keys = SUMMARY_KEYS[:-4] + mill + thermal + SUMMARY_KEYS[-4:]  # before the run's own figures
+    units = summary.get("units", {})
+    for key in keys:
+        value = summary.get(key)
+        if value is not None:
+            text, unit = display(key, value, units.get(key))
+            si = UNITS.get(key, units.get(key, ""))
+            table.rows.append([key, Shown(text if text is not None else _fmt(value), value),
+                               Shown(unit or UNITS.get(key, ""), si)])
+    return table
+
+
+def _run(case: Case, out: Path, resume: bool, printer: Printer, sweep=None) -> dict:
     try:
         est = check(case)
     except ResourceError as e:
         raise fail(f"{case.name}: refused: {e}", code=8) from None
     console.print(Text(f"running {case.name} -> {out} ({est.text()})", style="bold"))
-    summary = run_case(case, out, resume=resume, progress=_Progress(), sweep=sweep)
-    table = Table(title=escape(f"{case.name}: summary"))
-    table.add_column("quantity")
-    table.add_column("value", justify="right")
-    table.add_column("unit")
-
-    thermal = THERMAL_KEYS if summary.get("thermal") else []
-    # absent keys are not shown; the contact length only beside a flattened roll's figures
-    mill = [k for k in MILL_KEYS if k != "contact_length" or summary.get("roll_model")]
-    keys = SUMMARY_KEYS[:-4] + mill + thermal + SUMMARY_KEYS[-4:]  # before the run's own figures
-    for key in keys:
-        if summary.get(key) is not None:
-            text, unit = display(key, summary[key], summary.get("units", {}).get(key))
-            table.add_row(key, escape(text if text is not None else _fmt(summary[key])),
-                          escape(unit or UNITS.get(key, "")))
-    console.print(table)
-
+    summary = run_case(case, out, resume=resume, progress=_Progress(end_time=_end_time(case)),
+                       sweep=sweep)
+    printer.table(_summary_table(case, summary))
     code = summary["exit_code"]
     if code:
         err_console.print(Text(f"{case.name}: {EXIT_CODES[code]} (exit code {code}; status "
@@ -149,15 +195,41 @@ def _run(case: Case, out: Path, resume: bool, sweep=None) -> dict:
     return summary
 
 
-def _exit(summaries: list[dict]) -> None:
-    """End the command with the worst run's exit code (0 when every run converged)."""
+def _runs(cases: list[tuple[Case, Path]], resume: bool, printer: Printer,
+          sweep=None) -> list[dict]:
+    """Several runs one after the other; after each, the time left for the others from the
+    measured wall time of those done."""
+    clock, summaries = RunClock(len(cases)), []
+    for k, (case, out) in enumerate(cases, 1):
+        t0 = time.monotonic()
+        summaries.append(_run(case, out, resume, printer, sweep))
+        clock.done(time.monotonic() - t0)
+        left = clock.left()
+        if k < len(cases) and left is not None:
+            console.print(Text(f"{k} of {len(cases)} runs done; " + eta_text(
+                left, f"the {k} run{'s' * (k > 1)} so far") + f" for the {len(cases) - k} left"),
+                soft_wrap=True)
+    return summaries
+
+
+def _exit(summaries: list[dict], printer: Printer | None = None) -> None:
+    """Write the tables of a csv or json output, then end the command with the worst run's
+    exit code (0 when every run converged)."""
+    if printer is not None:
+        printer.finish()
     code = max((s.get("exit_code", 0) for s in summaries), default=0)
     if code:
         raise typer.Exit(code)
 
 
+CaseArg = Annotated[Path, typer.Argument(
+    metavar="CASE", show_default=False,
+    help=f"Case file (TOML) or a bundled case's name ({', '.join(bundled_names('case'))}), "
+         f"or a report example's number (1, 2).")]
+
+
 def run(
-    case_file: Annotated[Path, typer.Argument(help="Case description (TOML).")],
+    case_file: CaseArg,
     out: OutOpt,
     mesh: MeshOpt = None,
     end_time: EndOpt = None,
@@ -166,59 +238,58 @@ def run(
     no_figures: Annotated[bool, typer.Option("--no-figures", help="Do not write figures.")] = False,
     resume: ResumeOpt = True,
     force: ForceOpt = False,
+    fmt: FormatOpt = Format.table,
 ) -> None:
     """Run one case file into OUT (the method is the file's [solver] method unless given)."""
+    case_file = find_file(case_file, "run")
     extra = {"output.figures": False} if no_figures else {}
     if force:
         extra["solver.force"] = True
     if method is not None:
         extra["solver.method"] = method
     case = _load(case_file, _overrides(mesh, end_time, nonlinear, **extra))
-    _exit([_run(case, out, resume)])
+    with Printer(fmt, console) as printer:
+        summary = _run(case, out, resume, printer)
+    _exit([summary], printer)
 
 
 def compare(
-    case_file: Annotated[Path, typer.Argument(
-        help="Case description (TOML) or the name of a bundled example.")],
+    case_file: CaseArg,
     out: OutOpt,
     mesh: MeshOpt = None,
     method: MethodOpt = None,
+    fmt: FormatOpt = Format.table,
 ) -> None:
-    """Run the FE model (steady unless --method) and slab theory (Orowan, Sims, Ford-Alexander)
-    on one case; write OUT/compare.{md,csv,json,png} side by side (FE run in OUT/fe)."""
-    if not case_file.exists():               # a bundled example by name (or file stem)
-        name = str(case_file)
-        files = EXAMPLES.get(name, [name])
-        if len(files) != 1:
-            raise fail(f"compare: example {name!r} has several cases ({', '.join(files)}); "
-                        f"name one of them")
-        try:
-            case_file = example_path(files[0])
-        except FileNotFoundError as e:
-            raise fail(f"compare: {case_file} is neither a file nor a bundled example ({e})")
+    """Run the FE model (steady unless --method) and slab theory (Orowan, Sims,
+    Ford-Alexander) on one case; write OUT/compare.{md,csv,json,png} side by side (the FE run
+    in OUT/fe)."""
+    case_file = find_file(case_file, "compare")
     # the FE side of a comparison is the steady answer unless asked otherwise
     extra = {"output.figures": False, "solver.method": method or "steady"}
     case = _load(case_file, _overrides(mesh, None, None, **extra))
-    console.print(Text(f"comparing {case.name} -> {out}", style="bold"))
-    result = run_compare(case, out, progress=_Progress())
-    table = Table(title=escape(f"{case.name}: FE and slab theory"))
-    for col in ("quantity", "unit", "FE", "slab (Orowan)", "Sims", "Ford-Alexander", "FE/slab"):
-        table.add_column(col, justify="left" if col in ("quantity", "unit") else "right")
-    for row in result["rows"]:
-        name = str(row["quantity"]).rsplit(" [", 1)[0]
-        vals = [f"{row[c]:.4g}" if isinstance(row.get(c), float) else "-"
-                for c in ("FE", "slab (Orowan)", "Sims", "Ford-Alexander", "FE/slab")]
-        table.add_row(escape(name), escape(str(row["unit"])), *vals)
-    console.print(table)
-    if result.get("slab_error"):
-        console.print(Text(f"slab theory: {result['slab_error']}", style="yellow"))
-    console.print(f"table: {out / 'compare.md'}, figure: {out / 'compare.png'}")
+    theories = ("FE", "slab (Orowan)", "Sims", "Ford-Alexander", "FE/slab")
+    with Printer(fmt, console) as printer:
+        console.print(Text(f"comparing {case.name} -> {out}", style="bold"))
+        result = run_compare(case, out, progress=_Progress(end_time=_end_time(case)))
+        table = ResultTable(f"{case.name}: FE and slab theory",
+                            [Column("quantity", left=True), Column("unit", left=True)]
+                            + [Column(c, spec=".4g") for c in theories])
+        for row in result["rows"]:
+            name = str(row["quantity"]).rsplit(" [", 1)[0]
+            table.rows.append([name, str(row["unit"])] + [
+                row[c] if isinstance(row.get(c), float) else None for c in theories])
+        printer.table(table)
+        if result.get("slab_error"):
+            console.print(Text(f"slab theory: {result['slab_error']}", style="yellow"))
+        console.print(Text(f"table: {out / 'compare.md'}, figure: {out / 'compare.png'}"))
+    printer.finish()
 
 
 def example(
     number: Annotated[str, typer.Argument(
-        help="Report example 1, 2 or 3, or a realistic pass: hot_strip_finishing, roughing_slab, "
-             "hot_aluminium, tension_pass.")],
+        metavar="EXAMPLE", show_default=False,
+        help=f"Report example 1, 2 or 3, or a realistic pass: "
+             f"{', '.join(k for k in EXAMPLES if not k.isdigit())}.")],
     out: OutOpt,
     mesh: MeshOpt = None,
     end_time: EndOpt = None,
@@ -228,6 +299,7 @@ def example(
     ] = "steady",
     resume: ResumeOpt = True,
     force: ForceOpt = False,
+    fmt: FormatOpt = Format.table,
 ) -> None:
     """Run an example by name: the report's 1, 2, 3 (3 runs m = 0.15, 0.2, 0.25 and compares
     them) or one of the realistic passes."""
@@ -236,18 +308,16 @@ def example(
     extra = {"solver.method": method, **({"solver.force": True} if force else {})}
     over = _overrides(mesh, end_time, nonlinear, **extra)
     cases = [_load(example_path(name), over) for name in EXAMPLES[number]]  # validate all first
-    if len(cases) == 1:
-        _exit([_run(cases[0], out, resume)])
-        return
-
-    runs, sweep, summaries = {}, Sweep(), []
-    for case in cases:
-        summaries.append(_run(case, out / case.name, resume, sweep))
-        runs[f"m = {case.material.rate_exponent(case.plate.temperature):g}"] = out / case.name
-
-    png = plot_compare(runs, out / "compare.png")
-    console.print(Text(f"comparison plot: {png or out / 'compare.png'}"))
-    _exit(summaries)
+    with Printer(fmt, console) as printer:
+        if len(cases) == 1:
+            summaries = [_run(cases[0], out, resume, printer)]
+        else:
+            summaries = _runs([(c, out / c.name) for c in cases], resume, printer, Sweep())
+            runs = {f"m = {c.material.rate_exponent(c.plate.temperature):g}": out / c.name
+                    for c in cases}
+            png = plot_compare(runs, out / "compare.png")
+            console.print(Text(f"comparison plot: {png or out / 'compare.png'}"))
+    _exit(summaries, printer)
 
 
 def _value(text: str) -> Any:
@@ -259,7 +329,7 @@ def _value(text: str) -> Any:
 
 
 def sweep(
-    case_file: Annotated[Path, typer.Argument(help="Case description (TOML).")],
+    case_file: CaseArg,
     param: Annotated[str, typer.Option(help='Dotted key to vary, e.g. "material.m".')],
     values: Annotated[str, typer.Option(help='Comma-separated values, e.g. "0.15,0.2,0.25".')],
     out: OutOpt,
@@ -270,10 +340,12 @@ def sweep(
         "--warm/--cold", help="Start each steady solve from the nearest solved case (default) "
         "or from scratch.")] = True,
     resume: ResumeOpt = True,
+    fmt: FormatOpt = Format.table,
 ) -> None:
-    """Run a case for several values of one parameter into OUT/<param>=<value>, each steady
+    """Run a case for several values of one parameter into OUT/PARAM=VALUE, each steady
     solve started from the nearest solved one on the same mesh (--warm, the default) or cold;
-    table in OUT/sweep.csv."""
+    the table in OUT/sweep.csv."""
+    case_file = find_file(case_file, "sweep")
     vals = [_value(v) for v in values.split(",") if v.strip()]
     if not vals:
         raise fail("sweep: --values is empty (give comma-separated values)")
@@ -282,17 +354,17 @@ def sweep(
         extra["output.figures"] = False
     base = _overrides(mesh, None, None, **extra)
     cases = [_load(case_file, base | {param: v}) for v in vals]   # validate all first
-    rows, sw, summaries = [], Sweep() if warm else None, []
-    for v, case in zip(vals, cases):
-        label = f"{param}={v:g}" if isinstance(v, float) else f"{param}={v}"
-        case = case.with_overrides(name=f"{case.name} {label}")
-        s = _run(case, out / label, resume, sw)
-        summaries.append(s)
-        rows.append({"param": param, "value": v, **{k: s.get(k) for k in SWEEP_KEYS}})
-    out.mkdir(parents=True, exist_ok=True)
-    write_csv(out / "sweep.csv", rows)
-    console.print(Text(f"sweep table: {out / 'sweep.csv'}"))
-    _exit(summaries)
+    labels = [f"{param}={v:g}" if isinstance(v, float) else f"{param}={v}" for v in vals]
+    named = [(case.with_overrides(name=f"{case.name} {label}"), out / label)
+             for case, label in zip(cases, labels)]
+    with Printer(fmt, console) as printer:
+        summaries = _runs(named, resume, printer, Sweep() if warm else None)
+        rows = [{"param": param, "value": v, **{k: s.get(k) for k in SWEEP_KEYS}}
+                for v, s in zip(vals, summaries)]
+        out.mkdir(parents=True, exist_ok=True)
+        write_csv(out / "sweep.csv", rows)
+        console.print(Text(f"sweep table: {out / 'sweep.csv'}"))
+    _exit(summaries, printer)
 
 
 SWEEP_KEYS = ["status", "exit_code", "converged", "neutral_angle", "roll_force", "roll_torque",
@@ -300,22 +372,11 @@ SWEEP_KEYS = ["status", "exit_code", "converged", "neutral_angle", "roll_force",
               "warm_start_failed"]
 
 
-def validate(case_file: Annotated[Path, typer.Argument(help="Case description (TOML).")]) -> None:
-    """Check a case file; print the resolved case as TOML (exit 0) or the errors (exit 2)."""
-    case = _load(case_file, {})
-    p = case.pass_
-    typer.echo(case.to_toml())
-    typer.echo(f"# derived: contact_length = {p.contact_length:.6g} m, bite_angle = "
-               f"{p.bite_angle:.6g} rad, roll_surface_speed = {p.roll_surface_speed:.6g} m/s, "
-               f"h_contact = {case.mesh.h:g} m, dt = {case.dt:.6g} s")
-
-
 def meshes() -> None:
     """List the contact mesh sizes of the report's Table 2."""
-    table = Table(title="Table 2: contact mesh sizes")
-    table.add_column("name")
-    table.add_column(escape("h_contact [m]"), justify="right")
-    table.add_column(escape("dt = h/6 [s]"), justify="right")
+    table = ResultTable("Table 2: contact mesh sizes", [
+        Column("name", left=True), Column("h_contact [m]", spec="g"),
+        Column("dt = h/6 [s]", spec=".4g")])
     for name, h in MESH_TABLE.items():
-        table.add_row(name + (" (default)" if name == "C2" else ""), f"{h:g}", f"{h / 6:.4g}")
-    console.print(table)
+        table.rows.append([name + (" (default)" if name == "C2" else ""), h, h / 6])
+    print_table(table.rich(), console)

@@ -1,20 +1,32 @@
 """The command line's batch commands (``hotroll schedule``, ``hotroll study``), registered on
 ``cli.app`` when ``cli`` imports this module."""
 
+import time
 from pathlib import Path
 from typing import Annotated, Optional
 
 import typer
-from rich.markup import escape
-from rich.table import Table
 from rich.text import Text
 
-from hotroll import examples as sched_examples
-from hotroll.cli.common import OutOpt, ResumeOpt, console, err_console, fail
+from hotroll.cli.common import (
+    Column,
+    Format,
+    FormatOpt,
+    OutOpt,
+    Printer,
+    ResultTable,
+    ResumeOpt,
+    RunClock,
+    bundled_names,
+    console,
+    err_console,
+    eta_text,
+    fail,
+    find_file,
+)
 from hotroll.config.case import CaseError
 from hotroll.config.schedule import load_schedule
 from hotroll.config.study import load_study, parse_value
-from hotroll.examples import find_study
 from hotroll.workflows.schedule import ScheduleError, run_schedule
 from hotroll.workflows.study import FAILED, run_study
 from hotroll.workflows.tandem import TensionError
@@ -27,94 +39,138 @@ def study_report(out: Path, title: str) -> None:
     report(out, title)
 
 
+class _PassClock:
+    """The schedule's progress lines, each finished pass's with the time left of this roll
+    through the mill, estimated from the measured wall time of the passes so far. A pass's line
+    starts with its name (a second line with the same name, a warning, is not a pass);
+    ``tensions ...`` lines (``mill.tensions = "from_speeds"``) come between whole rolls, some
+    of them not printed, whose count is not known in advance."""
+
+    def __init__(self, names: list[str], clock=None):
+        self.names, self.clock = names, clock or time.monotonic
+        self.last, self.k, self.tensions = self.clock(), -1, False
+        self.passes = RunClock(len(names))
+
+    def __call__(self, line: str) -> None:
+        now = self.clock()
+        head = line.split(":", 1)[0]
+        text = "  " + line
+        if line.startswith("tensions "):
+            self.tensions, self.k = True, -1
+        elif self.k >= 0 and head == self.names[self.k]:
+            pass                        # a further line of the same pass (a warning)
+        elif head in self.names:
+            k = 0 if head == self.names[0] else self.k + 1
+            if k == self.k + 1 and (k > 0 or not self.passes.seconds):   # measured alone
+                self.passes.done(now - self.last)
+            self.k = k
+            left = self.passes.left(len(self.names) - k - 1)
+            if k < len(self.names) - 1 and left is not None:
+                n = len(self.passes.seconds)
+                text += "; " + eta_text(left, f"{n} pass{'es' * (n > 1)} so far") + (
+                    " for this roll through the mill; the tensions' iterations follow"
+                    if self.tensions else "")
+        self.last = now
+        console.print(Text(text), soft_wrap=True)
+
+
 def schedule(
     schedule_file: Annotated[Path, typer.Argument(
-        help="Schedule file (TOML) or a bundled schedule's name (finishing_mill, ...).")],
+        metavar="SCHEDULE", show_default=False,
+        help=f"Schedule file (TOML) or a bundled schedule's name "
+             f"({', '.join(bundled_names('schedule'))}).")],
     out: OutOpt,
     no_figures: Annotated[bool, typer.Option("--no-figures", help="Do not write figures.")] = False,
     resume: ResumeOpt = True,
+    fmt: FormatOpt = Format.table,
 ) -> None:
     """Roll a pass schedule: every pass from the previous exit state (thickness, temperature
     and strain through the thickness), interpass cooling; OUT/schedule.csv, schedule.json,
     schedule.png and one directory per pass."""
-    if not schedule_file.exists():
-        try:
-            schedule_file = sched_examples.schedule_path(str(schedule_file))
-        except FileNotFoundError as e:
-            raise fail(f"schedule: {schedule_file} is neither a file nor a bundled schedule "
-                        f"({e})") from None
+    schedule_file = find_file(schedule_file, "schedule", ("schedule",))
     try:
         sch = load_schedule(schedule_file)
         if no_figures:
             sch.output.figures = False
     except CaseError as e:
         raise fail(str(e)) from None
-    console.print(Text(f"rolling {sch.name}: {len(sch.passes)} passes -> {out}", style="bold"))
-    try:
-        rows = run_schedule(sch, out, resume=resume, figure=not no_figures,
-                            progress=lambda line: console.print(Text("  " + line)))
-    except ScheduleError as e:
-        err_console.print(Text(str(e), style="yellow"), soft_wrap=True)
-        raise typer.Exit(int(e.summary.get("exit_code") or 1)) from None
-    except TensionError as e:          # the speeds ask for an impossible interstand pull
-        err_console.print(Text(str(e), style="yellow"), soft_wrap=True)
-        raise typer.Exit(5) from None
+    with Printer(fmt, console) as printer:
+        console.print(Text(f"rolling {sch.name}: {len(sch.passes)} passes -> {out}",
+                           style="bold"))
+        clock = _PassClock([sch.pass_name(k) for k in range(len(sch.passes))])
+        try:
+            rows = run_schedule(sch, out, resume=resume, figure=not no_figures, progress=clock)
+        except ScheduleError as e:
+            err_console.print(Text(str(e), style="yellow"), soft_wrap=True)
+            raise typer.Exit(int(e.summary.get("exit_code") or 1)) from None
+        except TensionError as e:          # the speeds ask for an impossible interstand pull
+            err_console.print(Text(str(e), style="yellow"), soft_wrap=True)
+            raise typer.Exit(5) from None
+        printer.table(_schedule_table(sch, rows))
+        width = sch.strip.width
+        if any("roll_equivalent_radius" in r or "gap_setting" in r for r in rows):
+            console.print("R'/R: the flattened roll's equivalent radius over its radius; gap: "
+                          "the no-load roll gap to set (exit thickness - F/M)")
+        if any("drx_onset_share" in r for r in rows):
+            console.print(Text(
+                "DRX: share of the section where dynamic recrystallisation started (strain >= "
+                "eps_c); after the transport, section means: X recrystallised (-), d grain "
+                f"size (um), e ret the strain handed on (-); figure {out / 'microstructure.png'}"))
+        console.print(Text(
+            f"force and torque per roll{', whole width' if width else ''}; exit temperature: "
+            f"mixing-cup mean after the gap; all columns (power, surface temperature, "
+            f"transports) in {out / 'schedule.csv'}; figure {out / 'schedule.png'}"))
+    printer.finish()
+
+
+def _schedule_table(sch, rows: list[dict]) -> ResultTable:
+    """The passes' figures: thicknesses in mm, forces in MN (MN/m without a width), torques in
+    kN m (kN m/m), the gap to set in mm, ..., and the wall time in s."""
     width = sch.strip.width
-    table = Table(title=escape(f"{sch.name}: schedule"))
+    w = width or 1.0
     tensions = sch.mill.tensions == "from_speeds"
-    heads = ["pass", "h mm", "U m/s", "F MN" if width else "F MN/m",
-             "M kNm" if width else "M kNm/m", "T out K", "strain", "FE", "s"]
-    if tensions:
-        heads.insert(3, "t front MPa")
     flat = any("roll_equivalent_radius" in r for r in rows)
     gaps = any("gap_setting" in r for r in rows)
     micro = any("drx_onset_share" in r for r in rows)
-    heads[-2:-2] = (["R'/R"] if flat else []) + (["gap mm"] if gaps else []) + (
-        ["DRX", "X", "d um", "e ret"] if micro else [])
-    for h in heads:
-        table.add_column(h, justify="left" if h == "pass" else "right")
+    cols = [Column("pass", left=True), Column("h", "mm", ".1f", parts=("in", "out")),
+            Column("U", "m/s", ".2f")]
+    cols += [Column("t front", "MPa", ".2f")] if tensions else []
+    cols += [Column("F", "MN" if width else "MN/m", ".2f"),
+             Column("M", "kNm" if width else "kNm/m", ".0f"), Column("T out", "K", ".1f"),
+             Column("strain", spec=".3f")]
+    cols += [Column("R'/R", spec=".4f")] if flat else []
+    cols += [Column("gap", "mm", ".3f")] if gaps else []
+    cols += [Column("DRX", spec=".2f"), Column("X", spec=".3f"), Column("d", "um", ".1f"),
+             Column("e ret", spec=".3f")] if micro else []
+    cols += [Column("FE"), Column("s", spec=".1f")]
+    table = ResultTable(f"{sch.name}: schedule", cols)
     for r in rows:
-        w = width or 1.0
-        cells = [
-            escape(r["name"]), f"{1e3 * r['entry_thickness']:.1f}>{1e3 * r['exit_thickness']:.1f}",
-            f"{r['roll_surface_speed']:.2f}", f"{1e-6 * w * r['roll_force']:.2f}",
-            f"{1e-3 * w * r['roll_torque']:.0f}", f"{r['exit_temperature_mean']:.1f}",
-            f"{r['exit_strain_mean']:.3f}", str(r["fe_solves"]), f"{r['wall_time']:.1f}"]
-        if tensions:
-            cells.insert(3, f"{1e-6 * r['front_tension']:.2f}")
-        extra = []
+        cells = [r["name"], (1e3 * r["entry_thickness"], 1e3 * r["exit_thickness"]),
+                 r["roll_surface_speed"]]
+        cells += [1e-6 * r["front_tension"]] if tensions else []
+        cells += [1e-6 * w * r["roll_force"], 1e-3 * w * r["roll_torque"],
+                  r["exit_temperature_mean"], r["exit_strain_mean"]]
         if flat:
-            extra.append(f"{r['roll_equivalent_radius'] / r['roll_radius']:.4f}"
-                         if "roll_equivalent_radius" in r else "-")
+            cells.append(r["roll_equivalent_radius"] / r["roll_radius"]
+                         if "roll_equivalent_radius" in r else None)
         if gaps:
-            extra.append(f"{1e3 * r['gap_setting']:.3f}" if "gap_setting" in r else "-")
+            cells.append(1e3 * r["gap_setting"] if "gap_setting" in r else None)
         if micro:
-            extra += [f"{r['drx_onset_share']:.2f}" if "drx_onset_share" in r else "-"] + (
-                [f"{r['recrystallised_fraction_mean']:.3f}",
-                 f"{1e6 * r['grain_size_mean']:.1f}", f"{r['retained_strain_mean']:.3f}"]
-                if "recrystallised_fraction_mean" in r else ["-", "-", "-"])
-        cells[-2:-2] = extra
-        table.add_row(*cells)
-    console.print(table)
-    if flat or gaps:
-        console.print("R'/R: the flattened roll's equivalent radius over its radius; gap: the "
-                      "no-load roll gap to set (exit thickness - F/M)")
-    if micro:
-        console.print("DRX: share of the section where dynamic recrystallisation started "
-                      "(strain >= eps_c); after the transport, section means: X recrystallised "
-                      "(-), d grain size (um), e ret the strain handed on (-); figure "
-                      f"{out / 'microstructure.png'}")
-    console.print(f"force and torque per roll{', whole width' if width else ''}; exit "
-                  f"temperature: mixing-cup mean after the gap; all columns (power, surface "
-                  f"temperature, transports) in {out / 'schedule.csv'}; figure "
-                  f"{out / 'schedule.png'}")
-
+            after = "recrystallised_fraction_mean" in r
+            cells += [r.get("drx_onset_share"),
+                      r["recrystallised_fraction_mean"] if after else None,
+                      1e6 * r["grain_size_mean"] if after else None,
+                      r["retained_strain_mean"] if after else None]
+        cells += [r["fe_solves"], r["wall_time"]]
+        table.rows.append(cells)
+    return table
 
 
 def study(
     study_file: Annotated[Path, typer.Argument(
-        help="Study file (TOML): [base] and [vary]/[[cases]], or a bundled study's name "
-             "(mesh_table, report_examples, af_study).")],
+        metavar="STUDY", show_default=False,
+        help=f"Study file (TOML: [base] and [vary] or [[cases]]) or a bundled study's name "
+             f"({', '.join(bundled_names('study'))}).")],
     out: OutOpt,
     scheduler: Annotated[Optional[str], typer.Option(
         help="Address of a running dask scheduler (default: DASK_SCHEDULER_ADDRESS, else a "
@@ -133,10 +189,7 @@ def study(
     are read back when run again. Exit code: 0, or 64 + the number of failed cases (max 63)."""
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
-    try:
-        study_file = find_study(study_file)
-    except FileNotFoundError as e:
-        raise fail(f"study: {e}") from None
+    study_file = find_file(study_file, "study", ("study",))
     try:
         st, base = load_study(study_file, overrides=_key_values(set_ or []))
     except CaseError as e:
@@ -149,10 +202,7 @@ def study(
         task = bar.add_task("cases", total=n, info="")
 
         def progress(p: dict) -> None:
-            eta = p["remaining_s"]
-            info = f"failed {p['failed']}, running {p.get('running', 0)}"
-            bar.update(task, completed=p["done"], info=info + (
-                f", about {eta:.0f} s left" if eta == eta else ""))
+            bar.update(task, completed=p["done"], info=_study_info(p))
 
         rows = run_study(st, base, out, scheduler=scheduler, workers=workers, serial=serial,
                          progress=progress)
@@ -160,14 +210,24 @@ def study(
     for r in failed:
         err_console.print(Text(f"{r['case']}: {r['status']}: {r['reason']}", style="yellow"),
                           soft_wrap=True)
-    console.print(f"{len(rows) - len(failed)} of {len(rows)} cases done; table "
-                  f"{out / 'study.csv'} and {out / 'study.parquet'}")
+    console.print(Text(f"{len(rows) - len(failed)} of {len(rows)} cases done; table "
+                       f"{out / 'study.csv'} and {out / 'study.parquet'}"))
     for name in ("study.png", "study_profiles.png"):
         if st.plot is not None and (out / name).is_file():
-            console.print(f"figure {out / name}")
+            console.print(Text(f"figure {out / name}"))
     study_report(out, st.name)
     if failed:
         raise typer.Exit(64 + min(len(failed), 63))
+
+
+def _study_info(p: dict) -> str:
+    """The progress bar's text: failed and running cases, and the time left estimated by the
+    study from the cases solved so far (``remaining_s``, NaN before the first)."""
+    eta = p.get("remaining_s", float("nan"))
+    info = f"failed {p['failed']}, running {p.get('running', 0)}"
+    if eta == eta:
+        info += ", " + eta_text(eta, "the cases solved so far")
+    return info
 
 
 def _key_values(items: list[str]) -> dict:
