@@ -30,7 +30,8 @@ RUNS += [("schedule", "finishing_mill"), ("study", "af_study")]
 #: Keys that change from run to run by nature (time, place), not by the arithmetic.
 VOLATILE = ("wall_time", "wall_s", "seconds", "elapsed", "path", "dir", "out", "date",
             "created", "version", "python", "host", "commit", "traceback", "worker",
-            "checkpoint", "estimated_memory", "peak_memory", "_file", "files")
+            "checkpoint", "estimated_memory", "peak_memory", "_file", "files",
+            "assembly_threads")
 
 
 def run(out: Path, only: list[str]) -> int:

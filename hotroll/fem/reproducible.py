@@ -119,6 +119,7 @@ def threaded(threads: int | str | None = None):
     previous = _requested[0]
     if threads is not None:
         _requested[0] = threads
+    _used.clear()
     ngsolve.SetNumThreads(1)
     _threaded.append(threads)
     try:

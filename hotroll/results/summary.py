@@ -263,6 +263,14 @@ class Summary(Mapping):
     warm_start_from: str | None = _f(None, "warm start from", "the neighbour a warm start came "
                                      "from", when="run")
     warm_start_failed: bool = _f(None, "warm start failed", "solved again from cold", when="run")
+    warnings: list = _f(None, "warnings", "what the case's plausibility check reports and the "
+                        "run went on with (config/plausibility.py): a pass outside its flow-"
+                        "stress fit's ranges (the figure and the range), a steel below its "
+                        "austenite, a nondimensional case; each `section.key: ...`", when="run")
+    assembly_threads: list = _f(None, "assembly threads", "the thread counts the assembly ran "
+                                "with (fem/reproducible.threads_now: the cores no other "
+                                "running process wanted; the rest of the solve is serial)",
+                                when="run")
     leak_to_slip: float = _f("-", "leak to slip", "the leak through the roll over the forward "
                              "slip")
     not_conserved: bool = _f(None, "not conserved", "a conservation check failed")

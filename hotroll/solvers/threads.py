@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from contextlib import contextmanager
 
-from hotroll.fem.reproducible import threaded
+from hotroll.fem.reproducible import threaded, threads_used  # noqa: F401 (re-exported)
 
 
 @contextmanager

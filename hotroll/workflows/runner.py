@@ -21,7 +21,7 @@ from hotroll.results.run_dir import RunDir
 from hotroll.results.run_summary import write_results
 from hotroll.solvers.settling import default_end_time  # noqa: F401  (runner's API)
 from hotroll.solvers.steady import SteadyRun
-from hotroll.solvers.threads import solver_threads
+from hotroll.solvers.threads import solver_threads, threads_used
 from hotroll.solvers.transient import TransientRun
 from hotroll.workflows.build import (  # noqa: F401  (runner's API)
     build_model,
@@ -77,7 +77,7 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
         t0 = time.perf_counter()
         model, settings = build_model(case)
         extra = {"estimated_dofs": est.dofs, "estimated_memory": est.memory_bytes,
-                 "estimated_seconds": est.seconds}
+                 "estimated_seconds": est.seconds, "warnings": case.warnings()}
         shift = 0.0
         if case.solver.method == "steady":
             # solved in the roll's frame (axis at x = 0), written where the case puts the axis:
@@ -104,6 +104,7 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
             run = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint=fingerprint(case))
             run.run(progress)
         run.frame_shift = shift
+        extra["assembly_threads"] = threads_used()
         wall = time.perf_counter() - t0
         summary = write_results(case, run, out, wall, extra)
     if case.output.figures:
