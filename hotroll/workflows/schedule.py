@@ -2,7 +2,10 @@
 
 The state handed on is the strip's thickness (the pass's exit thickness: rigid rolls), its
 temperature and strain profiles through the half thickness (``results/profiles.py``, measured
-at the steady strip's outlet) and, in a tandem mill, its mass flux. Between two passes the
+at the steady strip's outlet) and, in a tandem mill, its mass flux. A pass whose gap to set
+comes out negative (the mill stretch above the exit thickness) is reported with what that
+means (``gauge.negative_gap_warning``: in the progress lines and schedule.json ``warnings``).
+Between two passes the
 temperature profile cools in air (``thermal/interpass.cool``: 1D conduction with convection
 and radiation) and the strain is kept (``strain_retained`` of it). With
 ``mill.speeds = "mass_flow"`` each stand after the first gets the roll speed
@@ -35,6 +38,7 @@ from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv, write_json
 from hotroll.results.units import UNITS
 from hotroll.workflows import microstructure as MS
+from hotroll.workflows.gauge import negative_gap_warning
 from hotroll.workflows.runner import finished_summary, run_case
 from hotroll.workflows.sweep import Sweep
 from hotroll.workflows.tandem import solve_tensions
@@ -184,9 +188,14 @@ def run_schedule(sch: Schedule, out: Path, *, resume: bool = True,
         rows, profiles, info = solve_tensions(sch, roll, _previous_tensions(out) if resume
                                               else None, say)
         extra.update(info)
-        _write(sch, out, rows, profiles, time.perf_counter() - t_start, extra)
     else:
         rows, profiles = roll()
+    extra.pop("warnings", None)
+    warnings = [f"{r['name']}: {w}" for r in rows
+                if (w := negative_gap_warning(r.get("gap_setting"), r.get("mill_stretch")))]
+    if warnings:
+        extra["warnings"] = warnings
+    _write(sch, out, rows, profiles, time.perf_counter() - t_start, extra)
     if figure:
         from hotroll.results.figures.microstructure import plot_microstructure
         from hotroll.results.schedule_plot import plot_schedule  # matplotlib only when drawing
@@ -278,6 +287,9 @@ def _roll(sch: Schedule, out: Path, resume: bool, sweep: Sweep, say, tensions=No
             MS.write_table(pdir / "microstructure.csv", record)
         rows.append(row)
         say(_line(row))
+        warning = negative_gap_warning(row.get("gap_setting"), row.get("mill_stretch"))
+        if warning:
+            say(f"{row['name']}: WARNING: {warning}")
     return rows, profiles
 
 
@@ -287,9 +299,10 @@ class ScheduleError(RuntimeError):
     def __init__(self, k: int, name: str, summary: dict, rows: list[dict] | None = None):
         self.k, self.name, self.summary, self.rows = k, name, summary, rows or []
         code = summary.get("exit_code")
+        why = f": {summary['failure']}" if summary.get("failure") else ""
         super().__init__(f"pass {k + 1} ({name}) ended with exit code {code}: "
-                         f"{EXIT_CODES.get(code, '?')} (status {summary.get('status')}); the "
-                         f"schedule stops there, the passes before it are written")
+                         f"{EXIT_CODES.get(code, '?')} (status {summary.get('status')}{why}); "
+                         f"the schedule stops there, the passes before it are written")
 
 
 def _pass_row(sch, k, case, s, entry_T, entry_e, solves, iterations, wall) -> dict:
