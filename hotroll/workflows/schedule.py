@@ -1,11 +1,12 @@
 """Running a pass schedule (issue 17): pass after pass, each from the previous exit state.
 
-The state handed on is the strip's thickness (the pass's exit thickness: rigid rolls), its
-temperature and strain profiles through the half thickness (``results/profiles.py``, measured
-at the steady strip's outlet) and, in a tandem mill, its mass flux. A pass whose gap to set
-comes out negative (the mill stretch above the exit thickness) is reported with what that
-means (``gauge.negative_gap_warning``: in the progress lines and schedule.json ``warnings``).
-Between two passes the
+The state handed on is the strip's thickness as the pass's solve leaves it (the outlet's
+measured thickness, ``exit_thickness`` of its summary: a thick strip thins on past the gap, an
+elastic one recovers; issue 51), its temperature and strain profiles through the half thickness
+(``results/profiles.py``, measured at the steady strip's outlet) and, in a tandem mill, its
+mass flux. A pass whose gap to set comes out negative (the mill stretch above the exit
+thickness) is reported with what that means (``gauge.negative_gap_warning``: in the progress
+lines and schedule.json ``warnings``). Between two passes the
 temperature profile cools in air (``thermal/interpass.cool``: 1D conduction with convection
 and radiation) and the strain is kept (``strain_retained`` of it). With
 ``mill.speeds = "mass_flow"`` each stand after the first gets the roll speed
@@ -22,6 +23,7 @@ units and the profiles handed on) and ``schedule.png``.
 """
 from __future__ import annotations
 
+import math
 import time
 from functools import lru_cache
 from pathlib import Path
@@ -110,9 +112,21 @@ def exit_state(sch: Schedule, case, summary: dict,
 
 
 def exit_thickness(case, summary) -> float:
-    """The pass's exit thickness (m): the case's, or the one found with the force when the
-    pass gives its roll gap (``workflows/gauge.py``)."""
-    return summary.get("gauge_thickness", case.pass_.exit_thickness)
+    """The strip's thickness leaving the pass (m), the next pass's entry: the solve's own, the
+    outlet's measured ``exit_thickness``; where the run has none (a report's run whose head
+    had not passed), the pass's set one (the case's, or the one found with the force when the
+    pass gives its roll gap, ``workflows/gauge.py``)."""
+    measured = summary.get("exit_thickness")
+    if measured is not None and math.isfinite(measured) and measured > 0.0:
+        return float(measured)
+    return set_exit_thickness(case, summary)
+
+
+def set_exit_thickness(case, summary) -> float:
+    """The exit thickness the pass was solved for (m): the case's (the rigid roll gap), or
+    the gaugemeter's h1 = S + F/M of a pass given by its roll gap."""
+    found = summary.get("gauge_thickness")
+    return float(found) if found is not None else case.pass_.exit_thickness
 
 
 def transport(sch: Schedule, k: int, state: StripState, exit_velocity: float,
@@ -328,7 +342,8 @@ def _pass_row(sch, k, case, s, entry_T, entry_e, solves, iterations, wall) -> di
            "newton_iterations": iterations, "fe_solves": solves, "wall_time": wall}
     # the roll's flattening and the stand's stretch, where the schedule asks for them
     row.update({key: s[key] for key in ("roll_flattening", "roll_equivalent_radius",
-                                        "roll_gap", "mill_stretch", "gap_setting")
+                                        "roll_gap", "gauge_thickness", "mill_stretch",
+                                        "gap_setting")
                 if key in s})
     if sch.strip.width is not None:
         row.update({"roll_force_total": s.get("roll_force_total"),

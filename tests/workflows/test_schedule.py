@@ -40,12 +40,18 @@ def _summary(out: Path, row: dict) -> dict:
 
 
 def test_the_next_pass_enters_with_the_exit_state(rolled):
-    """Pass 2's case file: its entry thickness is pass 1's exit thickness, its temperature
-    profile the transported one, its strain profile pass 1's exit strain times the retained
-    share (0.5), all to the digit."""
+    """Pass 2's case file: its entry thickness is the thickness pass 1's strip leaves with (its
+    outlet face in its own fields, not the 0.08 m set: issue 51), its temperature profile the
+    transported one, its strain profile pass 1's exit strain times the retained share (0.5),
+    all to the digit."""
     sch, rows, record, out = rolled
     first, second = _case(out, rows[0]), _case(out, rows[1])
-    assert second["pass"]["entry_thickness"] == first["pass"]["exit_thickness"] == 0.08
+    p = np.load(out / rows[0]["case"] / "fields.npz")["points"]
+    outlet = 2.0 * p[np.abs(p[:, 0] - p[:, 0].max()) <= 1e-9 * abs(p[:, 0].max()), 1].max()
+    assert first["pass"]["exit_thickness"] == 0.08 and abs(outlet / 0.08 - 1.0) < 5e-3
+    assert second["pass"]["entry_thickness"] == pytest.approx(outlet, rel=1e-9)
+    assert rows[1]["entry_thickness"] == rows[0]["exit_thickness"] == second["pass"][
+        "entry_thickness"]
     after = record["profiles"][0]["after_transport"]
     assert np.allclose(second["plate"]["temperature_profile"], after["temperature_profile"],
                        rtol=1e-14, atol=0)
