@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hotroll.fem.reproducible import parallel
 from hotroll.model.geometry import RollPass
 
 BOUNDARIES = ("sym", "out", "arc", "top", "in", "exit")
@@ -112,7 +113,8 @@ def _graded_mesh(geometry, rp: RollPass, spec: MeshSpec, x_lo: float, x_hi: floa
         n = max(2, int(math.ceil(yt / h)))
         for y in np.linspace(yt, 0.0, n):
             mp.RestrictH(float(x), float(y), 0.0, float(h + (hc - h) * (1.0 - y / yt)))
-    ngmesh = geometry.GenerateMesh(mp=mp)
+    with parallel():            # netgen's optimisation threaded: the same mesh to the bit
+        ngmesh = geometry.GenerateMesh(mp=mp)
     if shift:
         ngmesh.Coordinates()[:, 0] += shift     # a view on netgen's points
     return ngsolve.Mesh(ngmesh)
