@@ -1,5 +1,6 @@
-"""What every command shares: the consoles, the error exit, the option types, the bundled
-files by name, the result tables in three formats and the estimate of the time left."""
+"""What every command shares: the consoles, the error exit, the runs' warnings, the option
+types, the bundled files by name, the result tables in three formats and the estimate of the
+time left."""
 
 from __future__ import annotations
 
@@ -20,6 +21,7 @@ from rich.table import Table
 from rich.text import Text
 
 from hotroll.examples import EXAMPLES, HERE, example_path, schedule_path, study_path
+from hotroll.results.run_dir import RunDir
 
 #: The width of a console that is not a terminal (a pipe, a file, a log): a table is printed
 #: at the width it needs anyway (``print_table``); this keeps rich from wrapping text at 80.
@@ -67,6 +69,33 @@ def fail(msg: str, code: int = 2) -> typer.Exit:
     """Print ``msg`` in red on stderr; the exit to raise (code 2: bad input)."""
     err_console.print(Text(msg, style="red"), soft_wrap=True)
     return typer.Exit(code)
+
+
+def run_warnings(run_dir: Path) -> list[str]:
+    """The ``warnings`` of the run written in ``run_dir`` (its summary.json; none without
+    one)."""
+    if not (Path(run_dir) / "summary.json").is_file():
+        return []
+    return list(RunDir(run_dir).summary(strict=False).get("warnings") or [])
+
+
+def print_warnings(found: list[tuple[str, list[str]]]) -> None:
+    """The plausibility warnings of the runs a command made (``found``: (run or pass name,
+    its summary's ``warnings``)), each text once, on stderr after a yellow ``warning:``
+    (stdout may be a csv or json table). A text that not every run has names the runs that
+    have it."""
+    where: dict[str, list[str]] = {}
+    for name, warnings in found:
+        for text in warnings or []:
+            where.setdefault(str(text), [])
+            if name not in where[str(text)]:
+                where[str(text)].append(name)
+    names = list(dict.fromkeys(name for name, _ in found))
+    for text, runs in where.items():
+        line = Text.assemble(("warning: ", "bold yellow"), text)
+        if len(runs) < len(names):
+            line.append(f" ({', '.join(runs)})")
+        err_console.print(line, soft_wrap=True)
 
 
 # ------------------------------------------------------------------ bundled files by name

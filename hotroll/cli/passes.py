@@ -31,6 +31,8 @@ from hotroll.cli.common import (
     fail,
     find_file,
     print_table,
+    print_warnings,
+    run_warnings,
 )
 from hotroll.config.case import MESH_TABLE, Case, CaseError, load_case
 from hotroll.examples import EXAMPLES, example_path
@@ -58,12 +60,14 @@ def plot_compare(*args, **kwargs):
 
     return plot(*args, **kwargs)
 
-SUMMARY_KEYS = ["status", "free_surface", "h_contact", "neutral_point", "neutral_angle",
-                "neutral_angle_reason", "sticking_zone",
-                "roll_force", "roll_torque", "roll_power", "forward_slip", "mean_pressure",
-                "mean_flow_stress", "mean_strain_rate", "exit_strain", "roll_force_total",
-                "roll_torque_total", "mill_power", "a_f", "balance_error",
-                "converged", "steps", "nonlinear_iterations", "wall_time_s"]
+#: ``neutral``: the neutral story in words (``results/neutral.py``: the point's angle in degrees
+#: and radians, or none and the sticking zone), the one the figures and the page tell; not its
+#: parts (``neutral_point``, ``neutral_angle``, ``neutral_angle_reason``, ``sticking_zone``)
+SUMMARY_KEYS = ["status", "free_surface", "h_contact", "neutral", "roll_force", "roll_torque",
+                "roll_power", "forward_slip", "mean_pressure", "mean_flow_stress",
+                "mean_strain_rate", "exit_strain", "roll_force_total", "roll_torque_total",
+                "mill_power", "a_f", "balance_error", "converged", "steps",
+                "nonlinear_iterations", "wall_time_s"]
 #: A flattening roll, a mill modulus, a roll gap: shown where the summary has them.
 MILL_KEYS = ["contact_length", "roll_model", "roll_equivalent_radius", "roll_flattening",
              "roll_updates", "mill_stretch", "gap_setting", "roll_gap", "gauge_thickness",
@@ -72,8 +76,12 @@ MILL_KEYS = ["contact_length", "roll_model", "roll_equivalent_radius", "roll_fla
 THERMAL_KEYS = ["exit_temperature_mean", "exit_temperature_surface", "plastic_heat",
                 "friction_heat_to_strip", "heat_to_roll", "heat_to_air", "heat_balance_error"]
 
-PROGRESS_KEYS = ["step", "time", "m", "a_f", "iterations", "roll_force", "neutral_angle",
-                 "forward_slip", "message"]
+#: A time step's figures in its progress line; not its neutral angle (the slip's sign split of
+#: one step, noise on a sticking arc: the run's neutral story is the summary's ``neutral``). A
+#: report with only a ``message`` (the steady solver's Newton solves and coupling updates) is
+#: printed as its words alone.
+PROGRESS_KEYS = ["step", "time", "m", "a_f", "iterations", "roll_force", "forward_slip",
+                 "message"]
 
 def _overrides(mesh: str | None, end_time: float | None, nonlinear: str | None,
                **extra: Any) -> dict[str, Any]:
@@ -120,8 +128,12 @@ class _Progress:
             return
         self.last = now
         keys = [k for k in PROGRESS_KEYS if k in info] or list(info)
-        parts = [f"{k}={_fmt(info[k])}" + (f" {UNITS[k]}" if k in UNITS and UNITS[k] != "-" else "")
-                 for k in keys if isinstance(info[k], (int, float, str, bool))]
+        if keys == ["message"]:
+            parts = [str(info["message"])]
+        else:
+            parts = [f"{k}={_fmt(info[k])}"
+                     + (f" {UNITS[k]}" if k in UNITS and UNITS[k] != "-" else "")
+                     for k in keys if isinstance(info[k], (int, float, str, bool))]
         if eta is not None:
             parts.append(eta)
         console.print(Text("  " + "  ".join(parts), style="dim"), soft_wrap=True)
@@ -212,11 +224,12 @@ def _runs(cases: list[tuple[Case, Path]], resume: bool, printer: Printer,
     return summaries
 
 
-def _exit(summaries: list[dict], printer: Printer | None = None) -> None:
-    """Write the tables of a csv or json output, then end the command with the worst run's
-    exit code (0 when every run converged)."""
-    if printer is not None:
-        printer.finish()
+def _exit(summaries: list[dict], printer: Printer, names: list[str]) -> None:
+    """Write the tables of a csv or json output and the runs' warnings (on stderr: each
+    summary's ``warnings``, each text once; ``names``: the runs'), then end the command with
+    the worst run's exit code (0 when every run converged)."""
+    printer.finish()
+    print_warnings([(name, s.get("warnings") or []) for name, s in zip(names, summaries)])
     code = max((s.get("exit_code", 0) for s in summaries), default=0)
     if code:
         raise typer.Exit(code)
@@ -250,7 +263,7 @@ def run(
     case = _load(case_file, _overrides(mesh, end_time, nonlinear, **extra))
     with Printer(fmt, console) as printer:
         summary = _run(case, out, resume, printer)
-    _exit([summary], printer)
+    _exit([summary], printer, [case.name])
 
 
 def compare(
@@ -283,6 +296,7 @@ def compare(
             console.print(Text(f"slab theory: {result['slab_error']}", style="yellow"))
         console.print(Text(f"table: {out / 'compare.md'}, figure: {out / 'compare.png'}"))
     printer.finish()
+    print_warnings([(case.name, run_warnings(out / "fe"))])
 
 
 def example(
@@ -317,7 +331,7 @@ def example(
                     for c in cases}
             png = plot_compare(runs, out / "compare.png")
             console.print(Text(f"comparison plot: {png or out / 'compare.png'}"))
-    _exit(summaries, printer)
+    _exit(summaries, printer, [c.name for c in cases])
 
 
 def _value(text: str) -> Any:
@@ -364,12 +378,13 @@ def sweep(
         out.mkdir(parents=True, exist_ok=True)
         write_csv(out / "sweep.csv", rows)
         console.print(Text(f"sweep table: {out / 'sweep.csv'}"))
-    _exit(summaries, printer)
+    _exit(summaries, printer, [case.name for case, _ in named])
 
 
-SWEEP_KEYS = ["status", "exit_code", "converged", "neutral_angle", "roll_force", "roll_torque",
-              "roll_power", "forward_slip", "a_f", "nonlinear_iterations", "wall_time_s", "warm_start_from",
-              "warm_start_failed"]
+#: ``neutral``: the story in words beside ``neutral_angle`` (null where no point is neutral)
+SWEEP_KEYS = ["status", "exit_code", "converged", "neutral_angle", "neutral", "roll_force",
+              "roll_torque", "roll_power", "forward_slip", "a_f", "nonlinear_iterations",
+              "wall_time_s", "warm_start_from", "warm_start_failed"]
 
 
 def meshes() -> None:

@@ -23,6 +23,8 @@ from hotroll.cli.common import (
     eta_text,
     fail,
     find_file,
+    print_warnings,
+    run_warnings,
 )
 from hotroll.config.case import CaseError
 from hotroll.config.schedule import load_schedule
@@ -102,6 +104,7 @@ def schedule(
             rows = run_schedule(sch, out, resume=resume, figure=not no_figures, progress=clock)
         except ScheduleError as e:
             err_console.print(Text(str(e), style="yellow"), soft_wrap=True)
+            _pass_warnings(out, e.rows, [(sch.pass_name(e.k), e.summary.get("warnings") or [])])
             raise typer.Exit(int(e.summary.get("exit_code") or 1)) from None
         except TensionError as e:          # the speeds ask for an impossible interstand pull
             err_console.print(Text(str(e), style="yellow"), soft_wrap=True)
@@ -121,6 +124,16 @@ def schedule(
             f"mixing-cup mean after the gap; all columns (power, surface temperature, "
             f"transports) in {out / 'schedule.csv'}; figure {out / 'schedule.png'}"))
     printer.finish()
+    _pass_warnings(out, rows)
+
+
+def _pass_warnings(out: Path, rows: list[dict], more: list | None = None) -> None:
+    """The passes' warnings (each pass's summary.json in ``OUT/<case>``; ``more``: (pass,
+    warnings) of a pass without a row, the one that failed), each text once on stderr with the
+    passes that have it (the negative gaps' warnings of schedule.json are in the progress
+    lines already)."""
+    print_warnings([(r["name"], run_warnings(out / r["case"])) for r in rows if r.get("case")]
+                   + (more or []))
 
 
 def _schedule_table(sch, rows: list[dict]) -> ResultTable:

@@ -47,8 +47,9 @@ def validate(
     schema (type, unit, allowed range) and the rules between the keys.
 
     A case is printed resolved as TOML (the defaults filled in; the derived figures with
-    their units in a last comment line); a schedule's passes and a study's combinations are
-    listed. Exit code 0 when valid, 2 when not, each problem named by its field."""
+    their units in a comment line, then each plausibility warning a run would report in a
+    comment line of its own); a schedule's passes and a study's combinations are listed. Exit
+    code 0 when valid, 2 when not, each problem named by its field."""
     path = find_file(file, "validate", ("case", "schedule", "study"))
     try:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
@@ -74,6 +75,9 @@ def _case(path: Path) -> None:
     typer.echo(f"# derived: contact_length = {p.contact_length:.6g} m, bite_angle = "
                f"{p.bite_angle:.6g} rad, roll_surface_speed = {p.roll_surface_speed:.6g} m/s, "
                f"h_contact = {case.mesh.h:g} m, dt = {case.dt:.6g} s")
+    # what a run would report and go on with (config/plausibility.py), as TOML comments
+    for text in case.warnings():
+        typer.echo("# warning: " + str(text).replace("\n", "\n# "))
 
 
 def _schedule(path: Path) -> None:

@@ -295,7 +295,7 @@ def test_schedule_as_json_and_csv_has_every_figure_unrounded(tmp_path, mill):
 def test_run_as_csv_is_the_summary_in_si_units(tmp_path, monkeypatch):
     summary = {"exit_code": 0, "status": "steady", "roll_force": 7.61234567e6,
                "roll_torque": 123456.789, "forward_slip": 0.0361441234, "converged": True,
-               "neutral_angle": float("nan")}
+               "a_f": float("nan")}
     monkeypatch.setattr(passes, "run_case", lambda *a, **k: summary)
     r = _cli("run", "thin_strip", "--out", str(tmp_path), "--format", "csv")
     assert r.exit_code == 0, r.output
@@ -303,7 +303,7 @@ def test_run_as_csv_is_the_summary_in_si_units(tmp_path, monkeypatch):
     assert float(rows["roll_force"]["value"]) == 7.61234567e6
     assert rows["roll_force"]["unit"] == "N/m" and rows["roll_torque"]["unit"] == "N m/m"
     assert float(rows["forward_slip"]["value"]) == 0.0361441234
-    assert rows["neutral_angle"]["value"] == ""                      # NaN: no figure
+    assert rows["a_f"]["value"] == ""                                # NaN: no figure
     assert "running thin_strip" in r.stderr and "running" not in r.stdout
     r = _cli("run", "thin_strip", "--out", str(tmp_path), "--format", "json")
     (table,) = json.loads(r.stdout)
