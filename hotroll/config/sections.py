@@ -214,7 +214,9 @@ class SolverConfig(Section):
                                                     '"newton" or "picard"')
     tolerance: float = field(1e-5, "nonlinear tolerance (Newton update / roll speed)", "",
                               "in (0, 0.1]", gt=0, le=0.1)
-    max_iterations: int = field(20, "nonlinear iterations per step", "", "an integer >= 1", ge=1)
+    max_iterations: int | None = field(
+        None, "nonlinear iterations per step (transient) or per continuation stage (steady); "
+        "omit: 20 transient, 30 steady", "", "an integer >= 1", ge=1)
     end_time: PosFloat | None = field(None, "simulated time (omit: automatic)", "s", "> 0")
     time_step: Literal["h/6"] | PosFloat = field(
         "h/6", 'time step ("h/6": dt = h_contact/6)', "s", '"h/6" or a number > 0')

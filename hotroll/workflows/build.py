@@ -10,7 +10,7 @@ from hotroll.model.material import NortonHoff
 from hotroll.model.roll_elastic import FlatteningRoll, RollElasticity
 from hotroll.solvers.problem import Problem
 from hotroll.solvers.settling import default_end_time
-from hotroll.solvers.steady_settings import SteadySettings
+from hotroll.solvers.steady_settings import SteadySettings, stage_iterations
 from hotroll.solvers.transient import TransientSettings
 
 #: Two dips of a flattened roll's surface less than this share of the exit half-thickness
@@ -67,7 +67,7 @@ def build_model(case: Case):
         model = replace(model, rp=shaped, roll=roll)
     settings = TransientSettings(
         dt=case.dt, end_time=end_time, nonlinear=sv.nonlinear, tol=sv.tolerance,
-        max_it=sv.max_iterations, steady_tol=sv.steady_tolerance, max_steps=sv.max_steps,
+        max_it=sv.max_iterations or 20, steady_tol=sv.steady_tolerance, max_steps=sv.max_steps,
         wall_time_limit=sv.wall_time_limit, checkpoint_every=sv.checkpoint_every,
         contact_tol=contact_tolerance(rp, case.dt),
         a_f=case.friction.a_f_rule,
@@ -79,7 +79,7 @@ def steady_settings(case: Case):
     """Settings of the direct steady solver (same a_f rule, tolerance and free-surface model)."""
     sv = case.solver
     return SteadySettings(
-        tol=sv.tolerance, max_it=max(sv.max_iterations, 30),
+        tol=sv.tolerance, max_it=stage_iterations(sv.max_iterations),
         a_f=case.friction.a_f_rule,
         a_f_max=case.friction.a_f_max, upstream=sv.steady_entry_length,
         downstream=sv.steady_exit_length, free_surface=case.plate.free_surface,

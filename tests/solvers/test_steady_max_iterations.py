@@ -11,14 +11,7 @@ from casebuild import EXAMPLE1_COARSE, build_case, steady_run
 
 from hotroll.workflows.build import steady_settings
 
-#: The fix needs two files outside this test's reach (issue 51 item 7, the report of the
-#: session): config/sections.py (max_iterations: int | None, default None) and
-#: workflows/build.py (the steady solver takes the given value, 30 when omitted).
-PENDING = pytest.mark.xfail(strict=True, reason="solver.max_iterations < 30 is raised to 30 "
-                            "by workflows/build.py: steady_settings (issue 51 item 7, pending)")
 
-
-@PENDING
 @pytest.mark.parametrize("given", [1, 5, 29])
 def test_a_limit_below_30_reaches_the_steady_solver(given):
     case = build_case(EXAMPLE1_COARSE, **{"solver.max_iterations": given})
@@ -31,7 +24,6 @@ def test_a_limit_of_30_or_more_reaches_the_steady_solver(given):
     assert steady_settings(case).max_it == given
 
 
-@PENDING
 def test_the_newton_solves_stop_at_the_limit_given():
     """Example 1 on the coarse mesh needs more than 2 Newton iterations from the kinematic
     guess; with ``max_iterations = 2`` and no coupling rounds (``max_outer = 0``: the coupled
