@@ -53,6 +53,22 @@ def mill_setup(summary: dict, exit_thickness: float, modulus: float | None) -> d
             "gap_setting": exit_thickness - stretch}
 
 
+def negative_gap_warning(gap_setting: float | None, stretch: float | None) -> str | None:
+    """What a negative gap to set means (``results/engineering.mill_setup``: S = h1 - F/M),
+    or None where the gap is positive or not reported."""
+    if gap_setting is None or stretch is None or not gap_setting < 0.0:
+        return None
+    h1 = gap_setting + stretch
+    return (f"the gap to set is negative, S = h1 - F/M = {1e3 * gap_setting:.3f} mm: the "
+            f"stand's stretch under the roll force, F/M = {1e3 * stretch:.3f} mm (the whole "
+            f"stand's spring, the rolls' flattening included as far as the mill modulus counts "
+            f"it), exceeds the exit thickness h1 = {1e3 * h1:.3f} mm. At no load the rolls "
+            f"would have to be pressed {1e3 * -gap_setting:.3f} mm into each other: a "
+            f"preloaded stand, set by its force or from a zero taken under load (kiss "
+            f"rolling), not a gap that opens; pass.roll_gap takes a gap > 0 only, so give this "
+            f"pass by its exit_thickness")
+
+
 def display(key: str, value, unit: str | None = None):
     """(text, unit) for a person: forces in MN/m (MN), torques in kN m/m (kN m), powers in
     kW/m (kW), stresses in MPa, where the magnitude calls for it; SI otherwise. ``unit``: the

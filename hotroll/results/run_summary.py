@@ -11,7 +11,7 @@ import numpy as np
 
 from hotroll.config.case import Case
 from hotroll.fem import quantities as Q
-from hotroll.results.engineering import gap_means, mill_setup, width_totals
+from hotroll.results.engineering import gap_means, mill_setup, negative_gap_warning, width_totals
 from hotroll.results.neutral import decide
 from hotroll.results.outcome import conservation_problem, exit_code, leak_to_slip
 from hotroll.results.output import vertex_fields, write_csv, write_json, write_npz, write_vtk
@@ -135,6 +135,9 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
                                 if summary.get("contact_length") else None)
     summary.update(width_totals(summary, case.pass_.width))
     summary.update(mill_setup(summary, case.pass_.exit_thickness, case.pass_.mill_modulus))
+    gap_warning = negative_gap_warning(summary.get("gap_setting"), summary.get("mill_stretch"))
+    if gap_warning is not None:
+        summary["warnings"] = [*(summary.get("warnings") or []), f"pass.mill_modulus: {gap_warning}"]
     summary["temperature"] = case.plate.temperature if uses_temperature(case) else None
 
     profile = exit_profiles(run)

@@ -28,6 +28,7 @@ from pathlib import Path
 from typing import Callable
 
 from hotroll.config.case import Case, CaseError
+from hotroll.results.engineering import negative_gap_warning  # noqa: F401 (re-exported)
 from hotroll.results.outcome import EXIT_CODES, exit_code
 from hotroll.results.output import write_json, write_text
 from hotroll.results.summary import Summary
@@ -189,19 +190,3 @@ def _finish(case: Case, out: Path, last, h1: float, n_solves: int,
     write_json(Path(out) / "summary.json", typed.to_dict())
     write_text(Path(out) / "case.toml", case.to_toml())
     return typed
-
-
-def negative_gap_warning(gap_setting: float | None, stretch: float | None) -> str | None:
-    """What a negative gap to set means (``results/engineering.mill_setup``: S = h1 - F/M),
-    or None where the gap is positive or not reported."""
-    if gap_setting is None or stretch is None or not gap_setting < 0.0:
-        return None
-    h1 = gap_setting + stretch
-    return (f"the gap to set is negative, S = h1 - F/M = {1e3 * gap_setting:.3f} mm: the "
-            f"stand's stretch under the roll force, F/M = {1e3 * stretch:.3f} mm (the whole "
-            f"stand's spring, the rolls' flattening included as far as the mill modulus counts "
-            f"it), exceeds the exit thickness h1 = {1e3 * h1:.3f} mm. At no load the rolls "
-            f"would have to be pressed {1e3 * -gap_setting:.3f} mm into each other: a "
-            f"preloaded stand, set by its force or from a zero taken under load (kiss "
-            f"rolling), not a gap that opens; pass.roll_gap takes a gap > 0 only, so give this "
-            f"pass by its exit_thickness")

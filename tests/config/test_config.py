@@ -162,10 +162,13 @@ def test_cli_validate_ok():
     # Example 2 (R 0.6 m, 0.5 -> 0.4 m, omega pi/6, C2): draft 0.05 m a roll, so the bite
     # angle is acos(11/12), the projected contact R sin(alpha) = 0.05 sqrt(23) m, U = 0.1 pi
     # m/s, h = 4.2 mm and dt = h/6 = 0.7 ms (by hand)
-    assert result.output.splitlines()[-1] == (
+    derived = [line for line in result.output.splitlines() if line.startswith("# derived:")]
+    assert derived == [(
         f"# derived: contact_length = {0.05 * math.sqrt(23):.6g} m, bite_angle = "
         f"{math.acos(11 / 12):.6g} rad, roll_surface_speed = {0.1 * math.pi:.6g} m/s, "
-        f"h_contact = 0.0042 m, dt = 0.0007 s")
+        f"h_contact = 0.0042 m, dt = 0.0007 s")]
+    # Example 2 is nondimensional (K = 1 Pa s^m): said after the derived line (plausibility)
+    assert "# warning: material: the flow stress at the pass's estimated state" in result.output
 
 
 def test_cli_validate_bad(tmp_path):
@@ -432,11 +435,11 @@ def test_cli_sweep_table_names_and_warm_starts(tmp_path, monkeypatch):
     assert seen[0][2] is not None and seen[0][2] is seen[1][2]          # one Sweep, warm
     assert f"sweep table: {tmp_path / 'sweep.csv'}" in r.output
     head, first, second = (tmp_path / "sweep.csv").read_text().splitlines()
-    assert head == ("param,value,status,exit_code,converged,neutral_angle,roll_force,"
+    assert head == ("param,value,status,exit_code,converged,neutral_angle,neutral,roll_force,"
                     "roll_torque,roll_power,forward_slip,a_f,nonlinear_iterations,wall_time_s,"
                     "warm_start_from,warm_start_failed")
-    assert first == "friction.a_f,5.0,steady,0,,,1.5,,,,,,,x,"
-    assert second.startswith("friction.a_f,estimate,steady,7,,,3.0,")
+    assert first == "friction.a_f,5.0,steady,0,,,,1.5,,,,,,,x,"
+    assert second.startswith("friction.a_f,estimate,steady,7,,,,3.0,")
     seen.clear()
     r = runner.invoke(app, ["sweep", str(example_path("example1")), "--param", "material.m",
                             "--values", "0.2", "--out", str(tmp_path / "c"), "--cold",
