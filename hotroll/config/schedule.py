@@ -45,6 +45,7 @@ from hotroll.config.case import (
     check_profile,
 )
 from hotroll.config.microstructure import MicrostructureConfig, check_schedule
+from hotroll.config.sections import preloaded_gap
 from hotroll.config.thermal import ThermalConfig
 from hotroll.model.profile import ThicknessProfile
 
@@ -88,7 +89,8 @@ class MillConfig(Section):
         "a mill log; the first pass's back and the last pass's front tension stay given)", "",
         '"given" or "from_speeds"')
     flux_tolerance: float = field(
-        1e-4, "from_speeds: largest relative difference of the stands' exit mass fluxes", "",
+        1e-4, "from_speeds: largest relative difference between stand k's exit mass flux and "
+        "stand k+1's inlet flux", "",
         "in (0, 0.01]", gt=0, le=0.01)
     mass_flow_tolerance: float = field(
         1e-3, "mass_flow: relative flux difference between stands at which a stand's speed "
@@ -128,6 +130,13 @@ class PassEntry(Section):
         None, "the stand's modulus M (reports the stretch F/M and the gap to set; needs "
         "strip.width)", "N/m", "> 0")
     roll_surface_speed: PosFloat | None = field(None, "roll surface speed", "m/s", "> 0")
+
+    @field_validator("roll_gap", mode="before")
+    @classmethod
+    def _gap_opens(cls, v: Any) -> Any:
+        """A gap <= 0 is refused with what it means (``sections.preloaded_gap``)."""
+        return preloaded_gap(v, "roll_gap")
+
     roll_angular_velocity: PosFloat | None = field(None, "roll angular velocity", "rad/s",
                                                     "> 0")
     back_tension: float = field(0.0, "back tension", "Pa", ">= 0", ge=0)

@@ -8,7 +8,15 @@ from typing import Annotated, Any, Literal
 
 from pydantic import Field, PrivateAttr, StrictBool, field_validator, model_validator
 
-from hotroll.config.base import MESH_TABLE, MeshName, PosFloat, Problems, Section, field
+from hotroll.config.base import (
+    MESH_TABLE,
+    MeshName,
+    PosFloat,
+    Problems,
+    Section,
+    field,
+    with_units,
+)
 from hotroll.model.geometry import RollPass
 from hotroll.model.profile import ProfileError, ThicknessProfile
 
@@ -16,6 +24,20 @@ from hotroll.model.profile import ProfileError, ThicknessProfile
 #: it the geometry's squares overflow (R = 1e300 m) or the roll position swamps the contact
 #: length in double precision (roll_axis_x = 1e300 m: l_c = 0); mills are metres in size.
 MAX_LENGTH = 1e3
+
+
+def preloaded_gap(v: Any, key: str) -> Any:
+    """``v`` unless it is a number <= 0: a no-load gap that does not open is a preloaded stand
+    (the rolls pressed into each other at no load, as the negative gap to set a run reports
+    means: results/engineering.negative_gap_warning); refused saying so."""
+    if isinstance(v, str):
+        v = with_units(v, "m")
+    if isinstance(v, (int, float)) and not isinstance(v, bool) and v <= 0:
+        raise Problems([f"{key}: {v:g} m: a no-load gap <= 0 is a preloaded stand (the rolls "
+                        f"pressed into each other at no load); the exit thickness is found from "
+                        f"a gap that opens (> 0): give this pass by its exit_thickness, whose "
+                        f"report then says the (negative) gap to set"])
+    return v
 
 
 class PassConfig(Section):
@@ -55,8 +77,16 @@ class PassConfig(Section):
         the case is checked with: the largest draft the stand can give)."""
         if isinstance(data, dict) and data.get("roll_gap") is not None \
                 and data.get("exit_thickness") is None:
-            data = {**data, "exit_thickness": data["roll_gap"]}
+            gap = preloaded_gap(data["roll_gap"], "pass.roll_gap")
+            if isinstance(gap, (int, float)) and not isinstance(gap, bool):
+                data = {**data, "exit_thickness": gap}
         return data
+
+    @field_validator("roll_gap", mode="before")
+    @classmethod
+    def _gap_opens(cls, v: Any) -> Any:
+        """A gap <= 0 is refused with what it means (``preloaded_gap``)."""
+        return preloaded_gap(v, "pass.roll_gap")
 
     @model_validator(mode="after")
     def _check_geometry(self) -> PassConfig:

@@ -233,7 +233,7 @@ class Summary(Mapping):
                                 "exit thickness the search found (the measured one: "
                                 "`exit_thickness`)", group="Pass", when="gap")
     gauge_solves: int = _f(None, "FE solves for the gap", "solves of the pass at trial exit "
-                           "thicknesses until h1 - S - F/M <= 1e-4 S", group="Solver",
+                           "thicknesses until |h1 - S - F/M| <= 1e-4 h1", group="Solver",
                            when="gap")
     roll_model: str = _f(None, "roll model", "`hitchcock` or `elastic` (`[roll] model`)",
                          group="Pass", when="roll")

@@ -28,7 +28,7 @@ UNITS: dict[str, str] = {
     "kinetics_extrapolated_share": "-",
     # a tandem's tensions (schedule.csv, schedule.json)
     "back_tension": "Pa", "front_tension": "Pa", "interstand_tensions": "Pa",
-    "flux_mismatch": "-", "tension_runs": "-",
+    "flux_mismatch": "-", "tension_runs": "-", "stand_flux_error": "-",
     # a schedule study's own columns
     "passes": "-", "max_roll_force": "N/m", "total_roll_power": "W/m",
 }

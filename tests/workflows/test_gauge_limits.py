@@ -143,3 +143,30 @@ def test_a_single_run_with_a_negative_gap_to_set_warns(tmp_path):
     assert s["gap_setting"] < 0.0
     assert (f'pass.mill_modulus: {negative_gap_warning(s["gap_setting"], s["mill_stretch"])}'
             in (s.get("warnings") or []))
+
+
+@pytest.mark.parametrize("gap", [0.0, -0.00017, "-0.17 mm"])
+def test_a_gap_that_does_not_open_is_refused_saying_it_is_a_preloaded_stand(gap):
+    """A no-load gap <= 0 (what a run's negative gap to set means) is refused before anything
+    runs, in a case and in a schedule, with the reason and the fix (exit_thickness)."""
+    import tomllib
+
+    from hotroll.config.case import CaseError
+    from hotroll.config.schedule import schedule_from_dict
+    from hotroll.examples import example_path, schedule_path
+
+    d = tomllib.loads(example_path("thin_strip").read_text())
+    d["pass"].pop("exit_thickness")
+    d["pass"].update(roll_gap=gap, mill_modulus=4e9, width=1.0)
+    with pytest.raises(CaseError) as e:
+        case_from_dict(d)
+    assert len(e.value.problems) == 1
+    assert e.value.problems[0].startswith("pass.roll_gap: ")
+    assert "preloaded stand" in e.value.problems[0] and "exit_thickness" in e.value.problems[0]
+    s = tomllib.loads(schedule_path("finishing_mill").read_text())
+    s["pass"][1].pop("exit_thickness")
+    s["pass"][1].update(roll_gap=gap, mill_modulus=4e9)
+    with pytest.raises(CaseError) as e:
+        schedule_from_dict(s)
+    assert [p.split(":")[0] for p in e.value.problems] == ["pass[2].roll_gap"]
+    assert "preloaded stand" in e.value.problems[0]
