@@ -1,18 +1,20 @@
-"""hotroll as PyRolL's model of flat roll passes (issues 17, 32): ``import hotroll.pyroll``.
+"""hotroll as PyRolL's model of flat roll passes (issues 17, 32, 51): ``import hotroll.pyroll``.
 
 Importing this module registers hook functions with pyroll-core (3.1), as any PyRolL plugin.
 hotroll solves a ``RollPass`` whose groove is a ``FlatGroove`` and for which it has its inputs
-(a roll speed and a flow stress, ``handles``): the roll force, the roll torque, the forward
-slip, the neutral angle, the contact length, the flattened radius (``flattened_radius``,
-``flattening_ratio``: the names of pyroll-hitchcock-roll-flattening), the exit velocity, strain
-and temperature come from one steady thermo-mechanical hotroll solve of the pass, and the exit
-width is the entry width (plane strain: no spread). Every other
-unit, and a flat pass without those inputs (logged once), is left to PyRolL's own models and
-other plugins: every hook returns None there, and nothing else changes. A flat strip entering a
-flat pass hotroll solves is not turned by 90 degrees (PyRolL's rotation rule for flat after
-flat is an edging pass's). With ``Config.TRANSPORT_COOLING`` a plain ``Transport`` after a
-hotroll pass cools the strip's mean temperature with hotroll's interpass model
-(``model/interpass.py``).
+(a roll speed, a flow stress and a flat strip entering, ``handles``): the roll force, the roll
+torque, the forward slip, the neutral angle, the contact length, the flattened radius
+(``flattened_radius``, ``flattening_ratio``: the names of pyroll-hitchcock-roll-flattening),
+the exit velocity, strain and temperature come from one steady thermo-mechanical hotroll solve
+of the pass, and the exit width is the entry width (plane strain: no spread). Every other
+unit, and a flat pass without those inputs (logged once at WARNING, with the reason), is left
+to PyRolL's own models and other plugins: every hook returns None there, and nothing else
+changes. A flat strip entering a flat pass hotroll solves is not turned by 90 degrees (PyRolL's
+rotation rule for flat after flat is an edging pass's). The temperatures hotroll sets on out
+profiles (a pass's, a transport's after it, a sequence's: its last unit's) are
+``hotroll/pyroll_out_profile.py``'s; the flow stress a pass is rolled with (a constant
+``flow_stress`` on the profile, a ``flow_stress_function``, a hotroll grade) is
+``hotroll/pyroll_flow_stress.py``'s.
 
 PyRolL's conventions (docs/notes/pyroll-api.md): SI, heights are full thicknesses, the roll
 force is the force on one roll over the whole width (N), the torque that of one roll (N m),
@@ -26,10 +28,12 @@ What the FE pass takes from PyRolL:
 - the roll's ``elastic_modulus`` and ``poissons_ratio`` (an elastic roll; ``Config.ROLL``
   the case's [roll] otherwise); the in profile's ``elastic_modulus`` and ``poissons_ratio``
   (the strip's, in the contact; else its grade's E(T), or rigid-plastic without a grade);
-- the strip: ``in_profile.temperature``, ``in_profile.strain``; the flow stress
-  ``in_profile.flow_stress_function`` (e.g. pyroll-freiberg-flow-stress) as a Hensel-Spittel
-  law fitted over the pass's range (``model/flow_stress_fit.py``; the fit's error is in
-  ``RollPass.hotroll_result``), or else the hotroll grade ``in_profile.material`` names;
+- the strip: ``in_profile.temperature``, ``in_profile.strain``; the flow stress: a constant
+  ``in_profile.flow_stress`` (Pa) as a Norton-Hoff law equal to it at the pass's mean strain
+  rate (m = ``Config.FLOW_STRESS_RATE_EXPONENT``), else ``in_profile.flow_stress_function``
+  (e.g. pyroll-freiberg-flow-stress) as a Hensel-Spittel law fitted over the pass's range
+  (``model/flow_stress_fit.py``), else the hotroll grade ``in_profile.material`` names (what
+  was used, with K and m or the fit's error, is ``RollPass.hotroll_result["flow_stress_fit"]``);
   ``density``, ``specific_heat_capacity``, ``thermal_conductivity`` (else ``Config``);
 - friction ``RollPass.coulomb_friction_coefficient`` (else ``Config.FRICTION``), roll
   temperature ``Roll.temperature`` and ``Roll.contact_heat_transfer_coefficient`` (the names
@@ -55,10 +59,10 @@ try:
 except ImportError as e:      # pragma: no cover - the extra is not installed
     raise ImportError("hotroll.pyroll needs pyroll-core: pip install 'hotroll[pyroll]'") from e
 
+from hotroll import pyroll_flow_stress as _flow
+from hotroll import pyroll_inputs as _in
 from hotroll.config.case import Case, case_from_dict
-from hotroll.model.flow_stress_fit import fit_hensel_spittel
-from hotroll.model.grades import list_grades
-from hotroll.model.interpass import cool, enthalpy_mean
+from hotroll.model.interpass import enthalpy_mean
 from hotroll.model.profile import ThicknessProfile
 from hotroll.model.thermal_properties import ThermalProperties
 from hotroll.workflows.runner import run_case
@@ -75,6 +79,8 @@ class Config:
                      "emissivity": 0.8, "ambient_temperature": 293.15}
     PROPERTIES: dict = {"density": 7600.0, "specific_heat": 650.0, "conductivity": 28.0}
     OUTPUT_DIR: Path | None = None    # each FE run into OUTPUT_DIR/<label>; None: a temp dir
+    #: a plain Transport after a hotroll pass cools by hotroll's interpass model, unless another
+    #: plugin gives transports a temperature (pyroll-integral-thermal: its model is kept)
     TRANSPORT_COOLING: bool = True
     PLATE_CONTACT_LENGTHS: float = 5.0
     #: the pass cases' [roll] (model, youngs_modulus, ...); {}: rigid, or elastic where the
@@ -83,6 +89,12 @@ class Config:
     #: a recrystallisation set's name (e.g. "hodgson_gibbs_cmn") runs hotroll's austenite
     #: kinetics through the sequence (``hotroll/pyroll_microstructure.py``); None: off
     MICROSTRUCTURE: str | None = None
+    #: m of the Norton-Hoff law a constant ``flow_stress`` on the profile is rolled as
+    #: (``hotroll/pyroll_flow_stress.py``): sigma equals it at the pass's mean strain rate
+    FLOW_STRESS_RATE_EXPONENT: float = 0.1
+    #: the least share of its bounding box a profile's cross-section fills for hotroll to roll
+    #: it as a flat strip (a rectangle: 1; a round 0.79, a hexagon 0.75, a diamond 0.5)
+    MIN_RECTANGULARITY: float = 0.9
 
 
 _LOG = logging.getLogger("hotroll.pyroll")
@@ -125,40 +137,38 @@ def is_flat(rp) -> bool:
     return isinstance(getattr(rp.roll, "groove", None), FlatGroove)
 
 
-def _value(obj, name: str, default):
-    """A hook's value if it can be computed, else ``default``."""
-    try:
-        return getattr(obj, name) if obj.has_value(name) else default
-    except (AttributeError, ValueError, TypeError):
-        return default
+_value = _in.value     # a hook's value if it can be computed, else the default
 
 
 def _missing(rp, profile=None) -> str | None:
-    """What hotroll lacks to solve the flat pass ``rp`` (None: it solves it): a roll speed and
-    a flow stress (the profile's flow_stress_function or a hotroll grade as its material).
-    ``profile``: the strip entering (default the pass's in profile)."""
-    if _roll_speed(rp) is None:
+    """What hotroll lacks to solve the flat pass ``rp`` (None: it solves it): a roll speed, a
+    temperature, a flow stress (``pyroll_flow_stress.missing``) and a flat strip (filling at
+    least ``Config.MIN_RECTANGULARITY`` of its bounding box). ``profile``: the strip entering
+    (default the pass's in profile)."""
+    if _in.roll_speed(rp) is None:
         return ("no roll speed (the roll's rotational_frequency, surface_velocity or "
                 "working_velocity, or the pass's velocity)")
     ip = rp.in_profile if profile is None else profile
-    if _value(ip, "flow_stress_function", None) is None and _grade(ip) is None:
-        return (f"no flow_stress_function on the profile and its material "
-                f"{_value(ip, 'material', None)!r} is no hotroll grade "
-                f"({', '.join(list_grades())})")
-    return None
+    if _value(ip, "temperature", None) is None:
+        return "no temperature (K) on the profile"
+    why = _flow.missing(ip)
+    if why is not None:
+        return why
+    return _in.not_a_strip(ip, Config.MIN_RECTANGULARITY)
 
 
 def handles(rp) -> bool:
     """Whether hotroll solves this pass: a flat one with its inputs (``_missing``). Others are
     left to PyRolL's own models and plugins (every hook returns None); a flat pass left so is
-    logged once, with the reason."""
+    logged once at WARNING, with the reason."""
     if not is_flat(rp):
         return False
     why = _missing(rp)
     if why is not None:
         if not rp.__dict__.get("_hotroll_told"):
             rp.__dict__["_hotroll_told"] = True
-            _LOG.info("hotroll.pyroll: pass %r left to PyRolL: %s", rp.label, why)
+            _LOG.warning("hotroll.pyroll: flat pass %r left to PyRolL's own models: %s",
+                         rp.label, why)
         return False
     return True
 
@@ -172,78 +182,10 @@ def _properties(profile) -> ThermalProperties:
         float(_value(profile, "thermal_conductivity", props["conductivity"])))
 
 
-def _grade(profile) -> str | None:
-    names = _value(profile, "material", None)
-    names = [names] if isinstance(names, str) else list(names or [])
-    known = {g.lower(): g for g in list_grades()}
-    for n in names:
-        if str(n).lower() in known:
-            return known[str(n).lower()]
-    return None
-
-
-def _radius(rp) -> float:
-    """The rigid roll's radius (m): the working radius the user set, else the nominal one
-    (not PyRolL's working radius, which a flattening plugin raises to R')."""
-    roll = rp.roll
-    if roll.has_set("working_radius"):
-        return float(roll.working_radius)
-    return float(roll.nominal_radius)
-
-
-def _roll_speed(rp) -> float | None:
-    """The roll's surface speed (m/s) from what the user set: the roll's working_velocity,
-    rotational_frequency or surface_velocity, or the pass's velocity v, PyRolL's strip speed
-    at the neutral point, U cos(phi_n) (hotroll's phi_n of the last solve, rounded to 1e-9
-    rad: the pass is solved again until U settles); None if nothing is set."""
-    roll = rp.roll
-    R = _radius(rp)
-    if roll.has_set("working_velocity"):
-        return float(roll.working_velocity)
-    if roll.has_set("rotational_frequency"):
-        return 2.0 * math.pi * float(roll.rotational_frequency) * R
-    if roll.has_set("surface_velocity"):
-        return float(roll.surface_velocity) * R / float(roll.nominal_radius)
-    if rp.has_set("velocity"):
-        phi = round(rp.__dict__.get("_hotroll_neutral", 0.0), 9)
-        return float(rp.velocity) / math.cos(phi)
-    return None
-
-
-def _material(rp, T0: float, e0: float, h0: float, h1: float, U: float, lc: float):
-    """([material] table, fit description): the in profile's flow-stress function fitted, or
-    the hotroll grade its material names."""
-    ip = rp.in_profile
-    func = _value(ip, "flow_stress_function", None)
-    if func is not None:
-        # PyRolL asks a pass for its hooks dozens of times: the fit (343 calls of the
-        # function, ~4 ms) once per pass and box
-        fits = rp.__dict__.setdefault("_hotroll_fits", {})
-        box = (T0, e0, h0, h1, U, lc)
-        if box not in fits:
-            inc = 2.0 / math.sqrt(3.0) * math.log(h0 / h1)
-            rate = U / lc * inc
-            fit = fit_hensel_spittel(func, (e0, e0 + 1.5 * inc), (0.05 * rate, 4.0 * rate),
-                                     (max(T0 - 250.0, 300.0), T0 + 60.0))
-            table = {"law": "hensel-spittel", **{k: v for k, v in fit.law.params().items()
-                                                  if k not in ("m4", "m6", "m9")}}
-            fits[box] = (table, {"source": "in_profile.flow_stress_function",
-                                 "max_rel_error": fit.max_rel_error, "strain": fit.strain,
-                                 "strain_rate": fit.strain_rate,
-                                 "temperature": fit.temperature})
-        table, info = fits[box]
-        return dict(table), dict(info)
-
-    grade = _grade(ip)
-    if grade is None:
-        raise ValueError(f"hotroll.pyroll: pass {rp.label!r}: {_missing(rp)}")
-    return {"law": "hensel-spittel", "grade": grade}, {"source": f"hotroll grade {grade}"}
-
-
 def pass_case(rp) -> tuple[Case, dict]:
     """The hotroll case of a flat PyRolL roll pass and its flow-stress description."""
     ip = rp.in_profile
-    R = _radius(rp)
+    R = _in.radius(rp)
     h0, h1 = round(float(ip.height), 6), round(float(rp.height), 6)
     width = float(ip.width)
     if "vertical" in _value(ip, "classifiers", set()) and h0 > width:
@@ -251,11 +193,11 @@ def pass_case(rp) -> tuple[Case, dict]:
                          f"({h0:g} m high, {width:g} m wide): PyRolL turned it by 90 degrees "
                          f"before this flat pass; give the pass rotation=False (or put a "
                          f"Rotator(rotation=0) before it)")
-    U = round(_roll_speed(rp), 9)
+    U = round(_in.roll_speed(rp), 9)
     T0 = round(float(ip.temperature), 2)
     e0 = round(float(_value(ip, "strain", 0.0)), 6)
     lc = math.sqrt(R * 0.5 * (h0 - h1))
-    material, fit = _material(rp, T0, e0, h0, h1, U, lc)
+    material, fit = _flow.material(rp, T0, e0, h0, h1, U, lc, Config.FLOW_STRESS_RATE_EXPONENT)
     props = _properties(ip)
     material.update(density=props.density, specific_heat=props.specific_heat,
                     conductivity=props.conductivity)
@@ -280,37 +222,10 @@ def pass_case(rp) -> tuple[Case, dict]:
         "solver": {"method": "steady", **Config.SOLVER},
         "output": {"figures": False, "vtk": False},
         "thermal": thermal,
-        "roll": _roll_table(rp.roll),
-        "contact": _contact_table(ip),
+        "roll": _in.roll_table(rp.roll, Config.ROLL),
+        "contact": _in.contact_table(ip),
     }
     return case_from_dict(d), fit
-
-
-def _contact_table(ip) -> dict:
-    """The case's [contact]: the strip's elastic_modulus and poissons_ratio where the in
-    profile gives them (its elastic exit zone, docs/theory.md 1e); else the grade's E(T), or
-    rigid-plastic for a flow_stress_function without a grade (``strip_youngs_modulus =
-    "auto"``)."""
-    E, nu = _value(ip, "elastic_modulus", None), _value(ip, "poissons_ratio", None)
-    table = {}
-    if E is not None:
-        table["strip_youngs_modulus"] = float(E)
-    if nu is not None:
-        table["strip_poissons_ratio"] = float(nu)
-    return table
-
-
-def _roll_table(roll) -> dict:
-    """The case's [roll]: ``Config.ROLL`` with the Roll's elastic_modulus and poissons_ratio
-    where PyRolL gives them (the model then elastic unless ``Config.ROLL`` names one)."""
-    table = dict(Config.ROLL)
-    E, nu = _value(roll, "elastic_modulus", None), _value(roll, "poissons_ratio", None)
-    if E is not None:
-        table["youngs_modulus"] = float(E)
-        table.setdefault("model", "elastic")
-    if nu is not None:
-        table["poissons_ratio"] = float(nu)
-    return table
 
 
 def solve(rp) -> dict:
@@ -416,7 +331,7 @@ def flattened_radius(self):
     rp = self.roll_pass
     if not handles(rp):
         return None
-    return solve(rp).get("roll_equivalent_radius", _radius(rp))
+    return solve(rp).get("roll_equivalent_radius", _in.radius(rp))
 
 
 @BaseRollPass.Roll.flattening_ratio(tryfirst=True)
@@ -424,7 +339,7 @@ def flattening_ratio(self):
     rp = self.roll_pass
     if not handles(rp):
         return None
-    return solve(rp).get("roll_equivalent_radius", _radius(rp)) / _radius(rp)
+    return solve(rp).get("roll_equivalent_radius", _in.radius(rp)) / _in.radius(rp)
 
 
 @RollPass.OutProfile.velocity(tryfirst=True)
@@ -460,67 +375,8 @@ def flat_strip_stays_flat(self: Rotator):
     return None
 
 
-class _SetValues:
-    """A PyRolL post-processor (``Unit.post_processors``): sets values on the unit's out
-    profile as it leaves (the temperature hotroll computed; PyRolL hands on only the values
-    set on a profile)."""
+from hotroll import pyroll_microstructure as _micro  # noqa: E402  (they need the above)
+from hotroll import pyroll_out_profile as _out  # noqa: E402
 
-    label = "hotroll"
-
-    def __init__(self, unit, values: dict):
-        self.values = values
-        for key, value in values.items():
-            setattr(unit.out_profile, key, value)
-
-    def solve(self, profile):
-        for key, value in self.values.items():
-            setattr(profile, key, value)
-        return profile
-
-
-def _after_pass(unit):
-    """A flat pass hotroll solves leaves at the FE outlet's mean temperature."""
-    if isinstance(unit, RollPass) and handles(unit):
-        return _SetValues(unit, {"temperature": solve(unit)["outlet_temperature_mean"]})
-    return None
-
-
-def _after_transport(unit):
-    """A plain Transport after a pass hotroll solved cools by hotroll's interpass model
-    (``Config.TRANSPORT_COOLING``); other transports (cooling pipes, furnaces, ...) and
-    those after other passes keep PyRolL's models."""
-    if type(unit) is not Transport or not Config.TRANSPORT_COOLING:
-        return None
-    try:
-        before = unit.prev_of(RollPass)
-    except (ValueError, IndexError, AttributeError):
-        return None
-    if not handles(before):
-        return None
-    T = transport_temperature(unit)
-    return None if T is None else _SetValues(unit, {"temperature": T})
-
-
-def transport_temperature(tr) -> float | None:
-    """hotroll's interpass cooling of a uniform strip at the in profile's mean temperature
-    over the transport's duration: 1D conduction, convection and radiation
-    (``model/interpass.cool``); None without a temperature or a duration."""
-    ip = tr.in_profile
-    T0, duration = _value(ip, "temperature", None), _value(tr, "duration", None)
-    if T0 is None or duration is None:
-        return None
-    p = _properties(ip)
-    htc = float(_value(tr, "convection_heat_transfer_coefficient", Config.THERMAL["htc_air"]))
-    eps = float(_value(tr, "relative_radiation_coefficient", Config.THERMAL["emissivity"]))
-    ambient = float(_value(tr, "environment_temperature", Config.THERMAL["ambient_temperature"]))
-    res = cool([0.0], [float(T0)], 0.5 * float(ip.height), float(duration), p, htc, eps,
-               ambient)
-    return res.mean
-
-
-RollPass.post_processors.append(_after_pass)
-Transport.post_processors.append(_after_transport)
-
-from hotroll import pyroll_microstructure as _micro  # noqa: E402  (it needs the above)
-
+_out.install(sys.modules[__name__])
 _micro.install(sys.modules[__name__])

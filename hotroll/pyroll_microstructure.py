@@ -28,8 +28,9 @@ With it on:
 
 Who owns the values when pyroll-jmak-recrystallization is loaded too: with MICROSTRUCTURE on,
 hotroll sets the values above on the out profiles of the passes it solves and of the plain
-transports after them, as post-processors (``Unit.post_processors``, as the temperature): a
-value set on a profile wins over every hook function, whatever the plugins' import order and
+transports after them, as post-processors (``Unit.post_processors``, as the temperature;
+``hotroll/pyroll_out_profile.py``), and on a sequence's out profile when its last unit got them:
+a value set on a profile wins over every hook function, whatever the plugins' import order and
 ``tryfirst``. Everywhere else (MICROSTRUCTURE off, a grooved pass, a cooling pipe, a transport
 after a pass hotroll did not solve) PyRolL's plugin keeps them. Its own unit hooks
 (``recrystallization_mechanism``, ``Unit.recrystallized_fraction``, ...) are not hotroll's and
@@ -51,6 +52,7 @@ except ImportError as e:      # pragma: no cover - the extra is not installed
     raise ImportError("hotroll.pyroll_microstructure needs pyroll-core: pip install "
                       "'hotroll[pyroll]'") from e
 
+from hotroll import pyroll_out_profile as out_profile
 from hotroll.model.interpass import cool
 from hotroll.model.microstructure import get_set
 from hotroll.model.microstructure.base import RecrystallisationSet
@@ -202,7 +204,8 @@ def _chain(tr):
 def cooling_history(rp, chain) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(times s, T[i, node] K, node y m) of the strip from the pass's exit temperature profile
     through the transports ``chain`` one after the other (``interpass.cool``, record=True,
-    each with its own duration and air data, as ``hotroll.pyroll.transport_temperature``)."""
+    each with its own duration and air data, as
+    ``hotroll.pyroll_out_profile.transport_temperature``)."""
     prof = _P.solve(rp)["exit_profile"]
     y, T = np.asarray(prof["eta"], float), np.asarray(prof["temperature"], float)
     half = 0.5 * float(rp.out_profile.height)
@@ -285,18 +288,16 @@ def pass_values(rp) -> dict | None:
             "hotroll_recrystallized_fraction_profile": [0.0] * eta.size}
 
 
-def _after_pass(unit):
+def _pass_values(unit) -> dict | None:
     if not isinstance(unit, RollPass) or _P.Config.MICROSTRUCTURE is None:
         return None
-    values = pass_values(unit)
-    return None if values is None else _P._SetValues(unit, values)
+    return pass_values(unit)
 
 
-def _after_transport(unit):
+def _transport_values(unit) -> dict | None:
     if type(unit) is not Transport or _P.Config.MICROSTRUCTURE is None:
         return None
-    values = transport_values(unit)
-    return None if values is None else _P._SetValues(unit, values)
+    return transport_values(unit)
 
 
 def _pass_state_hook(self: RollPass):
@@ -313,15 +314,16 @@ def _microstructure_hook(self: Transport):
 
 def install(plugin) -> None:
     """Register with ``plugin`` (the ``hotroll.pyroll`` module, which calls this once when it
-    is imported): its Config, solve, handles and post-processor class."""
+    is imported): its Config, solve and handles; the values through
+    ``hotroll.pyroll_out_profile.register`` (post-processors, and a sequence's out profile)."""
     global _P
     if _P is not None:
         return
     _P = plugin
     RollPass.hotroll_pass_state.add_function(_pass_state_hook)
     Transport.hotroll_microstructure.add_function(_microstructure_hook)
-    RollPass.post_processors.append(_after_pass)
-    Transport.post_processors.append(_after_transport)
+    out_profile.register(RollPass, _pass_values)
+    out_profile.register(Transport, _transport_values)
 
 
 def mean_kinetics(kin: RecrystallisationSet, strain: float, grain: float, rate: float,

@@ -84,15 +84,27 @@ def flat_without_speed():
                             pr.RollPass(label="II", roll=roll, gap=0.011)]), ip
 
 
-def flat_with_speed_no_flow_stress_law():
-    """A roll speed, but a constant flow stress and no hotroll grade: PyRolL's models."""
+def flat_with_speed_no_flow_stress():
+    """A roll speed, but no flow stress (no flow_stress, no flow_stress_function) and no hotroll
+    grade: PyRolL's models (which need a flow stress too: the same error)."""
     ip = pr.Profile.box(height=0.02, width=0.25, corner_radius=1e-3, temperature=1373.15,
-                        strain=0.0, material="AISI 304", flow_stress=100e6, density=7.5e3,
+                        strain=0.0, material="AISI 304", density=7.5e3,
                         specific_heat_capacity=690)
     roll = pr.Roll(groove=pr.FlatGroove(usable_width=0.3), nominal_radius=0.15)
     return pr.PassSequence([pr.RollPass(label="I", roll=roll, gap=0.015, velocity=1.0),
                             pr.Transport(label="T", duration=5.0),
                             pr.RollPass(label="II", roll=roll, gap=0.011, velocity=1.0)]), ip
+
+
+def round_bar_in_flat_passes():
+    """A round bar through flat passes with a roll speed, a flow stress and a hotroll grade:
+    no flat strip (its polygon fills 78 % of its bounding box), PyRolL's models."""
+    ip = pr.Profile.round(diameter=0.03, temperature=1373.15, strain=0.0, material="C45",
+                          flow_stress=100e6, density=7.5e3, specific_heat_capacity=690)
+    roll = pr.Roll(groove=pr.FlatGroove(usable_width=0.05), nominal_radius=0.15,
+                   rotational_frequency=1.0)
+    return pr.PassSequence([pr.RollPass(label="I", roll=roll, gap=0.024),
+                            pr.Transport(label="T", duration=2.0)]), ip
 
 
 def box_pass_of_a_hotroll_grade():
@@ -148,7 +160,7 @@ def the_box_pass_plotted():
     return seq, ip, "plot"
 
 
-SCENARIOS = (flat_without_speed, flat_with_speed_no_flow_stress_law,
+SCENARIOS = (flat_without_speed, flat_with_speed_no_flow_stress, round_bar_in_flat_passes,
              box_pass_of_a_hotroll_grade, transport_without_temperature,
              transport_of_a_hot_strip_alone, a_users_post_processor, the_box_pass_plotted)
 

@@ -311,6 +311,17 @@ def test_a_pass_without_a_grain_size_is_refused_by_name():
         hp.Config.MICROSTRUCTURE = saved
 
 
+def test_the_sequence_leaves_with_its_last_passs_values(rolled):
+    """The sequence's out profile (issue 51) carries what its last pass's out profile got: the
+    grain size, recrystallised fraction and arrays hotroll computed and the FE exit
+    temperature (PyRolL copies only root hooks such as the strain onto a sequence's)."""
+    p2 = rolled.units[-1]
+    want = {**hm.pass_values(p2), "temperature": hp.solve(p2)["outlet_temperature_mean"]}
+    for key, value in want.items():
+        assert getattr(rolled.out_profile, key) == value == getattr(p2.out_profile, key), key
+    assert rolled.out_profile.temperature < rolled.in_profile.temperature - 10.0
+
+
 def test_off_changes_nothing(rolled):
     """MICROSTRUCTURE None (the default; tests/workflows/test_pyroll_*.py run with it): no
     values, no entry profile."""
@@ -320,6 +331,6 @@ def test_off_changes_nothing(rolled):
     try:
         assert hm.transport_values(t1) is None and hm.pass_values(p1) is None
         assert hm.entry_plate(p2) == {}
-        assert hm._after_transport(t1) is None and hm._after_pass(p1) is None
+        assert hm._transport_values(t1) is None and hm._pass_values(p1) is None
     finally:
         hp.Config.MICROSTRUCTURE = saved

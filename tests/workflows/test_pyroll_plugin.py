@@ -15,6 +15,7 @@ from casebuild import shared_scope
 pr = pytest.importorskip("pyroll.core", reason="the [pyroll] extra (scripts/setup.sh installs it)")
 
 import hotroll.pyroll as hp  # noqa: E402
+import hotroll.pyroll_flow_stress as hf  # noqa: E402
 from hotroll.config.case import case_from_dict  # noqa: E402
 from hotroll.model.interpass import cool, enthalpy_mean  # noqa: E402
 from hotroll.model.thermal_properties import ThermalProperties  # noqa: E402
@@ -189,7 +190,7 @@ def test_the_fitting_box_is_the_passs_range():
 
     for T0, T_lo in ((1373.15, 1123.15), (500.0, 300.0)):
         rp = SimpleNamespace(in_profile=Profile(), label="box")
-        _, info = hp._material(rp, T0, 0.1, 0.01, 0.008, 2.0, 0.02)
+        _, info = hf.material(rp, T0, 0.1, 0.01, 0.008, 2.0, 0.02, 0.1)
         inc = 2.0 / math.sqrt(3.0) * math.log(0.01 / 0.008)
         rate = 2.0 / 0.02 * inc
         assert info["strain"] == pytest.approx((0.1, 0.1 + 1.5 * inc), rel=1e-12)
