@@ -75,7 +75,7 @@ def main() -> None:
             for k in range(repeat):
                 out = Path(tmp) / f"{len(rows)}_{k}"
                 t0 = time.perf_counter()
-                r = subprocess.run([sys.executable, "-m", "hotroll", *cmd, "--out", str(out)],
+                r = subprocess.run([sys.executable, "-m", "hotroll.cli", *cmd, "--out", str(out)],
                                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
                 walls.append(time.perf_counter() - t0)
                 codes.add(r.returncode)

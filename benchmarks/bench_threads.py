@@ -61,7 +61,7 @@ def _files(tmp: Path) -> dict:
 
 def _command(work: str, file: Path, out: Path) -> list[str]:
     verb = "run" if work == "pass" else "schedule"
-    return [sys.executable, "-m", "hotroll", verb, str(file), "--out", str(out)]
+    return [sys.executable, "-m", "hotroll.cli", verb, str(file), "--out", str(out)]
 
 
 def _time(cmd: list[str]) -> tuple[float, int]:
@@ -92,7 +92,7 @@ def main() -> None:
                     for k in range(args.repeat):
                         for s in SETTINGS:
                             wall, code = _time(_command(work, files[work, s],
-                                                        Path(tmp) / f"{work}{k}{s}"))
+                                                        Path(tmp) / f"{work}{load}{k}{s}"))
                             times[s].append(wall)
                             codes[s].add(code)
                 finally:

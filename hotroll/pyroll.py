@@ -74,7 +74,7 @@ class Config:
 
     FRICTION: dict = {"law": "coulomb", "mu": 0.3}
     MESH: dict = {}                   # the pass cases' [mesh], e.g. {"h_contact": 0.001}
-    SOLVER: dict = {"threads": 2}
+    SOLVER: dict = {}                 # the pass cases' [solver]; {}: its defaults (threads "auto")
     THERMAL: dict = {"htc_contact": 2.0e4, "roll_temperature": 353.15, "htc_air": 20.0,
                      "emissivity": 0.8, "ambient_temperature": 293.15}
     PROPERTIES: dict = {"density": 7600.0, "specific_heat": 650.0, "conductivity": 28.0}

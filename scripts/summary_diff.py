@@ -31,7 +31,7 @@ RUNS += [("schedule", "finishing_mill"), ("study", "af_study")]
 VOLATILE = ("wall_time", "wall_s", "seconds", "elapsed", "path", "dir", "out", "date",
             "created", "version", "python", "host", "commit", "traceback", "worker",
             "checkpoint", "estimated_memory", "peak_memory", "_file", "files",
-            "assembly_threads")
+            "solver_threads")
 
 
 def run(out: Path, only: list[str]) -> int:

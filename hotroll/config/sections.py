@@ -256,9 +256,9 @@ class SolverConfig(Section):
     wall_time_limit: PosFloat | None = field(None, "wall-clock limit (omit: none)", "s", "> 0")
     checkpoint_every: int = field(25, "steps between checkpoints", "", "an integer >= 1", ge=1)
     threads: Literal["auto"] | Annotated[int, Field(ge=1, le=1024)] = field(
-        "auto", "threads for the assembly (the rest of a solve is serial); at most this many, "
-        "and never a core another running process wants (fem/reproducible.py); auto: up to "
-        "4", "", '"auto" or an integer in [1, 1024]')
+        "auto", "threads of each Newton step, the meshing and the measures: at most this many, "
+        "and never a core another running process wants (sampled at each step, "
+        "fem/reproducible.py); auto: up to 4", "", '"auto" or an integer in [1, 1024]')
     memory_limit: PosFloat | None = field(
         None, "refuse a mesh whose estimated memory is above this (omit: the machine's free "
         "memory; workflows/estimate.py)", "B", "> 0")

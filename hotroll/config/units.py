@@ -26,9 +26,13 @@ _QUANTITY = re.compile(r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(\S.*
 _PINT = {"1/degC": "1/delta_degC", "B": "byte", "m^-m": None, "Pa s^m": None, "wt %": None,
          "-": None, "": None}
 
-#: the units an engineer reads a SI unit in (``hotroll validate``)
-ENGINEERING = {"m": "mm", "K": "degC", "Pa": "MPa", "rad/s": "rpm", "N/m": "kN/mm",
-               "B": "GiB", "1/degC": "1/K"}
+#: the unit an engineer reads a SI unit in, and the SI value of one of it (an offset too):
+#: (name, factor, offset), value = (si - offset) / factor (``hotroll validate``, case.toml);
+#: plain arithmetic, so writing a case does not load pint (0.3 s)
+ENGINEERING = {"m": ("mm", 1e-3, 0.0), "K": ("degC", 1.0, 273.15), "Pa": ("MPa", 1e6, 0.0),
+               "rad/s": ("rpm", 2.0 * 3.141592653589793 / 60.0, 0.0),
+               "N/m": ("kN/mm", 1e6, 0.0), "B": ("GiB", 2.0**30, 0.0),
+               "1/degC": ("1/K", 1.0, 0.0)}
 
 
 class UnitError(ValueError):
@@ -41,14 +45,6 @@ def registry():
     import pint
 
     return pint.UnitRegistry(non_int_type=Decimal)
-
-
-@lru_cache(maxsize=1)
-def _float_registry():
-    """pint's float registry, for display (the Decimal one cannot convert K to degC)."""
-    import pint
-
-    return pint.UnitRegistry()
 
 
 def pint_unit(unit: str) -> str | None:
@@ -100,9 +96,7 @@ def to_si(text: str, unit: str) -> float:
 
 def shown(value: float, unit: str) -> str:
     """``value`` (SI, in ``unit``) in the engineer's unit, e.g. '1000 degC', '6 mm'."""
-    eng = ENGINEERING.get(unit)
-    if eng is None or not takes_units(unit):
+    if unit not in ENGINEERING:
         return f"{value:.6g} {unit}".rstrip()
-    ureg = _float_registry()
-    q = ureg.Quantity(value, pint_unit(unit)).to(pint_unit(eng) or eng)
-    return f"{q.magnitude:.6g} {eng}"
+    name, factor, offset = ENGINEERING[unit]
+    return f"{(value - offset) / factor:.6g} {name}"

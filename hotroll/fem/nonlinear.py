@@ -210,16 +210,19 @@ def picard(problem: NonlinearSystem, tol: float = 1e-5, max_it: int = 20) -> Sol
     ws, stats = _Workspace(problem), SolveStats()
     scale = problem.velocity_scale
     for it in range(1, max_it + 1):
-        problem.gf_w.vec.data = problem.gf.vec
-        _linear_step(problem.a_picard, problem, ws, stats,      # Newton's forcing term
-                     rtol=min(problem.linear_rtol, max(stats.update, FORCING_FLOOR)))
-        stats.residual = ws.norm(ws.r)
-        problem.gf.vec.data -= ws.du
-        stats.iterations = it
-        stats.update = ws.max_velocity(ws.du) / scale
-        if stats.update <= tol:
-            stats.converged = True
-            break
+        # each step is one parallel region: the task manager while no other
+        # process wants the cores (fem/reproducible.parallel), sampled each step
+        with parallel():
+            problem.gf_w.vec.data = problem.gf.vec
+            _linear_step(problem.a_picard, problem, ws, stats,      # Newton's forcing term
+                         rtol=min(problem.linear_rtol, max(stats.update, FORCING_FLOOR)))
+            stats.residual = ws.norm(ws.r)
+            problem.gf.vec.data -= ws.du
+            stats.iterations = it
+            stats.update = ws.max_velocity(ws.du) / scale
+            if stats.update <= tol:
+                stats.converged = True
+                break
     return stats
 
 
@@ -256,88 +259,91 @@ def newton(
     prepare = getattr(problem, "prepare", None)
     residual_ready, extra, watched = False, 0, False
     for it in range(1, max_it + 1):
-        if prepare is not None and prepare(it):
-            residual_ready = False
-        scale = problem.velocity_scale
-        # the forcing term (module docstring): linear_rtol, or the last direction's size
-        rtol = min(problem.linear_rtol, max(stats.update, FORCING_FLOOR))
-        _linear_step(form, problem, ws, stats, residual_ready, problem.a_jacobian, chord, rtol)
-        # the Newton direction, not the damped step: a step cut by the line search is small
-        # without the iterate being converged
-        stats.update = ws.max_velocity(ws.du) / scale
-        if (stats.update <= tol and rtol > max(stats.update, FORCING_FLOOR)
-                and ws.achieved > max(stats.update, FORCING_FLOOR)):
-            # a direction small enough to end the solve, solved loosely (a solve's first:
-            # the last update is not known yet): solved again to its own size before it is
-            # trusted (from the session's review: a 3e-6 U start stopped 2e-6 U off), unless
-            # it already reached that (a direct solver's solution: its rounding)
-            rtol = max(stats.update, FORCING_FLOOR)
-            _linear_step(form, problem, ws, stats, True, problem.a_jacobian, chord, rtol)
+        # each step is one parallel region: the task manager while no other
+        # process wants the cores (fem/reproducible.parallel), sampled each step
+        with parallel():
+            if prepare is not None and prepare(it):
+                residual_ready = False
+            scale = problem.velocity_scale
+            # the forcing term (module docstring): linear_rtol, or the last direction's size
+            rtol = min(problem.linear_rtol, max(stats.update, FORCING_FLOOR))
+            _linear_step(form, problem, ws, stats, residual_ready, problem.a_jacobian, chord, rtol)
+            # the Newton direction, not the damped step: a step cut by the line search is small
+            # without the iterate being converged
             stats.update = ws.max_velocity(ws.du) / scale
-        r0 = ws.norm(ws.r)
-        ws.backup.data = problem.gf.vec
-        # full_step: once the direction is below the tolerance, its full step is taken without
-        # the line search. There the residual's norm is at its floor (the near-rigid zones,
-        # whose viscosity is eps0^(m-1): a velocity change of 1e-7 U moves it), and the test
-        # r1 < r0 refused full steps of 1e-7 U for up to five iterations on the finishing pass
-        alpha, search = 1.0, not (full_step and stats.update <= tol)
-        if (not last_residual and it == max_it and couple is None
-                and (min_step >= 1.0 or not search)):
-            problem.gf.vec.data = ws.backup - ws.du
-            stats.iterations, stats.residual = it, float("nan")
-            stats.converged = stats.update <= tol
-            if TRACE is not None:
-                TRACE(problem, it, stats.update, alpha, r0, float("nan"))
-            break
-        while True:
-            problem.gf.vec.data = ws.backup - alpha * ws.du
-            with parallel():
-                form.Apply(problem.gf.vec, ws.r)
-            r1 = ws.norm(ws.r)
-            if (not search or r1 <= (1.0 - 1e-4 * alpha) * r0 or alpha <= min_step
-                    or r0 == 0.0):
+            if (stats.update <= tol and rtol > max(stats.update, FORCING_FLOOR)
+                    and ws.achieved > max(stats.update, FORCING_FLOOR)):
+                # a direction small enough to end the solve, solved loosely (a solve's first:
+                # the last update is not known yet): solved again to its own size before it is
+                # trusted (from the session's review: a 3e-6 U start stopped 2e-6 U off), unless
+                # it already reached that (a direct solver's solution: its rounding)
+                rtol = max(stats.update, FORCING_FLOOR)
+                _linear_step(form, problem, ws, stats, True, problem.a_jacobian, chord, rtol)
+                stats.update = ws.max_velocity(ws.du) / scale
+            r0 = ws.norm(ws.r)
+            ws.backup.data = problem.gf.vec
+            # full_step: once the direction is below the tolerance, its full step is taken without
+            # the line search. There the residual's norm is at its floor (the near-rigid zones,
+            # whose viscosity is eps0^(m-1): a velocity change of 1e-7 U moves it), and the test
+            # r1 < r0 refused full steps of 1e-7 U for up to five iterations on the finishing pass
+            alpha, search = 1.0, not (full_step and stats.update <= tol)
+            if (not last_residual and it == max_it and couple is None
+                    and (min_step >= 1.0 or not search)):
+                problem.gf.vec.data = ws.backup - ws.du
+                stats.iterations, stats.residual = it, float("nan")
+                stats.converged = stats.update <= tol
+                if TRACE is not None:
+                    TRACE(problem, it, stats.update, alpha, r0, float("nan"))
                 break
-            alpha *= 0.5
-        # full_step: a search that found no decrease down to min_step on a small update takes
-        # the full step instead, once (not twice running): near the regularised friction's kink
-        # the residual's norm rises on the way to the solution, and the cut steps stalled for
-        # 10-20 iterations on thin passes where the full steps converged in 2-3 (speed.md)
-        watched = (full_step and search and alpha <= min_step and r0 > 0.0
-                   and r1 > (1.0 - 1e-4 * alpha) * r0 and stats.update <= WATCHDOG_BELOW
-                   and not watched)
-        if watched:
-            alpha = 1.0
-            problem.gf.vec.data = ws.backup - ws.du
-            with parallel():
-                form.Apply(problem.gf.vec, ws.r)
-            r1 = ws.norm(ws.r)
-        stats.iterations = it
-        stats.residual = r1
-        if TRACE is not None:
-            TRACE(problem, it, stats.update, alpha, r0, r1)
-        residual_ready = True
-        if couple is not None and stats.update <= couple_below:
-            if couple(stats.update):
-                residual_ready = False   # the form changed: its residual must be re-evaluated
-                continue
-        # a contact multiplier's own test (its DOFs are not velocity nodes). In a sticking zone
-        # the regularised friction is a tangential stiffness of a_f v_reg^(m-1) (10^7 times the
-        # viscosity on Example 1): the pressure at the neutral node then moves by percents for
-        # velocity changes of 1e-7 U, without settling. Once the velocity has converged the
-        # multiplier gets MULTIPLIER_EXTRA more steps; what it still moves is reported
-        # (``multiplier_update``), not hidden.
-        stats.multiplier_update = problem.max_multiplier(ws.du) / scale
-        settled = stats.multiplier_update <= problem.multiplier_tol
-        if stats.update <= tol and not settled and (alpha == 1.0 or not full_step):
-            extra += 1
-            settled = extra > MULTIPLIER_EXTRA
-        if stats.update <= tol and settled and (alpha == 1.0 or not full_step):
-            # full_step: a full Newton step below the tolerance, in Newton's quadratic range the
-            # residual after it is of the order of the step squared (the steady solver's final
-            # solve, whose forces are reported; each time step of the report's scheme keeps the
-            # plain test: it would otherwise spend steps at max_it on its non-smooth contact)
-            stats.converged = True
-            break
+            while True:
+                problem.gf.vec.data = ws.backup - alpha * ws.du
+                with parallel():
+                    form.Apply(problem.gf.vec, ws.r)
+                r1 = ws.norm(ws.r)
+                if (not search or r1 <= (1.0 - 1e-4 * alpha) * r0 or alpha <= min_step
+                        or r0 == 0.0):
+                    break
+                alpha *= 0.5
+            # full_step: a search that found no decrease down to min_step on a small update takes
+            # the full step instead, once (not twice running): near the regularised friction's kink
+            # the residual's norm rises on the way to the solution, and the cut steps stalled for
+            # 10-20 iterations on thin passes where the full steps converged in 2-3 (speed.md)
+            watched = (full_step and search and alpha <= min_step and r0 > 0.0
+                       and r1 > (1.0 - 1e-4 * alpha) * r0 and stats.update <= WATCHDOG_BELOW
+                       and not watched)
+            if watched:
+                alpha = 1.0
+                problem.gf.vec.data = ws.backup - ws.du
+                with parallel():
+                    form.Apply(problem.gf.vec, ws.r)
+                r1 = ws.norm(ws.r)
+            stats.iterations = it
+            stats.residual = r1
+            if TRACE is not None:
+                TRACE(problem, it, stats.update, alpha, r0, r1)
+            residual_ready = True
+            if couple is not None and stats.update <= couple_below:
+                if couple(stats.update):
+                    residual_ready = False   # the form changed: its residual must be re-evaluated
+                    continue
+            # a contact multiplier's own test (its DOFs are not velocity nodes). In a sticking zone
+            # the regularised friction is a tangential stiffness of a_f v_reg^(m-1) (10^7 times the
+            # viscosity on Example 1): the pressure at the neutral node then moves by percents for
+            # velocity changes of 1e-7 U, without settling. Once the velocity has converged the
+            # multiplier gets MULTIPLIER_EXTRA more steps; what it still moves is reported
+            # (``multiplier_update``), not hidden.
+            stats.multiplier_update = problem.max_multiplier(ws.du) / scale
+            settled = stats.multiplier_update <= problem.multiplier_tol
+            if stats.update <= tol and not settled and (alpha == 1.0 or not full_step):
+                extra += 1
+                settled = extra > MULTIPLIER_EXTRA
+            if stats.update <= tol and settled and (alpha == 1.0 or not full_step):
+                # full_step: a full Newton step below the tolerance, in Newton's quadratic range the
+                # residual after it is of the order of the step squared (the steady solver's final
+                # solve, whose forces are reported; each time step of the report's scheme keeps the
+                # plain test: it would otherwise spend steps at max_it on its non-smooth contact)
+                stats.converged = True
+                break
     return stats
 
 

@@ -18,7 +18,8 @@ calls, 10 of 10 factor+solves, on 2 threads). Hence:
   the order too). ``tests/fem/test_reproducible.py`` fails where a module calls NGSolve's
   ``Integrate`` itself.
 - ``threaded``: a run's thread count (BLAS held to one thread); ``parallel``: the task manager
-  around assembly only, with the threads no other busy process wants (``threads_now``).
+  around a short region of work (a Newton step, the meshing, the measures) with the threads no
+  other busy process wants (``threads_now``), serial between the regions.
 - The flow's linear solver is UMFPACK (``forms.LINEAR_SOLVERS``): sequential, the same factors
   in every run. ``sparsecholesky`` is not with 2 threads: with no task manager it starts one of
   its own (``SparseCholeskyTM::FactorSPD1``: ``RunWithTaskManager``) with ``SetNumThreads``'s
@@ -132,12 +133,15 @@ def threaded(threads: int | str | None = None):
 
 @contextmanager
 def parallel():
-    """``with parallel():`` NGSolve's task manager with ``threads_now()`` threads around
-    assembly-type work (``Apply``, ``AssembleLinearization``, ``Assemble``, ``Set``,
-    element-wise ``Integrate``): coloured, so the same numbers at any thread count. Not around
-    factorisations and solves (UMFPACK is sequential; ``sparsecholesky`` adds under locks),
-    nor around Python: idle workers spin. One thread, or already inside: nothing to do.
-    Entering and leaving cost 0.1 ms on a quiet machine (``serial``)."""
+    """``with parallel():`` one parallel region: NGSolve's task manager with ``threads_now()``
+    threads, sampled at the region's start, or serial where another process wants the cores.
+    The regions (issue 51): each Newton or Picard step (``fem/nonlinear.py``: its assembly,
+    solve, line search and the couplings it calls), the meshing and the forms' set-up, the
+    measures (``workflows/runner.py``), and any assembly or ``integrate`` outside them.
+    Idle workers spin while the main thread runs Python or a sequential factorisation, so a
+    region is short and started only on free cores. Inside a region another is a no-op.
+    Coloured assembly, mat-vecs and inner products give the same bits at any thread count
+    (``fe_space``, ``integrate``). Entering and leaving cost 0.1 ms on a quiet machine."""
     n = 1 if _running else threads_now()
     if n == 1:
         if not _running:

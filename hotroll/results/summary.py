@@ -267,10 +267,10 @@ class Summary(Mapping):
                         "run went on with (config/plausibility.py): a pass outside its flow-"
                         "stress fit's ranges (the figure and the range), a steel below its "
                         "austenite, a nondimensional case; each `section.key: ...`", when="run")
-    assembly_threads: list = _f(None, "assembly threads", "the thread counts the assembly ran "
-                                "with (fem/reproducible.threads_now: the cores no other "
-                                "running process wanted; the rest of the solve is serial)",
-                                when="run")
+    solver_threads: list = _f(None, "solver threads", "the thread counts the run's parallel "
+                              "regions used (a Newton step, the meshing, the measures: "
+                              "fem/reproducible.threads_now, the cores no other running "
+                              "process wanted; serial between them)", when="run")
     leak_to_slip: float = _f("-", "leak to slip", "the leak through the roll over the forward "
                              "slip")
     not_conserved: bool = _f(None, "not conserved", "a conservation check failed")

@@ -21,7 +21,7 @@ from hotroll.results.run_dir import RunDir
 from hotroll.results.run_summary import write_results
 from hotroll.solvers.settling import default_end_time  # noqa: F401  (runner's API)
 from hotroll.solvers.steady import SteadyRun
-from hotroll.solvers.threads import solver_threads, threads_used
+from hotroll.solvers.threads import parallel, solver_threads, threads_used
 from hotroll.solvers.transient import TransientRun
 from hotroll.workflows.build import (  # noqa: F401  (runner's API)
     build_model,
@@ -75,7 +75,8 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
     # cores (fem/reproducible.parallel); meshing, set-up, the direct solvers and Python serial
     with solver_threads(case.solver.threads):
         t0 = time.perf_counter()
-        model, settings = build_model(case)
+        with parallel():              # meshing and the forms' set-up: one parallel region
+            model, settings = build_model(case)
         extra = {"estimated_dofs": est.dofs, "estimated_memory": est.memory_bytes,
                  "estimated_seconds": est.seconds, "warnings": case.warnings()}
         shift = 0.0
@@ -104,9 +105,10 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
             run = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint=fingerprint(case))
             run.run(progress)
         run.frame_shift = shift
-        extra["assembly_threads"] = threads_used()
+        extra["solver_threads"] = threads_used()
         wall = time.perf_counter() - t0
-        summary = write_results(case, run, out, wall, extra)
+        with parallel():              # the measures: one parallel region (fem/reproducible)
+            summary = write_results(case, run, out, wall, extra)
     if case.output.figures:
         from hotroll.results.figures import plot_all  # matplotlib only when drawing
 

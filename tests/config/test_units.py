@@ -188,7 +188,7 @@ def test_six_mm_and_0_006_give_the_same_summary_bit_for_bit(tmp_path):
         s = json.loads((tmp_path / str(k) / "summary.json").read_text())
         summaries.append({k: v for k, v in s.items()
                           if "wall_time" not in k and not k.startswith("estimated_")
-                          and k != "assembly_threads"})
+                          and k != "solver_threads"})
     assert summaries[0]["converged"]
     assert summaries[1] == summaries[0]
 
@@ -207,3 +207,15 @@ def test_the_readmes_first_case_is_the_bundled_pass():
                 assert bundled[sec][key] != value                # the file says it in SI
     keep = {k: bundled[k] for k in written}
     assert case_from_dict(written).model_dump() == case_from_dict(keep).model_dump()
+
+
+@pytest.mark.parametrize("unit", ["m", "K", "Pa", "rad/s", "N/m", "B", "1/degC"])
+def test_the_engineers_unit_shown_is_pints_conversion(unit):
+    """``shown`` (plain factors, no pint on a run's path) against pint's own conversion of
+    the same value back to SI."""
+    from hotroll.config.units import ENGINEERING, shown
+
+    value = 1234.5678
+    text = shown(value, unit)
+    assert text.endswith(" " + ENGINEERING[unit][0])
+    assert to_si(text, unit) == pytest.approx(value, rel=1e-5)

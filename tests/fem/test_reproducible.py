@@ -177,7 +177,7 @@ def _figures(out: Path) -> dict:
     """Every figure a run writes, but its times."""
     summary = json.loads((out / "summary.json").read_text())
     for key in [k for k in summary if "wall_time" in k or k.startswith("estimated_")
-                or k == "assembly_threads"]:
+                or k == "solver_threads"]:
         summary.pop(key)
     with np.load(out / "fields.npz") as z:
         fields = {k: z[k].tobytes() for k in z.files}
