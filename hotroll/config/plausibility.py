@@ -106,19 +106,23 @@ def _law_name(case) -> str:
 
 
 def refusals(case) -> list[str]:
-    """The findings that stop a run unless ``solver.force`` (module docstring)."""
+    """The findings that stop a run unless ``solver.force`` (module docstring). A
+    nondimensional case (its flow stress below ``NONDIMENSIONAL_STRESS``) has units of its
+    own: its speeds and lengths are not checked against mills'."""
     p, out = case.pass_, []
-    speed = p.roll_surface_speed
+    stress = _mean_stress(case)
+    dimensional = stress is None or stress >= NONDIMENSIONAL_STRESS
+    speed = p.roll_surface_speed if dimensional else 0.0
     mm = " (the lengths look like mm: write \"500 mm\" or 0.5)"
     if speed > MAX_SURFACE_SPEED:
         out.append(f"pass.roll_angular_velocity: the roll's surface speed R omega = {speed:.4g} "
                    f"m/s is above {MAX_SURFACE_SPEED:g} m/s, faster than any flat mill"
                    f"{mm if p.roll_radius > MAX_ROLL_RADIUS else ''}; give omega in rad/s "
                    f"(\"60 rpm\" is read too)")
-    if p.roll_radius > MAX_ROLL_RADIUS:
+    if dimensional and p.roll_radius > MAX_ROLL_RADIUS:
         out.append(f"pass.roll_radius: {p.roll_radius:g} m is above {MAX_ROLL_RADIUS:g} m, no "
                    f"work roll is that large{mm}")
-    if p.entry_thickness > MAX_THICKNESS:
+    if dimensional and p.entry_thickness > MAX_THICKNESS:
         out.append(f"pass.entry_thickness: {p.entry_thickness:g} m is above "
                    f"{MAX_THICKNESS:g} m, no slab is that thick{mm}")
     if case.material.grade is not None and case.plate.temperature < MIN_GRADE_TEMPERATURE:

@@ -26,7 +26,11 @@ from hotroll.model.profile import ProfileError, ThicknessProfile
 MAX_LENGTH = 1e3
 
 
-def preloaded_gap(v: Any, key: str) -> Any:
+#: pass.roll_gap's allowed range, as its field says
+_GAP_ALLOWED = "> 0 and < entry_thickness [m]"
+
+
+def preloaded_gap(v: Any, key: str, allowed: str = "> 0 [m]") -> Any:
     """``v`` unless it is a number <= 0: a no-load gap that does not open is a preloaded stand
     (the rolls pressed into each other at no load, as the negative gap to set a run reports
     means: results/engineering.negative_gap_warning); refused saying so."""
@@ -35,8 +39,8 @@ def preloaded_gap(v: Any, key: str) -> Any:
     if isinstance(v, (int, float)) and not isinstance(v, bool) and v <= 0:
         raise Problems([f"{key}: {v:g} m: a no-load gap <= 0 is a preloaded stand (the rolls "
                         f"pressed into each other at no load); the exit thickness is found from "
-                        f"a gap that opens (> 0): give this pass by its exit_thickness, whose "
-                        f"report then says the (negative) gap to set"])
+                        f"a gap that opens: give this pass by its exit_thickness, whose report "
+                        f"then says the (negative) gap to set; must be {allowed}"])
     return v
 
 
@@ -77,7 +81,7 @@ class PassConfig(Section):
         the case is checked with: the largest draft the stand can give)."""
         if isinstance(data, dict) and data.get("roll_gap") is not None \
                 and data.get("exit_thickness") is None:
-            gap = preloaded_gap(data["roll_gap"], "pass.roll_gap")
+            gap = preloaded_gap(data["roll_gap"], "pass.roll_gap", _GAP_ALLOWED)
             if isinstance(gap, (int, float)) and not isinstance(gap, bool):
                 data = {**data, "exit_thickness": gap}
         return data
@@ -86,7 +90,7 @@ class PassConfig(Section):
     @classmethod
     def _gap_opens(cls, v: Any) -> Any:
         """A gap <= 0 is refused with what it means (``preloaded_gap``)."""
-        return preloaded_gap(v, "pass.roll_gap")
+        return preloaded_gap(v, "pass.roll_gap", _GAP_ALLOWED)
 
     @model_validator(mode="after")
     def _check_geometry(self) -> PassConfig:

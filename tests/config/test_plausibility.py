@@ -143,3 +143,19 @@ def test_example_1_runs_and_is_named_nondimensional():
                                            "state is") and "nondimensional" in w[0]
     real = case_from_dict(_bundled("hot_strip_finishing"))
     assert not any("nondimensional" in x for x in real.warnings())
+
+
+def test_a_nondimensional_case_is_not_held_to_a_mills_speeds_and_sizes():
+    """Example 1 (K = 1) at 100x its roll speed, or written per minute (the exact scalings of
+    tests/solvers/test_contact.py), runs: its units are its own; the same speed with a grade
+    is refused."""
+    d = _bundled("example1")
+    d["pass"]["roll_angular_velocity"] *= 100.0            # 62.8 m/s at R = 0.6 m
+    d["material"]["eps0"] = 1e-2
+    c = case_from_dict(d)
+    assert c.pass_.roll_surface_speed > P.MAX_SURFACE_SPEED
+    assert any("nondimensional" in w for w in c.warnings())
+    real = _bundled("hot_strip_finishing")
+    real["pass"]["roll_angular_velocity"] = 62.8 / real["pass"]["roll_radius"]
+    with pytest.raises(CaseError):
+        case_from_dict(real)

@@ -314,8 +314,9 @@ def test_figures_show_finite_data_inside_their_axes(tmp_path, monkeypatch):
                 assert y0 <= np.max(yd[ok]) and np.min(yd[ok]) <= y1, (name, line.get_label())
             drawn += len(ax.collections)
         assert drawn > 0, name
-    # the contact figure plots the written profile: slip (first panel) and the raw normal
-    # stress (second panel) against x, and the neutral point's vertical line at its x
+    # the contact figure plots the written profile: slip (first panel) and the contact
+    # pressure p = -T_n.n (second panel, positive in compression as in every figure) against
+    # x, and the neutral point's vertical line at its x
     contact = np.genfromtxt(tmp_path / "contact.csv", delimiter=",", names=True)
     a_vs, a_sn = figs["fig_contact.png"].axes[:2]
 
@@ -324,7 +325,7 @@ def test_figures_show_finite_data_inside_their_axes(tmp_path, monkeypatch):
                    and np.allclose(np.asarray(line.get_xdata(), float), contact["x"])
                    and np.allclose(np.asarray(line.get_ydata(), float), y) for line in ax.get_lines())
 
-    assert has(a_vs, contact["v_slip"]) and has(a_sn, contact["normal_stress"])
+    assert has(a_vs, contact["v_slip"]) and has(a_sn, -contact["normal_stress"])
     assert any(np.allclose(np.asarray(line.get_xdata(), float), s["neutral_point"][0])
                for line in a_vs.get_lines())
     assert s["converged"]

@@ -76,7 +76,7 @@ def test_a_gap_needs_a_modulus_a_width_a_steady_solve_and_room_below_the_entry()
         _case("x", modulus=None)
     with pytest.raises(CaseError, match="pass.roll_gap: must be smaller than pass.entry_"):
         _case("x", gap=0.5)
-    with pytest.raises(CaseError, match="pass.roll_gap: must be > 0"):
+    with pytest.raises(CaseError, match="pass.roll_gap: -0.01 m: a no-load gap <= 0 is a preloaded stand"):
         _case("x", gap=-0.01)
     d = _case("x").to_dict()
     d["solver"] = {"method": "transient"}
