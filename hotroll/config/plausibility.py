@@ -176,10 +176,14 @@ def _family(grade: str) -> str | None:
 def _mean_stress(case) -> float | None:
     """The flow stress at the estimated mean state (middle strain, mean rate, plate
     temperature), Pa; None where the law cannot say."""
+    import numpy as np
+
     e = pass_estimates(case)
     try:
-        s = float(case.material.flow_stress().sigma(sum(e["strain"]) / 2, e["strain_rate"][0],
-                                                    case.plate.temperature))
+        with np.errstate(all="ignore"):      # a law far from its data overflows: not finite
+            s = float(case.material.flow_stress().sigma(sum(e["strain"]) / 2,
+                                                        e["strain_rate"][0],
+                                                        case.plate.temperature))
     except (ValueError, TypeError, ArithmeticError):
         return None
     return s if math.isfinite(s) else None
