@@ -175,10 +175,13 @@ def run_warnings(s: dict) -> list[dict]:
             add("warn", f"{LABELS.get(key, key)} {100 * v:.3g} % is above {100 * limit:g} %")
     if s.get("warm_start_failed"):
         add("info", "the warm start failed; the case was solved from scratch")
+    for text in s.get("warnings") or []:      # the case's plausibility (config/plausibility.py)
+        add("warn", text)
     return w
 
 
-CASE_LINE = re.compile(r"^\s*([A-Za-z_][\w-]*)\s*=.*#\s*(.*?)\s*\[([^\]]*)\](?:;|\s*$)")
+CASE_LINE = re.compile(r"^\s*([A-Za-z_][\w-]*)\s*=.*#\s*(?:= [^;]*;\s*)?(.*?)\s*\[([^\]]*)\]"
+                       r"(?:;|\s*$)")
 
 
 def case_inputs(path: Path) -> tuple[str | None, list[tuple[str, list[dict]]]]:

@@ -248,3 +248,23 @@ def test_study_report_that_cannot_be_written_names_the_error(tmp_path, capsys):
     assert "report: not written (ReportError: report:" in out
     assert "is not a hotroll output directory" in out
     assert not (tmp_path / "report.html").exists()
+
+
+def test_the_cases_plausibility_warnings_are_on_the_page_and_its_inputs_read_units(tmp_path):
+    """The summary's ``warnings`` (config/plausibility.py) are listed on the run page, each as
+    it is; a case.toml line whose comment leads with the engineer's unit ("= 350 mm; ...")
+    keeps its description and SI unit."""
+    text = ("plate.temperature: 1000 K (726.85 degC) is below 1073.15 K (800 degC), where steel "
+            "is no longer austenite (Ghosh and Olson); if you meant 1000 degC, write "
+            "\"1000 degC\"")
+    assert {"level": "warn", "text": text} in report_run.run_warnings(
+        {"roll_force": 1e6, "warnings": [text]})
+    d = tmp_path / "run"
+    _write(d / "summary.json", {**SETTLED, "warnings": [text]})
+    _write(d / "case.toml", 'name = "hand"\n[pass]\n'
+           "roll_radius = 0.35     # = 350 mm; roll radius R [m]; allowed: > 0 and <= 1000\n")
+    ctx = report_run.run_context(d)
+    (sec, rows), = ctx["inputs"]
+    assert rows == [{"key": "roll_radius", "value": "0.35", "num": True, "unit": "m",
+                     "text": "roll radius R"}]
+    assert text in [w["text"] for w in ctx["warnings"]]
