@@ -187,3 +187,12 @@ def _mean_stress(case) -> float | None:
     except (ValueError, TypeError, ArithmeticError):
         return None
     return s if math.isfinite(s) else None
+
+
+def solved_warnings(case, figures: dict, before: list[str]) -> list[str]:
+    """``before`` (the case's warnings) with the estimated fit-range lines replaced by the
+    solved pass's own figures (``figures``: variable -> (low, high), e.g. the FE's mean strain
+    rate), far or not: a run reports what it computed, the range and the law."""
+    found = outside(case.material.flow_stress().validity, figures)
+    kept = [w for w in before if " the estimated " not in w]
+    return kept + range_lines(_law_name(case), found, "solved")

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from hotroll.config.case import Case
+from hotroll.config.plausibility import solved_warnings
 from hotroll.fem import quantities as Q
 from hotroll.results.engineering import gap_means, mill_setup, negative_gap_warning, width_totals
 from hotroll.results.neutral import decide
@@ -135,6 +136,8 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
                                 if summary.get("contact_length") else None)
     summary.update(width_totals(summary, case.pass_.width))
     summary.update(mill_setup(summary, case.pass_.exit_thickness, case.pass_.mill_modulus))
+    summary["warnings"] = solved_warnings(case, _solved_state(case, summary),
+                                          summary.get("warnings") or [])
     gap_warning = negative_gap_warning(summary.get("gap_setting"), summary.get("mill_stretch"))
     if gap_warning is not None:
         summary["warnings"] = [*(summary.get("warnings") or []), f"pass.mill_modulus: {gap_warning}"]
@@ -363,3 +366,24 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
            if case.thermal is not None else {}),
         **roll_figures(case, run, prof),
     }
+
+
+def _solved_state(case, summary: dict) -> dict:
+    """The pass's state as solved, for the fit ranges: strain from the entry's to the exit's
+    mean, the mean strain rate in the gap, the temperature from the coldest to the hottest of
+    the plate's and the outlet's means (K); a figure the run did not compute is left out."""
+    def num(key):
+        v = summary.get(key)
+        return float(v) if isinstance(v, (int, float)) and math.isfinite(v) else None
+
+    out = {}
+    strain = num("exit_strain")
+    if strain is not None:
+        out["strain"] = (case.plate.mean_entry_strain, strain)
+    rate = num("mean_strain_rate")
+    if rate is not None:
+        out["strain_rate"] = (rate, rate)
+    temps = [t for t in (case.plate.temperature, num("outlet_temperature_mean")) if t]
+    out["temperature"] = (min(temps), max(temps))
+    return out
+

@@ -159,3 +159,23 @@ def test_a_nondimensional_case_is_not_held_to_a_mills_speeds_and_sizes():
     real["pass"]["roll_angular_velocity"] = 62.8 / real["pass"]["roll_radius"]
     with pytest.raises(CaseError):
         case_from_dict(real)
+
+
+def test_a_run_reports_its_solved_state_against_the_fit(tmp_path):
+    """hot_aluminium 40 K above Al99.5's fit (550 degC): the run's summary replaces the
+    estimated line by the solved one (the same temperature: isothermal), and its strain rate,
+    inside the fit, is not reported."""
+    from hotroll.workflows.runner import run_case
+
+    d = _bundled("hot_aluminium")
+    d["plate"]["temperature"] = 550.0 + 273.15 + 40.0
+    d.setdefault("output", {}).update(figures=False, vtk=False)
+    case = case_from_dict(d)
+    assert any(" the estimated temperature " in w for w in case.warnings())
+    s = run_case(case, tmp_path / "al", resume=False)
+    w = s["warnings"]
+    assert not any(" the estimated " in x for x in w), w
+    assert any(x.startswith(f"plate.temperature: the solved temperature {863.15:.4g} K is "
+                            f"outside grade Al99.5's fit range 523.1 to 823.1 K") for x in w), w
+    assert 0.01 <= s["mean_strain_rate"] <= 500.0
+    assert not any("strain rate" in x for x in w)
