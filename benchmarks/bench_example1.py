@@ -1,8 +1,9 @@
 """Benchmark (not a test): Example 1 of the report to steady state on the meshes C1 and C2,
 with the Newton and the Picard nonlinear solver.
 
-This is slow.  On a 2-core machine (2 threads) Newton reaches the steady state on C2 in
-23 min (549 steps; C1, 495 steps, took 25 min before the BLAS-thread and Jacobian speed-ups,
+This is slow.  On a 2-core machine Newton reached the steady state on C2 in 23 min (549
+steps; 39 min for the whole command at 3b1583e, 2026-11-28: benchmarks/bench_claims.py
+--transient; C1, 495 steps, took 25 min before the BLAS-thread and Jacobian speed-ups,
 which made C2 1.7 times faster); Picard needs 17-18 iterations a step against Newton's 7-8,
 about 2.5 times as long, so the default four runs (C1, C2 x newton, picard) need some 2-3
 hours.  Use ``--end-time`` to cap the simulated time (the run
