@@ -513,11 +513,12 @@ def plant(name: str, workdir: Path) -> Path:
     path, old, new, _ = BUGS[name]
     copy = workdir / name
     shutil.rmtree(copy, ignore_errors=True)
-    # the tests read docs (the tutorial, the reference page) and scripts (the summary
-    # comparison): a copy without them fails for a missing file, not for the bug
+    # the tests read docs (the tutorial, the reference page), scripts (the summary
+    # comparison) and the README: a copy without them fails for a missing file, not the bug
     for part in ("hotroll", "tests", "docs", "scripts"):
         shutil.copytree(ROOT / part, copy / part, ignore=shutil.ignore_patterns("__pycache__"))
     shutil.copy(ROOT / "pyproject.toml", copy / "pyproject.toml")
+    shutil.copy(ROOT / "README.md", copy / "README.md")      # a test reads its first case
     target = copy / path
     text = target.read_text()
     if text.count(old) != 1:
