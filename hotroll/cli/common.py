@@ -48,7 +48,8 @@ MethodOpt = Annotated[Optional[str], typer.Option(
     help="Solution method: steady (direct steady state) or transient (the report's scheme).")]
 ResumeOpt = Annotated[bool, typer.Option("--resume/--no-resume", help="Resume from a checkpoint.")]
 ForceOpt = Annotated[bool, typer.Option(
-    "--force", help="Run even when the memory estimate is above the limit (solver.force).")]
+    "--force", help="Run even when the memory estimate is above the limit or the case looks "
+                    "like a unit slip (solver.force).")]
 
 
 class Format(str, Enum):

@@ -102,11 +102,7 @@ def _overrides(mesh: str | None, end_time: float | None, nonlinear: str | None,
 def _load(path: Path, over: dict[str, Any]) -> Case:
     """Load and override a case; bad input ends the command with exit code 2."""
     try:
-        case = load_case(path)
-        try:
-            return case.with_overrides(**over)
-        except CaseError as e:
-            raise CaseError(e.problems, f"{path} (with command-line options)") from None
+        return load_case(path, over)
     except CaseError as e:
         raise fail(str(e)) from None
 

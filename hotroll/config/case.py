@@ -247,8 +247,10 @@ def case_from_toml(text: str, source: str | None = None) -> Case:
     return case_from_dict(data, source)
 
 
-def load_case(path: str | Path) -> Case:
-    """Read a TOML case file; ``name`` defaults to the file stem."""
+def load_case(path: str | Path, overrides: dict[str, Any] | None = None) -> Case:
+    """Read a TOML case file; ``name`` defaults to the file stem; ``overrides`` (dotted keys,
+    the command line's options) set before the one validation, so that ``solver.force`` can
+    let a refused case run."""
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
@@ -259,6 +261,8 @@ def load_case(path: str | Path) -> Case:
     except tomllib.TOMLDecodeError as e:
         raise CaseError(f"TOML syntax error: {e}", str(path)) from None
     data.setdefault("name", path.stem)
+    if overrides:
+        return case_from_dict(set_dotted(data, overrides), f"{path} (with command-line options)")
     return case_from_dict(data, str(path))
 
 

@@ -5,10 +5,12 @@ naming the figure, the range it left and the likely fix:
 
 - **refusals** (a ``CaseError`` unless ``solver.force``): what is almost surely a unit slip (a
   roll surface speed above the fastest flat mills', lengths that only make sense in mm, a
-  grade's hot-working data at a room temperature), and a pass far outside its flow-stress fit;
+  grade's hot-working data at a room temperature);
 - **warnings** (the summary's ``warnings``, the console, the page): a pass outside its law's
-  published fit ranges (temperature, strain, strain rate), a steel below its austenite range,
-  and a nondimensional case (the report's Example 1, K = 1) named as such.
+  published fit ranges (temperature, strain, strain rate; "far" outside by FAR_*), a steel
+  below its austenite range, and a nondimensional case (the report's Example 1, K = 1) named
+  as such. A fit range is not a refusal: Misaka's 30-200 1/s would refuse every plate and
+  roughing pass, and a schedule's strain builds up from pass to pass.
 
 The bounds, with what they rest on ([S] read in a source, [E] our estimate;
 docs/notes/issue51-ranges.md):
@@ -33,7 +35,7 @@ MIN_GRADE_TEMPERATURE = 500.0
 #: Pa: a mean flow stress below it is not a metal's at hot-working rates (aluminium near its
 #: solidus has some MPa) [E]: the case is nondimensional (or its law not in Pa)
 NONDIMENSIONAL_STRESS = 1e5
-#: how far outside a fit's range a pass is refused unless forced [E]: temperature by more
+#: how far outside a fit's range a pass is called "far" outside [E]: temperature by more
 #: than this (K), strain rate by more than this factor, strain by more than this factor
 FAR_TEMPERATURE = 100.0
 FAR_RATE = 10.0
@@ -94,7 +96,10 @@ def range_lines(name: str, found, when: str) -> list[str]:
     for key, got, fit, far in found:
         u = _UNIT[key]
         shown = (f"{got[0]:.4g}" if got[0] == got[1] else f"{got[0]:.4g} to {got[1]:.4g}")
-        lines.append(f"{_WHERE[key]}: the {when} {key.replace('_', ' ')} {shown} {u} is "
+        where = _WHERE[key]
+        if key == "strain" and got[0] > fit[1]:     # the strain it enters with is already out
+            where = "plate.entry_strain"
+        lines.append(f"{where}: the {when} {key.replace('_', ' ')} {shown} {u} is "
                      f"{'far ' if far else ''}outside {name}'s fit range {fit[0]:.4g} to "
                      f"{fit[1]:.4g} {u}: the flow stress there is extrapolated")
     return lines
@@ -128,12 +133,9 @@ def refusals(case) -> list[str]:
     if case.material.grade is not None and case.plate.temperature < MIN_GRADE_TEMPERATURE:
         t = case.plate.temperature
         out.append(f"plate.temperature: {_celsius(t)} is below {MIN_GRADE_TEMPERATURE:g} K, "
-                   f"where grade {case.material.grade}'s hot-working data do not reach; a "
-                   f"temperature in degC written as a number? Write \"{t:g} degC\"")
-    validity = case.material.flow_stress().validity
-    found = outside(validity, pass_estimates(case))
-    out += [line for line, f in zip(range_lines(_law_name(case), found, "estimated"), found)
-            if f[3]]
+                   f"where grade {case.material.grade}'s hot-working data do not reach (cold "
+                   f"rolling needs a law of its own); if you meant {t:g} degC, write "
+                   f"\"{t:g} degC\"")
     return out
 
 
@@ -144,7 +146,7 @@ def warnings(case) -> list[str]:
     validity = case.material.flow_stress().validity
     law = _law_name(case)
     found = outside(validity, pass_estimates(case))
-    out += [line for line, f in zip(range_lines(law, found, "estimated"), found) if not f[3]]
+    out += range_lines(law, found, "estimated")
     missing = [k.replace("_", " ") for k in ("temperature", "strain", "strain_rate")
                if getattr(validity, k) is None]
     if missing and case.material.grade is not None:

@@ -266,8 +266,10 @@ class SolverConfig(Section):
     memory_limit: PosFloat | None = field(
         None, "refuse a mesh whose estimated memory is above this (omit: the machine's free "
         "memory; workflows/estimate.py)", "B", "> 0")
-    force: bool = field(False, "run even when the memory estimate is above the limit", "",
-                         "true or false")
+    force: bool = field(False, "run even when the memory estimate is above the limit or the "
+                         "case looks like a unit slip (config/plausibility.py: a roll surface "
+                         "speed above 60 m/s, R above 2 m, h0 above 1 m, a grade below 500 K)",
+                         "", "true or false")
     steady_entry_length: PosFloat | None = field(
         None, "steady strip: flat length before the touching point (omit: automatic)", "m", "> 0")
     steady_exit_length: PosFloat | None = field(

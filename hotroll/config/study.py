@@ -115,6 +115,17 @@ class RunConfig(Section):
                               "", "true or false")
 
 
+def _difference(step: Any) -> Any:
+    """A range's step is a difference: "50 degC" is 50 K, not 323.15 K (pint's delta units)."""
+    if not isinstance(step, str):
+        return step
+    for offset, delta in (("°C", "delta_degC"), ("degC", "delta_degC"), ("°F", "delta_degF"),
+                          ("degF", "delta_degF")):
+        if offset in step and "delta_" not in step:
+            return step.replace(offset, delta)
+    return step
+
+
 class Study(Section):
     name: str = Field("study", description="study name")
     base: BaseConfig
@@ -134,8 +145,8 @@ class Study(Section):
         for key, values in v.items():
             unit = key_unit(key) if isinstance(key, str) else "-"
             if isinstance(values, dict):
-                values = {k: with_units(x, unit) if k in ("start", "stop", "step") else x
-                          for k, x in values.items()}
+                values = {k: with_units(_difference(x) if k == "step" else x, unit)
+                          if k in ("start", "stop", "step") else x for k, x in values.items()}
             elif isinstance(values, list):
                 values = [with_units(x, unit) for x in values]
             out[key] = values

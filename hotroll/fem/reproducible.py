@@ -24,8 +24,9 @@ calls, 10 of 10 factor+solves, on 2 threads). Hence:
   in every run. ``sparsecholesky`` is not with 2 threads: with no task manager it starts one of
   its own (``SparseCholeskyTM::FactorSPD1``: ``RunWithTaskManager``) with ``SetNumThreads``'s
   count (a Taylor-Hood Stokes matrix: 8 distinct solutions of 8 with 2 threads, 1 of 8 with
-  one). ``threaded`` sets that count to 1 and only ``parallel`` raises it, so it factorises in
-  one thread.
+  one). ``threaded`` sets that count to 1 and only ``parallel`` raises it. The flow's fallback
+  ``sparsecholesky+gmres`` (when UMFPACK fails) runs inside a Newton step's region, so with 2
+  threads its last bits may differ from run to run, as before issue 51.
 """
 from __future__ import annotations
 
@@ -35,6 +36,8 @@ from contextlib import contextmanager
 
 #: the task manager ``parallel`` entered, while it runs
 _running: list = []
+#: the thread count of each open parallel region (outermost first; 1: a serial region)
+_regions: list = []
 #: the thread count the run asked for (``threaded``): an int, or "auto"
 _requested: list = ["auto"]
 #: set while ``threaded`` runs (the outer one holds)
@@ -63,11 +66,21 @@ def integrate(f, mesh, vb=None, order: int = 5, definedon=None) -> float:
 
 
 def cores() -> int:
-    """The cores this process may run on (its affinity; ``os.cpu_count`` elsewhere)."""
+    """The cores this process may run on: its affinity (``os.cpu_count`` elsewhere), capped by
+    a cgroup v2 CPU quota where one is set (``/sys/fs/cgroup/cpu.max``: a container limited to
+    2 CPUs on a larger host)."""
     try:
-        return len(os.sched_getaffinity(0))
+        n = len(os.sched_getaffinity(0))
     except AttributeError:          # not Linux
-        return os.cpu_count() or 1
+        n = os.cpu_count() or 1
+    try:
+        with open("/sys/fs/cgroup/cpu.max") as f:
+            quota, period = f.read().split()[:2]
+        if quota != "max":
+            n = min(n, max(1, int(float(quota) / float(period))))
+    except (OSError, ValueError):
+        pass
+    return n
 
 
 def others_running() -> int:
@@ -117,7 +130,7 @@ def threaded(threads: int | str | None = None):
     import ngsolve
     from threadpoolctl import threadpool_limits
 
-    previous = _requested[0]
+    previous, count = _requested[0], ngsolve.GetNumThreads()
     if threads is not None:
         _requested[0] = threads
     _used.clear()
@@ -129,6 +142,7 @@ def threaded(threads: int | str | None = None):
     finally:
         _threaded.pop()
         _requested[0] = previous
+        ngsolve.SetNumThreads(count)     # NGSolve's count as the caller had it
 
 
 @contextmanager
@@ -139,18 +153,24 @@ def parallel():
     solve, line search and the couplings it calls), the meshing and the forms' set-up, the
     measures (``workflows/runner.py``), and any assembly or ``integrate`` outside them.
     Idle workers spin while the main thread runs Python or a sequential factorisation, so a
-    region is short and started only on free cores. Inside a region another is a no-op.
+    region is short and started only on free cores. Inside a region (parallel or serial)
+    another is a no-op: the outer region's count holds for its whole duration.
     Coloured assembly, mat-vecs and inner products give the same bits at any thread count
     (``fe_space``, ``integrate``). Entering and leaving cost 0.1 ms on a quiet machine."""
-    n = 1 if _running else threads_now()
-    if n == 1:
-        if not _running:
-            _used.add(1)
+    if _regions:                      # inside a region: its count holds
         yield
+        return
+    n = threads_now()
+    _used.add(n)
+    _regions.append(n)
+    if n == 1:
+        try:
+            yield
+        finally:
+            _regions.pop()
         return
     import ngsolve
 
-    _used.add(n)
     ngsolve.SetNumThreads(n)
     tm = ngsolve.TaskManager()
     tm.__enter__()
@@ -160,6 +180,7 @@ def parallel():
     finally:
         _running.pop().__exit__(None, None, None)
         ngsolve.SetNumThreads(1)
+        _regions.pop()
 
 
 @contextmanager

@@ -1,4 +1,4 @@
-"""Threads for a solve: NGSolve's task manager around assembly only, BLAS held to one thread.
+"""Threads for a solve: NGSolve's task manager in short parallel regions, BLAS held to one thread.
 
 numpy's OpenBLAS (and the one NGSolve ships) spin-wait on their own threads after every call;
 with NGSolve's task manager on the same cores, that doubled the time of assembly, residuals and

@@ -71,8 +71,9 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
     if not resume and (ckpt / "state.npz").exists():
         (ckpt / "state.npz").unlink()
     # the run's thread count ([solver] threads, set here; the solves' own calls are nested
-    # no-ops): the assembly takes up to that many threads where no other process wants the
-    # cores (fem/reproducible.parallel); meshing, set-up, the direct solvers and Python serial
+    # no-ops): the meshing and set-up, each Newton step and the measures are parallel regions
+    # with up to that many threads where no other process wants the cores
+    # (fem/reproducible.parallel); the code between them is serial
     with solver_threads(case.solver.threads):
         t0 = time.perf_counter()
         with parallel():              # meshing and the forms' set-up: one parallel region

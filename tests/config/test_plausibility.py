@@ -89,7 +89,7 @@ def test_a_grade_at_room_temperature_is_refused_as_a_degc_slip():
     with pytest.raises(CaseError) as e:
         case_from_dict(d)
     assert any(p.startswith("plate.temperature: 300 K (26.85 degC) is below 500 K")
-               and 'Write "300 degC"' in p for p in e.value.problems), e.value.problems
+               and 'write "300 degC"' in p for p in e.value.problems), e.value.problems
 
 
 def test_a_steel_written_in_degc_as_kelvin_is_warned_with_the_fix():
@@ -106,7 +106,9 @@ def test_a_steel_written_in_degc_as_kelvin_is_warned_with_the_fix():
 
 def test_a_pass_outside_its_grades_fit_is_warned_with_the_figure_and_the_range():
     """hot_aluminium (Al99.5, fit 250-550 degC): at 600 degC warned (50 K out), at 700 degC
-    refused (150 K out: far), inside not. The figure and the range in the line."""
+    warned as far outside (150 K out) and still run (a fit range is not a refusal: Misaka's
+    30-200 1/s would refuse every plate pass), inside not. The figure and the range in the
+    line."""
     d = _bundled("hot_aluminium")
     lo, hi = 250.0 + 273.15, 550.0 + 273.15
     inside = case_from_dict(d)
@@ -118,9 +120,23 @@ def test_a_pass_outside_its_grades_fit_is_warned_with_the_figure_and_the_range()
             f"Al99.5's fit range {lo:.4g} to {hi:.4g} K") in " ".join(w), w
     d["plate"]["temperature"] = hi + 150.0
     d["contact"] = {"strip_youngs_modulus": "off"}      # its E(T) ends at 600 degC
-    with pytest.raises(CaseError) as e:
-        case_from_dict(d)
-    assert any("is far outside grade Al99.5's fit range" in p for p in e.value.problems)
+    w = case_from_dict(d).warnings()
+    assert any("is far outside grade Al99.5's fit range" in x for x in w), w
+
+
+def test_a_plate_pass_with_misaka_runs_warned():
+    """A plate pass (R 0.55 m, 250 -> 225 mm, 1.4 m/s) with Misaka's law (fit 30-200 1/s) at
+    about 1.4 1/s: warned far outside, not refused (the reviewer's case)."""
+    d = _bundled("roughing_slab")
+    d["pass"].update(roll_radius=0.55, entry_thickness=0.25, exit_thickness=0.225,
+                     roll_angular_velocity=1.4 / 0.55)
+    d["material"] = {"law": "misaka", "carbon": 0.2}
+    d["plate"]["length"] = 2.0
+    d.get("mesh", {}).pop("h_contact", None)
+    c = case_from_dict(d)
+    assert any(x.startswith("pass.roll_angular_velocity: the estimated strain rate")
+               and "far outside the misaka law's fit range 30 to 200 1/s" in x
+               for x in c.warnings()), c.warnings()
 
 
 def test_the_estimated_rate_is_the_homogeneous_one_by_hand():
@@ -179,3 +195,25 @@ def test_a_run_reports_its_solved_state_against_the_fit(tmp_path):
                             f"outside grade Al99.5's fit range 523.1 to 823.1 K") for x in w), w
     assert 0.01 <= s["mean_strain_rate"] <= 500.0
     assert not any("strain rate" in x for x in w)
+
+
+def test_force_on_the_command_line_lets_a_refused_file_load(tmp_path):
+    """``--force`` (``load_case(path, {"solver.force": True})``, the command line's overrides
+    set before the one validation) lets a case the plausibility refuses load; without it the
+    file is refused naming the key."""
+    from hotroll.cli.passes import _load
+    from hotroll.config.case import load_case
+
+    d = _in_mm(_bundled("hot_strip_finishing"))
+    lines = []
+    for sec, table in d.items():
+        if isinstance(table, dict):
+            lines.append(f"[{sec}]")
+            lines += [f"{k} = {v!r}".replace("'", '"') for k, v in table.items()]
+    f = tmp_path / "mm.toml"
+    f.write_text("\n".join(lines) + "\n")
+    with pytest.raises(CaseError) as e:
+        load_case(f)
+    assert any(p.startswith("pass.roll_radius") for p in e.value.problems)
+    assert load_case(f, {"solver.force": True}).pass_.roll_radius == 350.0
+    assert _load(f, {"solver.force": True}).solver.force is True

@@ -219,3 +219,19 @@ def test_the_engineers_unit_shown_is_pints_conversion(unit):
     text = shown(value, unit)
     assert text.endswith(" " + ENGINEERING[unit][0])
     assert to_si(text, unit) == pytest.approx(value, rel=1e-5)
+
+
+def test_a_study_range_in_degc_steps_by_a_temperature_difference():
+    """[vary] plate.temperature = {start = "900 degC", stop = "1100 degC", step = "50 degC"}:
+    five temperatures 50 K apart (a step is a difference, not 323.15 K), and a list in degC
+    the same values."""
+    from hotroll.config.study import Study
+    from hotroll.examples import study_path
+
+    d = tomllib.loads(study_path("af_study").read_text())
+    d["vary"] = {"plate.temperature": {"start": "900 degC", "stop": "1100 degC",
+                                       "step": "50 degC"}}
+    values = Study.model_validate(d).vary["plate.temperature"]
+    assert values == pytest.approx([1173.15, 1223.15, 1273.15, 1323.15, 1373.15], abs=1e-9)
+    d["vary"] = {"plate.temperature": ["900 degC", "950 degC"]}
+    assert Study.model_validate(d).vary["plate.temperature"] == [1173.15, 1223.15]

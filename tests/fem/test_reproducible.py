@@ -233,3 +233,48 @@ def test_a_pass_is_the_same_bits_in_every_run_and_at_1_and_2_threads(base, tmp_p
         assert other["fields"] == figures["fields"]
         assert other["csv"] == figures["csv"]
         assert other["summary"] == figures["summary"]
+
+
+def test_a_region_holds_its_count_and_a_run_restores_ngsolves(monkeypatch):
+    """A region that went serial (another process wanted the core) stays serial inside, even
+    when the core frees meanwhile (its nested regions are no-ops); after ``threaded`` NGSolve
+    has the thread count its caller had."""
+    import ngsolve
+
+    if reproducible.cores() < 2:
+        pytest.skip("one core")
+    before = ngsolve.GetNumThreads()
+    busy = [1]
+    monkeypatch.setattr(reproducible, "others_running", lambda: busy[0])
+    with threaded(2):
+        with parallel():
+            assert ngsolve.GetNumThreads() == 1
+            busy[0] = 0
+            with parallel():
+                assert ngsolve.GetNumThreads() == 1
+        with parallel():
+            assert ngsolve.GetNumThreads() == 2
+    assert ngsolve.GetNumThreads() == before
+
+
+def test_a_cgroup_quota_caps_the_cores(monkeypatch, tmp_path):
+    """cores(): a cgroup v2 quota of 150000/100000 (1.5 CPUs) caps the affinity at 1; "max" does
+    not cap."""
+    import builtins
+
+    real_open = builtins.open
+
+    def fake(text):
+        def opener(path, *a, **k):
+            if str(path) == "/sys/fs/cgroup/cpu.max":
+                f = tmp_path / "cpu.max"
+                f.write_text(text)
+                return real_open(f, *a, **k)
+            return real_open(path, *a, **k)
+        return opener
+
+    monkeypatch.setattr(reproducible.os, "sched_getaffinity", lambda pid: {0, 1, 2, 3})
+    monkeypatch.setattr(builtins, "open", fake("150000 100000\n"))
+    assert reproducible.cores() == 1
+    monkeypatch.setattr(builtins, "open", fake("max 100000\n"))
+    assert reproducible.cores() == 4
