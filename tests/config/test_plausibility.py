@@ -217,3 +217,17 @@ def test_force_on_the_command_line_lets_a_refused_file_load(tmp_path):
     assert any(p.startswith("pass.roll_radius") for p in e.value.problems)
     assert load_case(f, {"solver.force": True}).pass_.roll_radius == 350.0
     assert _load(f, {"solver.force": True}).solver.force is True
+
+
+def test_the_nondimensional_bound_is_where_it_says():
+    """Example 1 with K scaled so its estimated flow stress is 0.95 and 1.05 x 1e5 Pa: named
+    nondimensional below the bound, not above (the bound x 1.1 is caught)."""
+    d = _bundled("example1")
+    s1 = P._mean_stress(case_from_dict(d))           # K = 1: the stress per unit K
+    named = {}
+    for f in (0.95, 1.05):
+        e = copy.deepcopy(d)
+        e["material"]["K"] = f * P.NONDIMENSIONAL_STRESS / s1
+        named[f] = any("nondimensional" in w for w in case_from_dict(e).warnings())
+    assert P.NONDIMENSIONAL_STRESS == 1e5
+    assert named == {0.95: True, 1.05: False}
