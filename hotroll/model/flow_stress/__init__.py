@@ -18,8 +18,8 @@ from hotroll.model.flow_stress.base import (
 from hotroll.model.flow_stress.hensel_spittel import HenselSpittel
 from hotroll.model.flow_stress.misaka import Misaka
 from hotroll.model.flow_stress.norton_hoff import NortonHoffStress
-from hotroll.model.flow_stress.registry import LAWS, LawSpec, Parameter, register
+from hotroll.model.flow_stress.registry import FLOW_STRESS_LAWS, LAWS, LawSpec, Parameter, register
 
-__all__ = ["CELSIUS_OFFSET", "DEFAULT_EPS0", "DEFAULT_STRAIN_MIN", "LAWS", "LN3", "SQRT3",
-           "FlowStressLaw", "HenselSpittel", "LawSpec", "Misaka", "NortonHoffStress", "Parameter",
+__all__ = ["CELSIUS_OFFSET", "DEFAULT_EPS0", "DEFAULT_STRAIN_MIN", "FLOW_STRESS_LAWS", "LAWS",
+           "LN3", "SQRT3", "FlowStressLaw", "HenselSpittel", "LawSpec", "Misaka", "NortonHoffStress", "Parameter",
            "ValidityRange", "finite", "register"]

@@ -3,7 +3,9 @@
 A law module declares its parameters, how to build the law, its default regularisation speed
 and its slab-theory counterpart, and registers itself here; the case schema
 (``config/friction.py``), the slab comparison, the warm-start distance and the summary read
-the registry, so adding a law is its own module, its test and a line in docs/theory.md.
+the registry, so adding a law is its own module, its test and a line in docs/theory.md. Another
+package adds a law through the entry-point group ``hotroll.friction`` (``model/registry.py``,
+docs/how-to/add-a-law.md).
 """
 from __future__ import annotations
 
@@ -12,6 +14,7 @@ from typing import Callable
 
 from hotroll.model.friction.base import FrictionLaw
 from hotroll.model.parameters import Parameter
+from hotroll.model.registry import Registry
 
 
 @dataclass(frozen=True)
@@ -33,13 +36,11 @@ class FrictionSpec:
     slab: tuple[str, str | None] | None = None
 
 
-#: Registered friction laws by the name a case file uses.
-FRICTION_LAWS: dict[str, FrictionSpec] = {}
+#: Registered friction laws by the name a case file uses (the entry-point group
+#: ``hotroll.friction``).
+FRICTION_LAWS: Registry[FrictionSpec] = Registry("friction", "friction law", FrictionSpec)
 
 
 def register(spec: FrictionSpec) -> FrictionSpec:
     """Add ``spec`` to :data:`FRICTION_LAWS` (a name once)."""
-    if spec.name in FRICTION_LAWS:
-        raise ValueError(f"friction law {spec.name!r} registered twice")
-    FRICTION_LAWS[spec.name] = spec
-    return spec
+    return FRICTION_LAWS.register(spec.name, spec)

@@ -1,28 +1,29 @@
-"""The recrystallisation parameter sets by name (issue 33): each set's module registers it once."""
+"""The recrystallisation parameter sets by name (issue 33): each set's module registers it once;
+another package adds a set through the entry-point group ``hotroll.microstructure``
+(``model/registry.py``, docs/how-to/add-a-law.md)."""
 from __future__ import annotations
 
 from hotroll.model.microstructure.base import RecrystallisationSet
+from hotroll.model.registry import Registry, UnknownName
 
-SETS: dict[str, RecrystallisationSet] = {}
+#: Registered sets by the name a case file's ``[microstructure] model`` uses.
+SETS: Registry[RecrystallisationSet] = Registry("microstructure", "recrystallisation set",
+                                                RecrystallisationSet)
 
 
-class UnknownSet(KeyError):
+class UnknownSet(UnknownName):
     """A set name that is not registered."""
 
 
 def register(s: RecrystallisationSet) -> RecrystallisationSet:
-    if s.name in SETS:
-        raise ValueError(f"recrystallisation set {s.name!r} registered twice")
-    SETS[s.name] = s
-    return s
+    return SETS.register(s.name, s)
 
 
 def get_set(name: str) -> RecrystallisationSet:
     try:
-        return SETS[name]
-    except KeyError:
-        raise UnknownSet(f"unknown recrystallisation set {name!r} (allowed: "
-                         f"{', '.join(SETS)})") from None
+        return SETS.get(name)
+    except UnknownName as e:
+        raise UnknownSet(str(e)) from None
 
 
 def sets_for(grade: str | None) -> list[str]:
