@@ -11,7 +11,10 @@ import math
 import numpy as np
 
 from hotroll.fem.forms import strain_rate
-from hotroll.fem.profile_figures import (  # noqa: F401 (re-exported)
+from hotroll.fem.reproducible import fe_space, integrate, parallel
+from hotroll.fem.rolling_form import TOP, RollingForm
+from hotroll.fem.top_boundary import TopBoundary
+from hotroll.model.contact_figures import (  # noqa: F401 (re-exported)
     STICKING_FLOOR,
     contact_loss,
     exit_corrected,
@@ -22,9 +25,6 @@ from hotroll.fem.profile_figures import (  # noqa: F401 (re-exported)
     smoothed,
     sticking_zone,
 )
-from hotroll.fem.reproducible import fe_space, integrate, parallel
-from hotroll.fem.rolling_form import TOP, RollingForm
-from hotroll.fem.top_boundary import TopBoundary
 from hotroll.model.material import edot_squared
 
 

@@ -1,5 +1,6 @@
-"""Engineering figures of a pass for the summary: means over the roll gap, whole-width totals,
-and the unit of every number (issue 15).
+"""Engineering figures of a pass for the summary: whole-width totals, the mill's setting and
+the unit of every number (issue 15; the means over the roll gap are the solver's,
+``solvers/record_fields.gap_means``).
 
 The FE figures are per unit width of the upper roll and its half of the strip (the strip's
 upper half is all the upper roll touches): roll force = the separating force of one roll,
@@ -10,25 +11,7 @@ from __future__ import annotations
 
 import math
 
-from hotroll.fem.forms import strain_rate
-from hotroll.fem.reproducible import integrate
-from hotroll.model.material import edot_squared
 from hotroll.results.units import UNITS
-
-
-def gap_means(form, rp, x_start: float, K: float) -> dict:
-    """Volume means over the deformation zone (the strip between the contact start x_start and
-    the roll gap X_roll): the flow stress sigma_ef (Pa) and the equivalent strain rate (1/s)."""
-    from ngsolve import IfPos, sqrt, x
-
-    band = IfPos(x - x_start, IfPos(rp.axis_x - x, 1.0, 0.0), 0.0)
-    area = integrate(band, form.mesh)
-    if not area > 0:
-        return {"mean_flow_stress": math.nan, "mean_strain_rate": math.nan}
-    e2 = edot_squared(strain_rate(form.nonlinear.velocity))
-    sigma = form.material.sigma_ef_reg(e2, m=form.m_material, K=form.consistency)
-    return {"mean_flow_stress": K * integrate(band * sigma, form.mesh) / area,
-            "mean_strain_rate": integrate(band * sqrt(e2 + 1e-300), form.mesh) / area}
 
 
 def width_totals(summary: dict, width: float | None) -> dict:

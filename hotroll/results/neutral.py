@@ -17,7 +17,7 @@ from typing import Mapping
 
 import numpy as np
 
-from hotroll.fem import profile_figures as Q
+from hotroll.model import contact_figures as Q
 
 #: the summary keys the story is written to (``Neutral.to_summary``)
 KEYS = ("neutral", "neutral_point", "neutral_angle", "neutral_angle_reason",

@@ -1,7 +1,11 @@
 """A solved run becomes its summary and files: ``summary.json`` (means over the last window of
 the history, leaving out unconverged steps; contact figures; checks and the exit code), the
 profiles, fields and history (docs/reference/summary.md). Positions are written where the case
-puts the roll axis (the steady solver works in the roll's frame)."""
+puts the roll axis (the steady solver works in the roll's frame).
+
+It reads the run's ``Solution`` record (``model/solution.py``, filled by
+``solvers/record.py``), never the FE or solver objects: results imports neither ``fem/`` nor
+``solvers/`` (the ``results-no-fe`` contract, pyproject.toml)."""
 from __future__ import annotations
 
 import math
@@ -11,12 +15,12 @@ import numpy as np
 
 from hotroll.config.case import Case
 from hotroll.config.plausibility import solved_warnings
-from hotroll.fem import quantities as Q
-from hotroll.results.engineering import gap_means, mill_setup, negative_gap_warning, width_totals
+from hotroll.model import contact_figures as Q
+from hotroll.model.solution import RollContact, Solution
+from hotroll.results.engineering import mill_setup, negative_gap_warning, width_totals
 from hotroll.results.neutral import decide
 from hotroll.results.outcome import conservation_problem, exit_code, leak_to_slip
-from hotroll.results.output import vertex_fields, write_csv, write_json, write_npz, write_vtk
-from hotroll.results.profiles import exit_profiles
+from hotroll.results.output import write_csv, write_json, write_npz
 from hotroll.results.summary import Summary
 from hotroll.results.units import UNITS
 
@@ -38,20 +42,20 @@ THERMAL_AVERAGED = ("exit_temperature_mean", "exit_temperature_surface", "max_te
 GAP_RESOLUTION = 0.5
 
 
-def contact_end_kind(run, prof) -> str | None:
+def contact_end_kind(contact: RollContact, h: float, prof) -> str | None:
     """How the contact ends (exact contact, steady solver): ``"gap"`` (at the roll gap, within
     ``GAP_RESOLUTION`` elements), ``"separation"`` (the strip leaves the roll before the gap
     where the pressure falls to zero; unilateral), ``"recovery"`` (after the gap: an elastic
     strip follows the rising roll while its pressure falls, ``[contact] strip_youngs_modulus``),
     ``"bound"`` (the end reached its allowed range's end) or ``"held"`` (bilateral contact:
-    held to the gap whatever the pressure)."""
+    held to the gap whatever the pressure); ``h`` the contact mesh size (m)."""
     if not len(prof["x"]):
         return None
-    if not getattr(run, "unilateral", False):
+    if not contact.unilateral:
         return "held"
-    lo, hi = run.end_bounds()
-    x_e, gap, R = run.shape.end(run.problem.rp), run.problem.rp.axis_x, run.problem.rp.radius
-    if abs(x_e - gap) <= GAP_RESOLUTION * run.problem.h:
+    lo, hi = contact.end_bounds
+    x_e, gap, R = contact.end_x, contact.rp.axis_x, contact.rp.radius
+    if abs(x_e - gap) <= GAP_RESOLUTION * h:
         return "gap"
     if x_e <= lo + 1e-9 * R or (x_e > gap and x_e >= hi - 1e-9 * R):
         return "bound"
@@ -64,63 +68,52 @@ def separation_angle(rp, prof) -> float:
     return float(prof["angle"][-1]) - gap
 
 
-def exit_strain(case: Case, run) -> dict:
-    """Mean strain of the exit strip beside the homogeneous strain entry + 2/sqrt3 ln(h0/h1)
-    of plane-strain compression: steady strip, x in X_roll + [0.25, 0.75] D with D = max(l_c,
-    2 h1) (the downstream length, where it is rigid); report's scheme, the material past
-    X_roll + 2h that was ahead of the bite at the start (it has crossed the whole arc)."""
-    rp, pa = run.problem.rp, case.pass_      # the run's frame (steady: the roll's, axis at 0)
+def exit_strain(case: Case, sol: Solution) -> dict:
+    """Mean strain of the exit strip (the solver's, ``Solution.exit_strain``: steady strip, x
+    in X_roll + [0.25, 0.75] D with D = max(l_c, 2 h1); report's scheme, the material past
+    X_roll + 2h that was ahead of the bite at the start) beside the homogeneous strain
+    entry + 2/sqrt3 ln(h0/h1) of plane-strain compression."""
+    pa = case.pass_
     homog = case.plate.mean_entry_strain + 2.0 / math.sqrt(3.0) * math.log(
         pa.entry_thickness / pa.exit_thickness)
-    field = getattr(run, "strain", None)
-    if field is None:
-        return {"exit_strain": None, "homogeneous_exit_strain": homog}
-    D = max(rp.contact_length, 4.0 * rp.half_exit)
-    if run.time_stepping:
-        # the report's scheme: the material past the gap that was ahead of the bite at the
-        # start (it has crossed the whole arc; the head was in the gap from t = 0)
-        nv = run.mesh.nv
-        x_now = run.top.X0[:, 0] + run.d[:nv]
-        mask = (x_now > rp.axis_x + 2.0 * run.problem.h) & (run.top.X0[:, 0] < rp.x_touch)
-        value = field.mean_where(mask) if mask.any() else float("nan")
-    else:
-        value = field.mean_between(rp.axis_x + 0.25 * D, rp.axis_x + 0.75 * D)
-    return {"exit_strain": value, "homogeneous_exit_strain": homog}
+    return {"exit_strain": sol.exit_strain, "homogeneous_exit_strain": homog}
 
 
-def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = None) -> Summary:
-    K, hist = run.problem.material.K, run.state.history
-    thermal = getattr(run, "thermal", None)
-    columns = thermal.contact_columns() if thermal is not None else None
-    prof = Q.contact_profile(run.form, run.top, run.d, K, columns)
-    exact = run.form.exact     # exact contact: the raw multiplier needs no exit correction
-    prof["normal_stress_corrected"] = (Q.exit_corrected(prof, run.problem.h)
+def write_results(case: Case, sol: Solution, out: Path, wall: float,
+                  extra: dict | None = None) -> Summary:
+    """summary.json, contact.csv, top.csv, history.csv, fields.npz (thermal.npz,
+    exit_profile.csv, fields.vtu where the run has them) of the solved run ``sol`` (its
+    ``Solution`` record, ``solvers/record.py``) into ``out``; the typed summary."""
+    pd, hist, (contact,) = sol.pass_data, sol.history, sol.contacts   # one roll: the half model
+    prof = dict(contact.profile)
+    exact = contact.exact     # exact contact: the raw multiplier needs no exit correction
+    prof["normal_stress_corrected"] = (Q.exit_corrected(prof, pd.h)
                                       if case.solver.exit_pressure_correction and not exact
                                       else prof["normal_stress"])
     prof["normal_stress_smooth"] = Q.smoothed(prof, prof["normal_stress"])
     prof["shear_stress_smooth"] = Q.smoothed(prof, prof["shear_stress"])
-    rp = run.problem.rp
+    rp = contact.rp
     if rp.shape is not None:      # a flattened roll: its surface's offset from R there (m)
         prof["roll_offset"] = np.asarray(rp.shape.offset(prof["angle"]), dtype=float)
     # positions are written where the case puts the roll axis (``frame_shift``: the steady
     # solver works in the roll's frame)
-    shift = getattr(run, "frame_shift", 0.0)
+    shift = sol.frame_shift
     write_csv(out / "contact.csv", {**prof, "x": prof["x"] + shift})
-    top_columns = {"temperature": columns["temperature"]} if columns else None
-    top = Q.top_profile(run.form, run.top, run.d, top_columns)
+    top = sol.tops[0]
     write_csv(out / "top.csv", {**top, "x": top["x"] + shift})
     write_csv(out / "history.csv", [{**r, **{k: r[k] + shift for k in ("neutral_x", "head_x")
                                              if k in r}} for r in hist])
-    fields = vertex_fields(run)
+    fields = sol.fields.arrays()
     fields["points"] = fields["points"] + [shift, 0.0]
-    write_npz(out / "fields.npz", **fields)
-    if thermal is not None:                   # the temperature's own (finer) strip mesh
-        strip = thermal.strip_fields()
+    write_npz(out / "fields.npz", **fields, contact_edges=sol.fields.contact_edges[0],
+              roll_centre=np.array(rp.centre), roll_radius=rp.radius)
+    if sol.thermal_strip is not None:         # the temperature's own (finer) strip mesh
+        strip = dict(sol.thermal_strip)
         strip["points"] = strip["points"] + [shift, 0.0]
         write_npz(out / "thermal.npz", **strip)
-    if case.output.vtk:
-        write_vtk(run, out / "fields.vtu", shift=shift)
-    summary = summarise(case, run, prof, wall) | (extra or {})
+    if case.output.vtk and sol.write_vtk is not None:    # a record built without FE has none
+        sol.write_vtk(out / "fields.vtu", shift)
+    summary = summarise(case, sol, prof, wall) | (extra or {})
     shift_positions(summary, shift)
     summary["leak_to_slip"] = leak_to_slip(summary)
     problem = conservation_problem(summary) if summary["converged"] else None
@@ -130,8 +123,7 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
     if not case.friction.uses_a_f:
         summary["a_f"] = None            # the law has no a_f
 
-    x_start = float(prof["x"][0]) if len(prof["x"]) else run.problem.rp.x_touch
-    summary.update(gap_means(run.form, run.problem.rp, x_start, K))
+    summary.update(sol.quantities)      # the means over the roll gap (the solver's)
     summary["mean_pressure"] = (summary["roll_force"] / summary["contact_length"]
                                 if summary.get("contact_length") else None)
     summary.update(width_totals(summary, case.pass_.width))
@@ -143,7 +135,7 @@ def write_results(case: Case, run, out: Path, wall: float, extra: dict | None = 
         summary["warnings"] = [*(summary.get("warnings") or []), f"pass.mill_modulus: {gap_warning}"]
     summary["temperature"] = case.plate.temperature if uses_temperature(case) else None
 
-    profile = exit_profiles(run)
+    profile = sol.exit_profile
     summary["exit_profile"] = profile      # eta, temperature (K), strain (-) at the outlet
     if profile is not None:
         write_csv(out / "exit_profile.csv",
@@ -214,14 +206,14 @@ def entry_pressure(prof: dict) -> float | None:
     return float(np.trapezoid(np.interp(t, s, p), t) / L)
 
 
-def roll_figures(case: Case, run, prof: dict) -> dict:
+def roll_figures(case: Case, contact: RollContact, prof: dict) -> dict:
     """A flattening roll's figures (m): the flattening (how far the flattened surface lies
     below the rigid roll through the same gap, largest over the contact: at its entry) and the
-    radius of the circle fitted to the surface over the contact; {} for a rigid roll."""
-    roll = getattr(run.problem, "roll", None)
-    if roll is None:
+    radius of the circle fitted to the surface over the contact, with its updates, last move
+    and shape error (the solver's: ``solvers/record.shape_error``); {} for a rigid roll."""
+    if not contact.flattening:
         return {}
-    rp = run.problem.rp
+    rp = contact.rp
     ang = np.asarray(prof["angle"], dtype=float)
     lo, hi = (float(ang.min()), float(ang.max())) if len(ang) else (0.0, rp.bite_angle)
     t = np.linspace(lo, hi, 101)
@@ -231,25 +223,8 @@ def roll_figures(case: Case, run, prof: dict) -> dict:
     return {"roll_model": case.roll.model,
             "roll_flattening": flattening(rp, float(np.min(X)) + rp.centre[0]),
             "roll_equivalent_radius": float(np.sqrt(c[2] + (c[0] / 2) ** 2 + (c[1] / 2) ** 2)),
-            "roll_updates": roll.updates, "roll_last_move": roll.last_move,
-            "roll_shape_error": shape_error(roll, prof)}
-
-
-def shape_error(roll, prof: dict) -> float:
-    """How far the roll's surface lies from the one its final tractions give (the elastic
-    disc's rim, or Hitchcock's circle): max |w - w(p, q)| over the contact's angles, over
-    max |w(p, q)| there (-). Checks the fixed point at the end, not only its last move."""
-    ang = np.asarray(prof["angle"], dtype=float)
-    if len(ang) < 2:
-        return math.nan
-    order = np.argsort(ang)
-    grid, w, _ = roll.target(ang[order], -np.asarray(prof["normal_stress"])[order],
-                             np.asarray(prof["shear_stress"])[order])
-    inside = (grid >= ang.min()) & (grid <= ang.max())
-    scale = float(np.max(np.abs(w[inside]), initial=0.0))
-    if not scale > 0.0:
-        return math.nan
-    return float(np.max(np.abs(roll.shape.offset(grid[inside]) - w[inside]))) / scale
+            "roll_updates": contact.roll_updates, "roll_last_move": contact.roll_last_move,
+            "roll_shape_error": contact.roll_shape_error}
 
 
 def flattening(rp, x_start: float) -> float:
@@ -262,12 +237,13 @@ def flattening(rp, x_start: float) -> float:
     return float(np.max(rigid - rp.height(x)))
 
 
-def summarise(case: Case, run, prof: dict, wall: float) -> dict:
+def summarise(case: Case, sol: Solution, prof: dict, wall: float) -> dict:
     """The summary.json dictionary: last-window means and run figures."""
-    rp, state, last = run.problem.rp, run.state, run.state.history[-1]
+    (contact,), pd, last = sol.contacts, sol.pass_data, sol.history[-1]
+    rp, state, stats = contact.rp, sol, sol.solve_stats
     # a step whose nonlinear solve did not converge (max_iterations reached) is not a solution:
     # its figures stay in history.csv but not in the means
-    window = state.history[-run.window:]
+    window = state.history[-sol.window:]
     solved = [r for r in window if r.get("solver_converged", True)] or window
     steady_solver = case.solver.method == "steady"
     mean = {k: float(np.nanmean([r[k] for r in solved])) if any(
@@ -277,18 +253,18 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
     # slip's signs (``Q.neutral_index``), none where it is noise in a sticking zone or the
     # strip skids. The flux angle (the strip's mean speed = the roll's horizontal speed) is
     # given beside it: it needs no slip sign, and it is not the neutral point
-    neutral = decide(prof, rp, run.problem.h, mean["neutral_angle"], bool(outlet_driven))
+    neutral = decide(prof, rp, pd.h, mean["neutral_angle"], bool(outlet_driven))
     ang_flux = Q.flux_neutral_angle(rp, mean["mass_flux_in"])
     cx, cy = rp.centre
     steady = state.status == "steady"
-    exact = run.form.exact
+    exact = contact.exact
     # exact contact: every tensile node of the raw multiplier (bilateral), and the stretch of the
     # arc the strip has left (unilateral); penalties: stretches of 2h of the corrected stress
-    loss = Q.contact_loss(prof, prof["normal_stress_corrected"], 0.0 if exact else 2.0 * run.problem.h)
-    unilateral = bool(getattr(run, "unilateral", False))
-    end_kind = contact_end_kind(run, prof) if steady_solver and exact else None
+    loss = Q.contact_loss(prof, prof["normal_stress_corrected"], 0.0 if exact else 2.0 * pd.h)
+    unilateral = contact.unilateral
+    end_kind = contact_end_kind(contact, pd.h, prof) if steady_solver and exact else None
     contact_figures = {
-        "contact_method": run.form.contact,
+        "contact_method": contact.method,
         "unilateral": unilateral,
         "contact_end_kind": end_kind,
         "separation_angle": separation_angle(rp, prof) if end_kind == "separation" else None,
@@ -331,29 +307,26 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
         "exit_thickness": last.get("exit_thickness_measured", math.nan),
         # exact contact: what the pressure still moved in the last Newton step (Pa; sticking
         # zones, fem/nonlinear.py)
-        "pressure_last_update": (run.result.stats[-1].multiplier_update * rp.u_roll
-                                 * run.form.lam_scale * run.problem.material.K)
+        "pressure_last_update": contact.pressure_last_update
         if steady_solver and exact else None,
         "steps": 0 if steady_solver else last["step"] + 1,
         "time": None if steady_solver else last["time"],
-        "dt": None if steady_solver else run.s.dt,
-        "newton_solves": len(run.result.stats) if steady_solver else None,
-        "coupling_updates": len(run.result.surface_moves or run.result.a_f_history)
-        if steady_solver else None,
-        "fixed_point_settled": bool(run.result.settled) if steady_solver else None,
+        "dt": None if steady_solver else stats["dt"],
+        "newton_solves": stats["newton_solves"] if steady_solver else None,
+        "coupling_updates": stats["coupling_updates"] if steady_solver else None,
+        "fixed_point_settled": stats["fixed_point_settled"] if steady_solver else None,
         "free_surface": case.plate.free_surface,
-        "surface_residual_h": float(run.result.surface_moves[-1] / run.problem.h)
-        if steady_solver and run.result.surface_moves else None,
+        "surface_residual_h": stats["surface_residual_h"] if steady_solver else None,
         "nonlinear_iterations": int(np.sum(iters)),
         "iterations_per_step": None if steady_solver else (
             float(np.mean(iters[1:])) if len(iters) > 1 else float(iters[0])),
-        "dofs": run.form.fes.ndof, "h_contact": run.problem.h, "wall_time_s": wall,
+        "dofs": sol.dofs, "h_contact": pd.h, "wall_time_s": wall,
         "roll_centre": [cx, cy], "roll_radius": rp.radius, "roll_surface_speed": rp.u_roll,
         "contact_start": [float(prof["x"][0]), float(prof["y"][0])] if len(prof["x"]) else None,
         "contact_end": [float(prof["x"][-1]), float(prof["y"][-1])] if len(prof["x"]) else None,
-        "K": run.problem.material.K, "m": run.problem.material.m,
-        "nonlinear": "newton" if steady_solver else run.s.nonlinear,
-        **exit_strain(case, run),
+        "K": pd.K, "m": pd.m,
+        "nonlinear": sol.nonlinear,
+        **exit_strain(case, sol),
         "friction_law": case.friction.law, "friction_mu": case.friction.mu,
         "friction_factor": case.friction.factor,
         "back_tension": case.pass_.back_tension, "front_tension": case.pass_.front_tension,
@@ -364,7 +337,7 @@ def summarise(case: Case, run, prof: dict, wall: float) -> dict:
            if case.thermal is not None},
         **({"thermal_dofs": last["thermal_dofs"], "thermal_layer": last["thermal_layer"]}
            if case.thermal is not None else {}),
-        **roll_figures(case, run, prof),
+        **roll_figures(case, contact, prof),
     }
 
 

@@ -1,9 +1,10 @@
 """The typed stages of a solve: the ``Problem`` (what is solved), the ``Solver`` interface that
 the direct steady solver (``steady.py``) and the report's scheme (``transient.py``) both
-implement, and the ``Solution`` their ``run`` returns (docs/architecture.md)."""
+implement, and the ``Solution`` their ``run`` returns (``model/solution.py``, re-exported here;
+``solution_record`` fills in its fields for the results: docs/architecture.md)."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable, Protocol
 
 from hotroll.fem.mesh import MeshSpec
@@ -11,6 +12,7 @@ from hotroll.fem.strain import StrainField
 from hotroll.model.friction import FrictionLaw
 from hotroll.model.geometry import RollPass
 from hotroll.model.material import NortonHoff
+from hotroll.model.solution import Solution  # noqa: F401 (re-exported: the solvers' callers)
 from hotroll.solvers.thermal_coupling import ThermalCoupling
 from hotroll.solvers.thermal_lagrangian import LagrangianThermal
 
@@ -120,22 +122,10 @@ class Problem:
         return self.mesh.h
 
 
-@dataclass
-class Solution:
-    """What a solver's ``run`` returns: its status and one history row per step (transient) or
-    per Newton solve and coupling update (steady); the fields stay on the solver."""
-    step: int = 0
-    time: float = 0.0
-    history: list = field(default_factory=list)
-    status: str = "running"   # running | steady | end_time | max_steps | wall_time | failed
-    failure: str = ""         # why a failed run stopped
-
-
-
-
 class Solver(Protocol):
-    """What the results layer reads from a solved run (``results/run_summary.py``): the problem,
-    the fields on the mesh and the history of ``run``."""
+    """What the two solvers share: the problem, the FE objects the record reads
+    (``solvers/record.py``), ``run`` and its ``Solution``. The results layer reads only the
+    ``Solution`` that ``solution_record`` returns (``results/run_summary.py``)."""
 
     problem: Problem
     time_stepping: bool     # the report's scheme (True) or the direct steady solver (False)
@@ -149,3 +139,5 @@ class Solver(Protocol):
     def run(self, progress: Callable[[dict], None] | None = None) -> Solution: ...
 
     def head_x(self) -> float: ...
+
+    def solution_record(self, frame_shift: float = 0.0) -> Solution: ...

@@ -39,6 +39,7 @@ from hotroll.model.material import NortonHoff
 from hotroll.solvers import couplings as C
 from hotroll.solvers.contact_end import ContactEndMixin
 from hotroll.solvers.problem import Problem, Solution
+from hotroll.solvers.record import solution_record
 from hotroll.solvers.steady_settings import (
     SteadyResult,
     SteadySettings,
@@ -129,6 +130,10 @@ class SteadyRun(ContactEndMixin):
                                     status=status,
                                     failure=r.failure if status == "failed" else "")
         return self.state
+
+    def solution_record(self, frame_shift: float = 0.0) -> Solution:
+        """The solved pass as data, all that the results read (``solvers/record.py``)."""
+        return solution_record(self, frame_shift)
 
     @property
     def last_stats(self) -> SolveStats:

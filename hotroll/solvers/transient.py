@@ -30,6 +30,7 @@ from hotroll.model.friction_estimate import estimate_a_f
 from hotroll.model.material import NortonHoff
 from hotroll.solvers import couplings as C
 from hotroll.solvers.problem import Problem, Solution
+from hotroll.solvers.record import solution_record
 from hotroll.solvers.settling import steady_reached, summary_windows, transit_time
 from hotroll.solvers.threads import solver_threads
 
@@ -207,6 +208,10 @@ class TransientRun:
         if self.ckpt:
             self.save_checkpoint()
         return st
+
+    def solution_record(self, frame_shift: float = 0.0) -> Solution:
+        """The solved pass as data, all that the results read (``solvers/record.py``)."""
+        return solution_record(self, frame_shift)
 
     def _terminal(self, t_wall: float) -> str | None:
         """Why the run stops after the current step, or None."""

@@ -105,11 +105,12 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
         else:
             run = TransientRun(model, settings, checkpoint_dir=ckpt, fingerprint=fingerprint(case))
             run.run(progress)
-        run.frame_shift = shift
         extra["solver_threads"] = threads_used()
         wall = time.perf_counter() - t0
         with parallel():              # the measures: one parallel region (fem/reproducible)
-            summary = write_results(case, run, out, wall, extra)
+            # the solved pass as data (solvers/record.py): all the results read
+            summary = write_results(case, run.solution_record(frame_shift=shift), out, wall,
+                                    extra)
     if case.output.figures:
         from hotroll.results.figures import plot_all  # matplotlib only when drawing
 

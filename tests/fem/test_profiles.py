@@ -1,5 +1,5 @@
 """Entry and exit profiles through the thickness (issue 17: what a schedule hands from pass
-to pass; model/profile.py, results/profiles.py): the inlet takes the given temperature
+to pass; model/profile.py, solvers/record_fields.py): the inlet takes the given temperature
 profile exactly, a strain profile is carried along the streamlines (eta in = eta out in a
 steady strip with rigid ends), the exit profile's mean is the run's own exit strain, and bad
 profiles are refused."""
@@ -13,7 +13,7 @@ from casebuild import build_case
 
 from hotroll.config.case import CaseError
 from hotroll.model.profile import ProfileError, ThicknessProfile
-from hotroll.results.profiles import exit_profiles
+from hotroll.solvers.record_fields import exit_profiles
 from hotroll.solvers.steady import SteadyRun
 from hotroll.workflows.runner import build_model, steady_settings
 

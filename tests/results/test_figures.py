@@ -183,7 +183,7 @@ def test_gap_means_from_the_written_fields(coarse):
 def test_gap_means_of_an_empty_band_are_nan():
     """A contact start at or past the roll gap leaves no deformation zone: the gap means are
     NaN (not a division by a zero area). The form of the coarse strip, not solved."""
-    from hotroll.results.engineering import gap_means
+    from hotroll.solvers.record_fields import gap_means
     from hotroll.solvers.steady import SteadyRun
     from hotroll.workflows.runner import build_model, steady_settings
 

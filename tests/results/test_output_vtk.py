@@ -1,4 +1,4 @@
-"""ParaView output of a run with a temperature field (results/output.py ``write_vtk``): the
+"""ParaView output of a run with a temperature field (solvers/record_fields.py ``write_vtk``): the
 strip mesh's own file thermal.vtu beside fields.vtu, read back with meshio (an independent
 reader of the VTK XML format). No solve: the thermal example's pass set up (cold start) and its
 temperature set to a linear function of x, which the P1 field holds exactly."""
@@ -31,7 +31,7 @@ def test_thermal_vtu_is_the_strip_temperature(thermal_run, tmp_path, shift):
     import meshio
     import ngsolve
 
-    from hotroll.results.output import write_vtk
+    from hotroll.solvers.record_fields import write_vtk
 
     th = thermal_run.thermal
     th.field.gf.Set(1000.0 + 100.0 * ngsolve.x)

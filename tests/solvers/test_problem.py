@@ -1,6 +1,7 @@
 """The typed stages (hotroll/solvers/problem.py): both solvers implement the ``Solver``
 interface that the results layer reads, and their ``run`` returns a ``Solution``. Plumbing: a
-guard that the two stay interchangeable for ``results/run_summary.py``."""
+guard that the two stay interchangeable for ``solvers/record.py``, which makes the
+``Solution`` record that ``results/run_summary.py`` reads."""
 from __future__ import annotations
 
 import typing
@@ -13,7 +14,7 @@ from hotroll.solvers.steady import SteadyRun
 from hotroll.solvers.transient import TransientRun
 from hotroll.workflows.runner import build_model, steady_settings
 
-MEMBERS = [n for n in typing.get_type_hints(Solver) if not n.startswith("_")] + ["run", "head_x"]
+MEMBERS = [n for n in typing.get_type_hints(Solver) if not n.startswith("_")] + ["run", "head_x", "solution_record"]
 
 
 @pytest.mark.parametrize("method", ["steady", "transient"])

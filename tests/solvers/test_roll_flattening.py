@@ -335,12 +335,12 @@ def test_the_roll_moves_from_the_first_round_only_after_a_warm_start():
 
 
 def test_the_roll_shape_error_is_its_distance_from_its_tractions_disc_by_hand():
-    """``results/run_summary.shape_error``: on a surface set to the disc's under the given
+    """``solvers/record.shape_error``: on a surface set to the disc's under the given
     tractions it is 0 (1e-12); on one set to 1.05 times that displacement it is 0.05: the
     largest |w - w(p, q)| over the contact's angles over max |w(p, q)| there."""
     from hotroll.model.geometry import RollPass
     from hotroll.model.roll_elastic import FlatteningRoll
-    from hotroll.results.run_summary import shape_error
+    from hotroll.solvers.record import shape_error
 
     rp, roll = FlatteningRoll.start(RollPass(0.3, 0.0034, 0.0029, omega=26.0), "elastic")
     theta = np.linspace(0.0, rp.bite_angle, 80)

@@ -1,6 +1,7 @@
 """Figures read off a contact profile (numpy only, no FE): the neutral point, the sticking zone,
 the flux's neutral angle, the P1 smoothing, contact loss and the exit-pressure correction.
-docs/theory.md 1e, 4.3, 4.5. ``fem/quantities.py`` re-exports them."""
+docs/theory.md 1e, 4.3, 4.5. ``fem/quantities.py`` re-exports them; ``results/`` reads them from
+here (it imports no FE: issue 52, the ``results-no-fe`` contract)."""
 from __future__ import annotations
 
 import math
