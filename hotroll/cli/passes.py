@@ -41,6 +41,7 @@ from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv
 from hotroll.results.units import UNITS
 from hotroll.solvers.settling import default_end_time
+from hotroll.workflows.build import asymmetric_refusal
 from hotroll.workflows.estimate import ResourceError, check
 from hotroll.workflows.runner import run_case
 from hotroll.workflows.sweep import Sweep
@@ -186,6 +187,9 @@ def _summary_table(case: Case, summary: dict) -> ResultTable:
 
 
 def _run(case: Case, out: Path, resume: bool, printer: Printer, sweep=None) -> dict:
+    refusal = asymmetric_refusal(case)       # before anything is estimated or written
+    if refusal is not None:
+        raise fail(str(refusal))
     try:
         est = check(case)
     except ResourceError as e:

@@ -75,6 +75,18 @@ def _case(path: Path) -> None:
     typer.echo(f"# derived: contact_length = {p.contact_length:.6g} m, bite_angle = "
                f"{p.bite_angle:.6g} rad, roll_surface_speed = {p.roll_surface_speed:.6g} m/s, "
                f"h_contact = {case.mesh.h:g} m, dt = {case.dt:.6g} s")
+    gap = case.roll_gap()
+    if not gap.symmetric:
+        rolls = "; ".join(f"{name}: R = {1e3 * r.radius:g} mm, omega = {r.omega:.6g} rad/s, "
+                          f"U = {r.surface_speed:.6g} m/s, {r.model}"
+                          for name, r in (("upper", gap.upper), ("lower", gap.lower)))
+        dh1, dh2 = gap.draft_split()
+        typer.echo(f"# roll gap: asymmetric (the rolls differ in {', '.join(gap.differences())}"
+                   f"); {rolls}; speed ratio {gap.speed_ratio:.6g}; R_e = "
+                   f"{1e3 * gap.equivalent_radius:.6g} mm; pass line {1e3 * gap.pass_line:.6g} "
+                   f"mm, draft shares {1e3 * dh1:.6g} / {1e3 * dh2:.6g} mm; the derived values "
+                   f"above are the upper roll's; a run needs the full-thickness model, not yet "
+                   f"available")
     # what a run would report and go on with (config/plausibility.py), as TOML comments
     for text in case.warnings():
         typer.echo("# warning: " + str(text).replace("\n", "\n# "))

@@ -15,6 +15,10 @@ MESH_TABLE: dict[str, float] = {
     "C1": 5.02e-3, "C2": 4.2e-3, "M1": 3.7e-3, "M2": 3.01e-3, "F1": 2.7e-3, "F2": 2.02e-3,
 }
 MeshName = Literal["C1", "C2", "M1", "M2", "F1", "F2"]
+#: Largest length of a case (m): roll radius, thicknesses, plate length, |roll_axis_x|. Beyond
+#: it the geometry's squares overflow (R = 1e300 m) or the roll position swamps the contact
+#: length in double precision (roll_axis_x = 1e300 m: l_c = 0); mills are metres in size.
+MAX_LENGTH = 1e3
 PosFloat = Annotated[float, Field(gt=0)]
 
 

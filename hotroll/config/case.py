@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 import tomllib
 import typing
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -23,6 +24,7 @@ from hotroll.config import plausibility
 from hotroll.config.base import MESH_TABLE, CaseError, Problems, Section, fields_of
 from hotroll.config.friction import FrictionConfig
 from hotroll.config.material import MaterialConfig
+from hotroll.config.roll_sides import SIDES
 from hotroll.config.sections import (  # noqa: F401 (re-exported)
     MAX_LENGTH,
     ContactConfig,
@@ -38,6 +40,7 @@ from hotroll.config.thermal import ThermalConfig
 from hotroll.config.units import ENGINEERING, UnitError, shown
 from hotroll.model.geometry import auto_contact_size
 from hotroll.model.grades import get_grade
+from hotroll.model.roll_gap import RollFriction, RollGap
 from hotroll.model.strip_elasticity import family_modulus
 
 __all__ = ["MESH_TABLE", "Case", "CaseError", "FrictionConfig", "MaterialConfig", "case_from_dict",
@@ -123,6 +126,13 @@ class Case(Section):
             problems.append(f'roll.model: "{self.roll.model}" needs solver.method = "steady" '
                             '(the report\'s scheme rolls with the rigid roll), got '
                             f'"{self.solver.method}"')
+        for side in ("upper", "lower"):
+            own = getattr(self.roll, side)
+            if own is not None and own.model not in (None, "rigid") \
+                    and self.solver.method != "steady":
+                problems.append(f'roll.{side}.model: "{own.model}" needs solver.method = '
+                                f'"steady" (the report\'s scheme rolls with the rigid roll), '
+                                f'got "{self.solver.method}"')
         if self.pass_.roll_gap is not None and self.solver.method != "steady":
             problems.append('pass.roll_gap: needs solver.method = "steady" (the exit thickness '
                             f'is found by repeated steady solves), got "{self.solver.method}"')
@@ -135,6 +145,22 @@ class Case(Section):
         if problems:
             raise Problems(problems)
         return self
+
+    def roll_gap(self) -> RollGap:
+        """The stand's two rolls: radius and speed ([pass], [pass.upper], [pass.lower],
+        pass.speed_ratio), friction (None: [friction]'s; a side's table that changes nothing is
+        [friction]'s) and model ([roll], [roll.upper], [roll.lower])."""
+        gap = self.pass_.two_rolls()
+        base = _friction_data(self.friction)
+        rolls = []
+        for roll in (gap.upper, gap.lower):
+            name = SIDES[roll.side]
+            own = getattr(self.friction, name)
+            data = None if own is None else _friction_data(own)
+            friction = None if data is None or data == base else RollFriction(
+                data.pop("law"), tuple(sorted(data.items())))
+            rolls.append(replace(roll, friction=friction, model=self.roll.model_of(roll.side)))
+        return replace(gap, upper=rolls[0], lower=rolls[1])
 
     def warnings(self) -> list[str]:
         """What a run of this case reports and goes on with (``config/plausibility.py``): a
@@ -196,10 +222,14 @@ class Case(Section):
         ("= 6 mm", "= 1000 degC": ``config/units.shown``)."""
         data = self.to_dict()
         lines = [f"name = {_toml_value(data.pop('name'))}"]
-        for section, values in data.items():
-            model = _model_of(Case, section)
+        tables = [(section, _model_of(Case, section), values)
+                  for section, values in data.items()]
+        for section, model, values in tables:
             lines += ["", f"[{section}]"]
             for key, value in values.items():
+                if isinstance(value, dict):          # a roll's own table, after the section's
+                    tables.append((f"{section}.{key}", _model_of(model, key), value))
+                    continue
                 info = fields_of(model)[key]
                 unit = (info.json_schema_extra or {}).get("unit", "") \
                     if isinstance(info.json_schema_extra, dict) else ""
@@ -209,6 +239,11 @@ class Case(Section):
                 lines.append(f"{key} = {_toml_value(value)}".ljust(36)
                              + f"  # {eng}{info.description}")
         return "\n".join(lines) + "\n"
+
+
+def _friction_data(section) -> dict:
+    """A friction table's keys as given or defaulted, without its per-roll tables."""
+    return section.model_dump(exclude_none=True, exclude={"upper", "lower"})
 
 
 # --------------------------------------------------------------------------- I/O

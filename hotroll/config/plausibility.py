@@ -127,6 +127,8 @@ def refusals(case) -> list[str]:
     if dimensional and p.roll_radius > MAX_ROLL_RADIUS:
         out.append(f"pass.roll_radius: {p.roll_radius:g} m is above {MAX_ROLL_RADIUS:g} m, no "
                    f"work roll is that large{mm}")
+    if dimensional and p.per_roll:           # a roll's own table (the upper's speed is above)
+        out += _own_roll_refusals(p)
     if dimensional and p.entry_thickness > MAX_THICKNESS:
         out.append(f"pass.entry_thickness: {p.entry_thickness:g} m is above "
                    f"{MAX_THICKNESS:g} m, no slab is that thick{mm}")
@@ -198,3 +200,23 @@ def solved_warnings(case, figures: dict, before: list[str]) -> list[str]:
     found = outside(case.material.flow_stress().validity, figures)
     kept = [w for w in before if " the estimated " not in w]
     return kept + range_lines(_law_name(case), found, "solved")
+
+
+def _own_roll_refusals(p) -> list[str]:
+    """An asymmetric pass's lower roll faster than any mill, or a roll's own radius larger
+    than any work roll, naming the key that set it."""
+    out, lower = [], p.two_rolls().lower
+    if lower.surface_speed > MAX_SURFACE_SPEED:
+        own = p.lower.speed_key if p.lower is not None else None
+        key = (f"lower.{own}" if own else "speed_ratio" if p.speed_ratio is not None
+               else "roll_angular_velocity")
+        out.append(f"pass.{key}: the lower roll's surface speed R omega = "
+                   f"{lower.surface_speed:.4g} m/s is above {MAX_SURFACE_SPEED:g} m/s, faster "
+                   f"than any flat mill")
+    for name in ("upper", "lower"):
+        own = getattr(p, name)
+        if own is not None and own.roll_radius is not None and own.roll_radius > MAX_ROLL_RADIUS:
+            out.append(f"pass.{name}.roll_radius: {own.roll_radius:g} m is above "
+                       f"{MAX_ROLL_RADIUS:g} m, no work roll is that large (the lengths look "
+                       f"like mm: write \"500 mm\" or 0.5)")
+    return out

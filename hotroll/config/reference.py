@@ -38,6 +38,12 @@ def _default(info) -> str:
     return f"{value:g}" if isinstance(value, float) else str(value)
 
 
+def _text(info) -> str:
+    """A field's meaning, without its unit and allowed range."""
+    m = _DESCRIPTION.match(" ".join((info.description or "").split()))
+    return m["text"] if m else info.description or ""
+
+
 def _row(key: str, info) -> str:
     m = _DESCRIPTION.match(" ".join((info.description or "").split()))
     text, unit, allowed = ((m["text"], m["unit"], m["allowed"] or "") if m
@@ -54,11 +60,28 @@ def case_keys_markdown() -> str:
         if model is None:
             lines += [f"`{name}` (top level): {info.description} (default {_default(info)}).", ""]
             continue
-        lines += [f"## [{name}]", "", info.description or "", "",
-                  "| key | default | unit | allowed | meaning |", "|---|---|---|---|---|"]
-        lines += [_row(key, sub) for key, sub in fields_of(model).items()]
-        lines.append("")
+        lines += _table(f"## [{name}]", info.description or "", model)
+        tables = {key: _section_model(sub) for key, sub in fields_of(model).items()
+                  if _section_model(sub) is not None}
+        shown = set()
+        for key, sub in tables.items():      # a roll's own tables: one table for those alike
+            if key in shown:
+                continue
+            alike = [k for k, m in tables.items() if k not in shown and
+                     list(fields_of(m)) == list(fields_of(sub))]
+            shown.update(alike)
+            heading = ", ".join(f"[{name}.{k}]" for k in alike)
+            texts = " ".join(f"`{k}`: {_text(fields_of(model)[k])}." for k in alike)
+            lines += _table(f"### {heading}", texts, sub)
     return "\n".join(lines).rstrip() + "\n"
+
+
+def _table(heading: str, text: str, model: type[BaseModel]) -> list[str]:
+    """A section's heading, text and key table (its own tables left out)."""
+    return [heading, "", text, "", "| key | default | unit | allowed | meaning |",
+            "|---|---|---|---|---|",
+            *[_row(key, sub) for key, sub in fields_of(model).items()
+              if _section_model(sub) is None], ""]
 
 
 def with_generated(page: str, body: str | None = None) -> str:

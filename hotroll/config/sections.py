@@ -9,6 +9,7 @@ from typing import Annotated, Any, Literal
 from pydantic import Field, PrivateAttr, StrictBool, field_validator, model_validator
 
 from hotroll.config.base import (
+    MAX_LENGTH,
     MESH_TABLE,
     MeshName,
     PosFloat,
@@ -17,14 +18,16 @@ from hotroll.config.base import (
     field,
     with_units,
 )
+from hotroll.config.roll_sides import (
+    RollModelSide,
+    RollSideConfig,
+    own_radius,
+    roll_values,
+    side_problems,
+)
 from hotroll.model.geometry import RollPass
 from hotroll.model.profile import ProfileError, ThicknessProfile
-
-#: Largest length of a case (m): roll radius, thicknesses, plate length, |roll_axis_x|. Beyond
-#: it the geometry's squares overflow (R = 1e300 m) or the roll position swamps the contact
-#: length in double precision (roll_axis_x = 1e300 m: l_c = 0); mills are metres in size.
-MAX_LENGTH = 1e3
-
+from hotroll.model.roll_gap import LOWER, UPPER, Roll, RollGap
 
 #: pass.roll_gap's allowed range, as its field says
 _GAP_ALLOWED = "> 0 and < entry_thickness [m]"
@@ -73,6 +76,19 @@ class PassConfig(Section):
         None, "the no-load roll gap S set on the stand: the exit thickness is then found with "
         "the force, h1 = S + F/M (gaugemeter; needs mill_modulus, steady solver)", "m",
         "> 0 and < entry_thickness")
+    speed_ratio: PosFloat | None = field(
+        None, "asymmetric rolling: the upper roll's surface speed over the lower's; the upper "
+        "roll keeps its speed (pass.roll_angular_velocity, or [pass.upper]'s) and the lower "
+        "turns at the upper's surface speed / speed_ratio (omit: each roll at its own angular "
+        "velocity, pass.roll_angular_velocity unless its table gives one; at <= 0 the lower "
+        "roll would stand or drive the strip backwards)", "", "> 0")
+    upper: RollSideConfig | None = field(
+        None, "the upper roll's own radius and speed, [pass.upper] (omit: [pass]'s)", "",
+        "a table of roll_radius, roll_angular_velocity or roll_surface_speed")
+    lower: RollSideConfig | None = field(
+        None, "the lower roll's own radius and speed, [pass.lower] (omit: [pass]'s, the speed "
+        "from speed_ratio when given)", "",
+        "a table of roll_radius, roll_angular_velocity or roll_surface_speed")
 
     @model_validator(mode="before")
     @classmethod
@@ -99,7 +115,7 @@ class PassConfig(Section):
             problems.append(
                 f"pass.exit_thickness: must be smaller than pass.entry_thickness "
                 f"({self.entry_thickness:g} m), got {self.exit_thickness:g} m")
-        elif self.draft >= self.roll_radius:
+        elif not own_radius(self) and self.draft >= self.roll_radius:
             problems.append(
                 f"pass.roll_radius: must exceed the draft per side (entry - exit)/2 = "
                 f"{self.draft:g} m, otherwise the roll cannot bite the plate; allowed: "
@@ -114,6 +130,7 @@ class PassConfig(Section):
         if self.mill_modulus is not None and self.width is None:
             problems.append("pass.mill_modulus: needs pass.width (the stand carries the whole "
                             "width's force)")
+        problems += side_problems(self)
         if problems:
             raise Problems(problems)
         return self
@@ -123,10 +140,26 @@ class PassConfig(Section):
         """Thickness reduction per side (m)."""
         return 0.5 * (self.entry_thickness - self.exit_thickness)
 
+    @property
+    def per_roll(self) -> bool:
+        """Whether the pass gives per-roll values ([pass.upper], [pass.lower], speed_ratio)."""
+        return self.upper is not None or self.lower is not None or self.speed_ratio is not None
+
     def roll_pass(self) -> RollPass:
-        """The geometry object the solver uses (all derived quantities live there)."""
+        """The geometry object the solver uses (all derived quantities live there); with
+        per-roll values the upper roll's arc (``RollGap.arc``), the same object when the
+        rolls are equal."""
+        if self.per_roll:
+            return self.two_rolls().arc(UPPER)
         return RollPass(self.roll_radius, 0.5 * self.entry_thickness, 0.5 * self.exit_thickness,
                         self.roll_angular_velocity, self.roll_axis_x)
+
+    def two_rolls(self) -> RollGap:
+        """The two rolls of the pass, their radii and speeds (rigid, the case's friction:
+        ``Case.roll_gap`` adds the rest)."""
+        (R1, w1), (R2, w2) = roll_values(self, UPPER), roll_values(self, LOWER)
+        return RollGap(Roll(R1, w1, side=UPPER), Roll(R2, w2, side=LOWER),
+                       self.entry_thickness, self.exit_thickness, self.roll_axis_x)
 
     @property
     def half_entry(self) -> float:
@@ -331,6 +364,17 @@ class RollConfig(Section):
     tolerance: float = field(1e-5, "the roll has settled when its surface moves less than this "
                              "x the exit half-thickness per update", "", "> 0 and < 1",
                              gt=0.0, lt=1.0)
+    upper: RollModelSide | None = field(
+        None, "the upper roll's own model, [roll.upper] (omit: roll.model)", "",
+        "a table of model")
+    lower: RollModelSide | None = field(
+        None, "the lower roll's own model, [roll.lower] (omit: roll.model)", "",
+        "a table of model")
+
+    def model_of(self, side: int) -> str:
+        """The model of the roll on ``side`` (+1 upper, -1 lower): its table's, else [roll]'s."""
+        own = self.upper if side == UPPER else self.lower
+        return self.model if own is None or own.model is None else own.model
 
 
 class OutputConfig(Section):

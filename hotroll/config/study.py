@@ -31,6 +31,7 @@ import itertools
 import math
 import re
 import tomllib
+import typing
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal
@@ -213,9 +214,13 @@ def key_unit(dotted: str) -> str:
     for schema in (Case, Schedule):
         try:
             model = PassEntry if section.startswith("pass[") else fields_of(schema)[section].annotation
-            text = fields_of(model)[key].description or ""
+            *tables, last = key.split(".")          # a roll's own table: pass.lower.roll_radius
+            for name in tables:
+                model = next(a for a in typing.get_args(fields_of(model)[name].annotation)
+                             if isinstance(a, type))
+            text = fields_of(model)[last].description or ""
             break
-        except (KeyError, AttributeError, TypeError):
+        except (KeyError, AttributeError, TypeError, StopIteration):
             continue
     found = re.search(r"\[([^\]]*)\]; allowed", text)      # field's "text [unit]; allowed"
     return found.group(1) if found else "-"

@@ -34,8 +34,29 @@ def reference_material(case: Case):
     return NortonHoff(K_ref, m, case.material.eps0), flow
 
 
+def asymmetric_refusal(case: Case) -> CaseError | None:
+    """The refusal of a pass whose two rolls differ (``RollGap.symmetric`` false), or None:
+    the solvers have the half model with its symmetry plane only, until the full-thickness
+    model lands (issue 52, stage 3)."""
+    gap = case.roll_gap()
+    if gap.symmetric:
+        return None
+    u, lo = gap.upper, gap.lower
+    return CaseError(
+        f"pass: asymmetric passes need the full-thickness model, not yet available (issue 52, "
+        f"stage 3): the rolls differ in {', '.join(gap.differences())} (upper: R = "
+        f"{1e3 * u.radius:g} mm, U = {u.surface_speed:.6g} m/s, {u.model}; lower: R = "
+        f"{1e3 * lo.radius:g} mm, U = {lo.surface_speed:.6g} m/s, {lo.model}; speed ratio "
+        f"{gap.speed_ratio:.6g}); the half model takes two equal rolls only (the case is "
+        f"otherwise valid)", case.name, "pass for the solvers")
+
+
 def build_model(case: Case):
-    """Translate the case description into the solver's model and settings."""
+    """Translate the case description into the solver's model and settings; a pass whose two
+    rolls differ is refused (``asymmetric_refusal``)."""
+    refusal = asymmetric_refusal(case)
+    if refusal is not None:
+        raise refusal
     sv = case.solver
     rp = case.pass_.roll_pass()
     h = case.mesh.h

@@ -93,6 +93,8 @@ def base_for(section: str, key: str) -> dict:
     d = copy.deepcopy(BASE)
     if (section, key) in LAW_OF:
         d["friction"] = {**LAW_OF[section, key], "v_reg": 1e-4, "a_f_max": 1e6}
+    if section.startswith("friction.") and ("friction", key) in LAW_OF:   # a roll's own
+        table(d, section).update(LAW_OF["friction", key])
     if section == "material" and (key in HS_MATERIAL or key == "grade"):
         props = {k: d["material"][k] for k in ("density", "specific_heat", "conductivity")}
         hs = {"law": "hensel-spittel", "grade": "S355J2"} if key == "grade" else HS_MATERIAL
@@ -107,8 +109,31 @@ def test_the_bases_are_valid():
 
 
 # --- the schema, read back ----------------------------------------------------------------------
-SECTIONS = {name: C._model_of(C.Case, name) for name in C.fields_of(C.Case)
-            if C._model_of(C.Case, name) is not None}
+def _sections(model, prefix: str = "") -> dict:
+    """Every table of the case by dotted name, a section's own tables too (pass.upper)."""
+    out = {}
+    for name in C.fields_of(model):
+        sub = C._model_of(model, name)
+        if sub is not None:
+            out[prefix + name] = sub
+            out.update(_sections(sub, f"{prefix}{name}."))
+    return out
+
+
+SECTIONS = _sections(C.Case)
+
+
+def table(d: dict, section: str) -> dict:
+    """The table ``section`` (dotted) of the case dict ``d``, made empty where absent."""
+    for part in section.split("."):
+        d = d.setdefault(part, {})
+    return d
+
+
+def _parent(d: dict, section: str) -> tuple[dict, str]:
+    """(the table holding ``section``, its last name)."""
+    *head, last = section.split(".")
+    return (table(d, ".".join(head)) if head else d), last
 
 
 def _parts(annotation) -> list:
@@ -147,7 +172,8 @@ def kind(info) -> dict:
 
 
 FIELDS = [(section, key, info) for section, model in SECTIONS.items()
-          for key, info in C.fields_of(model).items()]
+          for key, info in C.fields_of(model).items()
+          if C._model_of(model, key) is None]        # a section's own tables are sections
 _NUM = r"-?\d+(?:\.\d+)?(?:e[+-]?\d+)?"
 _OPS = {">": "gt", ">=": "ge", "<": "lt", "<=": "le"}
 
@@ -238,8 +264,8 @@ def one_field_broken(draw, field=None):
     bad value."""
     section, key, info = field or draw(st.sampled_from(FIELDS))
     d = base_for(section, key)
-    valid = d[section].get(key, info.default if info.default is not None else 1.0)
-    d[section][key] = draw(bad_values(info, valid))
+    valid = table(d, section).get(key, info.default if info.default is not None else 1.0)
+    table(d, section)[key] = draw(bad_values(info, valid))
     return d, f"{section}.{key}"
 
 
@@ -283,7 +309,7 @@ def test_a_bad_value_is_refused_naming_its_field(field, data):
     assert all(p.startswith(f"{dotted}:") for p in problems), (dotted, problems)
     section, key, info = field
     allowed = (info.json_schema_extra or {}).get("allowed", "")
-    value = d[section][key]
+    value = table(d, section)[key]
     if kind(info)["number"] and not kind(info)["pairs"] and not isinstance(value, (list, dict)):
         assert any(allowed in p for p in problems), (problems, allowed)
 
@@ -295,7 +321,7 @@ def test_an_unknown_key_is_refused_naming_it(section, key, value):
     d = copy.deepcopy(BASE)
     if key in C.fields_of(SECTIONS[section]):
         return
-    d[section][key] = value
+    table(d, section)[key] = value
     assert refused(d) == [f"{section}.{key}: unknown key (allowed: "
                           f"{', '.join(C.fields_of(SECTIONS[section]))})"]
 
@@ -303,15 +329,19 @@ def test_an_unknown_key_is_refused_naming_it(section, key, value):
 @FAST
 @given(key=st.from_regex(r"[a-z][a-z0-9_]{0,14}", fullmatch=True),
        section=st.sampled_from(sorted(SECTIONS)),
-       table=st.one_of(st.integers(), st.text(max_size=5), st.lists(st.integers(), max_size=2)))
-def test_an_unknown_section_or_a_section_that_is_no_table_is_refused(key, section, table):
+       value=st.one_of(st.integers(), st.text(max_size=5), st.lists(st.integers(), max_size=2)))
+def test_an_unknown_section_or_a_section_that_is_no_table_is_refused(key, section, value):
     if key not in C.fields_of(C.Case):
         d = copy.deepcopy(BASE)
         d[key] = {"x": 1}
         assert [p.split(" (")[0] for p in refused(d)] == [f"{key}: unknown section or key"]
     d = copy.deepcopy(BASE)
-    d[section] = table
-    assert refused(d) == [f"{section}: must be a table [{section}], got {table!r}"]
+    parent, last = _parent(d, section)
+    parent[last] = value
+    if "." not in section:
+        assert refused(d) == [f"{section}: must be a table [{section}], got {value!r}"]
+    else:                  # a section's own table: pydantic's words, naming it
+        assert [p.split(":")[0] for p in refused(d)] == [section]
 
 
 REQUIRED = [(s, k) for s, k, info in FIELDS if info.is_required()] + [
@@ -431,7 +461,7 @@ def test_any_finite_number_gives_a_case_or_a_case_error(field, value):
     else (R = 1e300 m overflowed in the contact length; roll_axis_x = 1e300 m blamed the mesh)."""
     section, key = field
     d = base_for(section, "A" if key in HS_MATERIAL else key)
-    d[section][key] = value
+    table(d, section)[key] = value
     try:
         case = hotroll.case_from_dict(d)
     except hotroll.CaseError as e:
