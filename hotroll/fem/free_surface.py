@@ -121,6 +121,10 @@ class StripMap:
     def displacement(self, shape: StripShape) -> np.ndarray:
         """Coefficient vector of the P2 displacement that maps the reference mesh onto ``shape``:
         the arc's chain of edges on the roll from x_c to x_e, the free tops on their curves."""
+        return self.nodes.coefficients((self.positions(shape) - self.nodes.X0).T)
+
+    def positions(self, shape: StripShape) -> np.ndarray:
+        """The P2 nodes' positions (N, 2) on ``shape`` (``displacement``)."""
         rp, X = self.rp, self.P[:, 0]
         x = self.stretch(X, shape.x_c, shape.x_e)
         H = roll_height(self.roll, x)
@@ -129,8 +133,7 @@ class StripMap:
         # the exit top starts at the contact's end, on the roll
         H[ex] = np.where(x[ex] <= shape.exit_x[0], H[ex],
                          np.interp(x[ex], shape.exit_x, shape.exit_y))
-        new = np.stack([x, self.P[:, 1] * H / self.H_ref], axis=1)
-        return self.nodes.coefficients((new - self.nodes.X0).T)
+        return np.stack([x, self.P[:, 1] * H / self.H_ref], axis=1)
 
 
 def _trace(xs: np.ndarray, slope: np.ndarray, y0: float) -> np.ndarray:

@@ -59,20 +59,35 @@ def _strip_geometry(rp: RollPass, x0: float, x1: float):
     Edges named ``sym`` (y = 0), ``in`` (x = x0), ``out`` (x = x1), ``top`` (flat entry),
     ``arc`` and ``exit`` (flat top after the gap).
     """
-    from netgen.occ import ArcOfCircle, Face, OCCGeometry, Pnt, Segment, SplineInterpolation, Wire
+    from netgen.occ import OCCGeometry
+
+    return OCCGeometry(strip_face(rp, x0, x1), dim=2)
+
+
+def strip_face(rp: RollPass, x0: float, x1: float, side: int = 1, suffix: str = ""):
+    """The OCC face of ``_strip_geometry``; ``side`` = -1: mirrored to y <= 0 (the lower roll's
+    half of a full-thickness strip, ``rp`` that roll's pass in its own frame), its roll-side
+    edges named with ``suffix`` (``arc`` + suffix, ...) and its y = 0 edge ``sym``."""
+    from netgen.occ import ArcOfCircle, Face, Pnt, Segment, SplineInterpolation, Wire
 
     cx, cy = rp.centre
     xt, h0, h1, R = rp.x_touch, rp.half_entry, rp.half_exit, rp.radius
     am = 0.5 * (-math.pi / 2 + math.atan2(h0 - cy, xt - cx))
     gap = [(x1, h1)] + ([(rp.axis_x, h1)] if x1 > rp.axis_x else [])
-    P = [Pnt(x, y, 0) for x, y in [(x0, 0), (x1, 0), *gap, (xt, h0), (x0, h0)]]
-    arc = len(P) - 3     # from the gap point at X_roll to the touching point
+    pts = [(x0, 0), (x1, 0), *gap, (xt, h0), (x0, h0)]
+    if side < 0:        # mirrored, and reversed to keep the wire counter-clockwise
+        pts = [(x, -y) for x, y in reversed(pts)]
+    P = [Pnt(x, y, 0) for x, y in pts]
+    arc = len(P) - 3 if side > 0 else 1     # between the gap point at X_roll and the touch
     if rp.shape is None:
-        roll = ArcOfCircle(P[arc], Pnt(cx + R * math.cos(am), cy + R * math.sin(am), 0), P[arc + 1])
+        roll = ArcOfCircle(P[arc], Pnt(cx + R * math.cos(am), side * (cy + R * math.sin(am)), 0),
+                           P[arc + 1])
     else:       # a flattened roll: a spline through its surface from the gap to the touch
         xs = rp.axis_x + (xt - rp.axis_x) * np.linspace(0.0, 1.0, 41)
         ys = rp.height(xs)
         ys[0], ys[-1] = h1, h0
+        if side < 0:
+            xs, ys = xs[::-1], -ys[::-1]
         roll = SplineInterpolation([Pnt(float(a), float(b), 0) for a, b in zip(xs, ys)])
     edges = [roll if i == arc else Segment(P[i], P[(i + 1) % len(P)]) for i in range(len(P))]
     face = Face(Wire(edges))
@@ -87,12 +102,12 @@ def _strip_geometry(rp: RollPass, x0: float, x1: float):
         elif abs(c.x - x0) < 1e-9 * scale:
             ed.name = "in"
         elif c.x > rp.axis_x:
-            ed.name = "exit"
-        elif abs(c.y - h0) < 1e-12 * max(1.0, h0):
-            ed.name = "top"
+            ed.name = "exit" + suffix
+        elif abs(side * c.y - h0) < 1e-12 * max(1.0, h0):
+            ed.name = "top" + suffix
         else:
-            ed.name = "arc"
-    return OCCGeometry(face, dim=2)
+            ed.name = "arc" + suffix
+    return face
 
 
 def _graded_mesh(geometry, rp: RollPass, spec: MeshSpec, x_lo: float, x_hi: float,

@@ -16,18 +16,23 @@ TOP_REGIONS = ("top", "arc", "exit")
 
 
 class TopBoundary:
-    """Vertices and edges of the plate's top boundary (free surface and contact)."""
+    """Vertices and edges of the plate's top boundary (free surface and contact).
 
-    def __init__(self, mesh, ndof_scalar: int):
+    ``side`` = -1, ``suffix``: the lower surface of a full-thickness strip (regions ``top`` +
+    suffix, ...), read and written in its roll's own frame, y -> -y (``mesh.strip_face``), so
+    that everything one roll's side does (tracing, contact, the strip map) is the upper's."""
+
+    def __init__(self, mesh, ndof_scalar: int, side: int = 1, suffix: str = ""):
         import ngsolve
 
-        self.nv, self.n_scalar = mesh.nv, ndof_scalar
+        self.nv, self.n_scalar, self.side = mesh.nv, ndof_scalar, side
+        names = tuple(r + suffix for r in TOP_REGIONS)
         edges, verts = [], set()
         for el in mesh.Elements(ngsolve.BND):
-            if el.mat in TOP_REGIONS:
+            if el.mat in names:
                 e = el.edges[0].nr
                 a, b = (v.nr for v in el.vertices)
-                edges.append((e, a, b, TOP_REGIONS.index(el.mat)))
+                edges.append((e, a, b, names.index(el.mat)))
                 verts.update((a, b))
         arr = np.array(sorted(edges), dtype=int)
         self.edge, self.ea, self.eb = arr[:, 0], arr[:, 1], arr[:, 2]
@@ -35,6 +40,8 @@ class TopBoundary:
         self.verts = np.array(sorted(verts), dtype=int)
         self.vpos = {v: i for i, v in enumerate(self.verts)}   # vertex nr -> row in verts
         pts = np.array([mesh.vertices[i].point for i in range(mesh.nv)])[:, :2]
+        if side < 0:
+            pts[:, 1] = -pts[:, 1]
         self.X0 = pts                                           # all reference vertices
         self.M0 = 0.5 * (pts[self.ea] + pts[self.eb])           # reference edge midpoints
         self.vertex_contact = np.zeros(len(self.verts), dtype=bool)
@@ -42,7 +49,8 @@ class TopBoundary:
 
     # --- reading and writing geometry through the displacement vector ----------------------
     def _xy(self, d: np.ndarray, dofs: np.ndarray) -> np.ndarray:
-        return np.stack([d[dofs], d[self.n_scalar + dofs]], axis=-1)
+        y = d[self.n_scalar + dofs]
+        return np.stack([d[dofs], y if self.side > 0 else -y], axis=-1)
 
     def vertex_values(self, f: np.ndarray, verts=None) -> np.ndarray:
         """A P2 vector field (coefficient vector ``f``) at top vertices."""
@@ -65,7 +73,7 @@ class TopBoundary:
 
     def set_vertices(self, d: np.ndarray, verts: np.ndarray, xy: np.ndarray) -> None:
         disp = xy - self.X0[verts]
-        d[verts], d[self.n_scalar + verts] = disp[:, 0], disp[:, 1]
+        d[verts], d[self.n_scalar + verts] = disp[:, 0], self.side * disp[:, 1]
 
     def set_midpoints(self, d: np.ndarray, rows: np.ndarray, xy: np.ndarray) -> None:
         """Move the midpoints of edges ``rows`` to ``xy`` by changing the bubble coefficient."""
@@ -73,7 +81,7 @@ class TopBoundary:
         lin = self.M0[rows] + 0.5 * (self._xy(d, ea) + self._xy(d, eb))
         c = (xy - lin) / BUBBLE_MID
         dofs = self.nv + self.edge[rows]
-        d[dofs], d[self.n_scalar + dofs] = c[:, 0], c[:, 1]
+        d[dofs], d[self.n_scalar + dofs] = c[:, 0], self.side * c[:, 1]
 
     # --- contact (3.9) -----------------------------------------------------------------------
     def detect(self, rp: RollPass, d: np.ndarray, tol: float, project_contact: bool,

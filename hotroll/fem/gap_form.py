@@ -1,0 +1,195 @@
+"""The weak form (3.6) on the full-thickness strip between two rolls (issue 52).
+
+The half model's form (``rolling_form.RollingForm``) with the symmetry plane taken out and a
+second contact: every term that belongs to a roll (its normal and tangent, surface speed,
+friction law with its own parameters and a_f) is the upper roll's on y > 0 and the lower
+roll's on y < 0 (the strip's mid-plane y = 0 separates the two surfaces: each contact lies on
+its own side). One continuous P1 multiplier lives on both arcs, the contact pressure of each.
+What changes against the half model (../shared/notes/asymmetric-rolling.md 4.3):
+
+- no ``sym`` condition: the vertical rigid motion is fixed by v_y = 0 on the inlet face (the
+  entry guide; its reaction is reported), nothing else holds the exit, which may leave
+  inclined and curved;
+- no T* (gamma v_y phi_y) on the outlet face, no flat-exit normal: both would clamp the curl;
+- the inlet and outlet bounds (3.2a,b) use the slower roll's speed on both sides: the entry is
+  slower and the exit faster than it whenever that roll has both slip zones (above the
+  saturation ratio the exit is slower than the fast roll).
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+
+from hotroll.fem.forms import NonlinearProblem
+from hotroll.fem.primal_dual import FrictionDual, NortonHoffDual, TangentPoints
+from hotroll.fem.reproducible import fe_space
+from hotroll.fem.rolling_form import RollingForm, ScaledPenalties, _elements_on, reference_viscosity
+from hotroll.fem.spaces import taylor_hood
+from hotroll.model.friction import FrictionLaw
+from hotroll.model.geometry import RollPass
+from hotroll.model.material import NortonHoff
+
+#: the boundaries of the full strip (fem/full_strip.py)
+ARCS = "arc|arcl"
+SURFACES = "top|arc|exit|topl|arcl|exitl"
+#: where v_y = 0 holds: the inlet face (the entry guide; free, the strip drifts across the gap:
+#: the traced surfaces' fixed point does not hold its height, measured on Example 1)
+INLET_GUIDE = "in"
+
+
+def by_side(upper, lower):
+    """The upper roll's value on y > 0, the lower's on y < 0 (CFs or numbers; vectors
+    component by component)."""
+    from ngsolve import CF, IfPos, y
+
+    dims = getattr(upper, "dim", 1)
+    if dims > 1:
+        return CF(tuple(IfPos(y, upper[i], lower[i]) for i in range(dims)))
+    return IfPos(y, upper, lower)
+
+
+class SidedFriction:
+    """Two friction laws, one per roll, as one law of the form's interface (``FrictionLaw``):
+    the coefficient and its partials of each side's law with that side's a_f."""
+
+    def __init__(self, upper: FrictionLaw, lower: FrictionLaw, a_f: dict):
+        self.laws = {1: upper, -1: lower}
+        self.a_f = a_f
+        self.uses_k = upper.uses_k or lower.uses_k
+        self.uses_pressure = upper.uses_pressure or lower.uses_pressure
+        self.uses_a_f = upper.uses_a_f or lower.uses_a_f
+
+    def _kw(self, side, kw):
+        law = self.laws[side]
+        return dict(kw, a_f=self.a_f[side], pressure=kw.get("pressure") if law.uses_pressure
+                    else None, k=kw.get("k") if law.uses_k else None)
+
+    def coefficient(self, slip2, **kw):
+        return by_side(*(self.laws[s].coefficient(slip2, **self._kw(s, kw)) for s in (1, -1)))
+
+    def coefficient_partials(self, slip2, **kw):
+        up, lo = (self.laws[s].coefficient_partials(slip2, **self._kw(s, kw)) for s in (1, -1))
+        return tuple(by_side(a, b) for a, b in zip(up, lo))
+
+
+class GapForm(RollingForm):
+    """Spaces, parameters and forms of (3.6) on the full strip: ``rolls`` {+1: upper, -1:
+    lower} each a ``RollPass`` in its own frame (centre above), ``frictions`` the same."""
+
+    def __init__(self, mesh, rolls: dict[int, RollPass], material: NortonHoff,
+                 frictions: dict[int, FrictionLaw], h: float, tensions: tuple = (0.0, 0.0),
+                 consistency=1.0, primal_dual: bool = True):
+        from ngsolve import FacetFESpace, GridFunction, Parameter
+
+        self.mesh, self.rolls = mesh, rolls
+        slow = min(rolls.values(), key=lambda r: r.u_roll)
+        self.rp = slow                      # the scale of the penalties and the multiplier
+        self.free_surface, self.contact = "traced", "multiplier"
+        self.compliance = self.strip_depth = None
+        self._mu = Parameter(reference_viscosity(material, slow))
+        self.penalties = ScaledPenalties(h, self._mu)
+        self._lam = Parameter(self.mu_ref / slow.contact_length)
+        self.U_side = {s: Parameter(r.u_roll) for s, r in rolls.items()}
+        self.U = Parameter(slow.u_roll)     # the inlet and outlet bounds' speed
+        self.v_reg_side = {s: Parameter(f.v_reg) for s, f in frictions.items()}
+        self.v_reg = by_side(self.v_reg_side[1], self.v_reg_side[-1])
+        self.laws = frictions               # their floats (numpy evaluations)
+        self.a_f_side = {s: Parameter(1.0) for s in rolls}
+        self.a_f = self.a_f_side[1]          # the half model's name: the upper roll's
+        self.friction = SidedFriction(*(replace(frictions[s], v_reg=self.v_reg_side[s])
+                                        for s in (1, -1)), self.a_f_side)
+        self.law = frictions[1]
+        self.material = material
+        self.consistency = consistency
+        self.fes = taylor_hood(mesh, dirichlety=INLET_GUIDE, multiplier_on=ARCS)
+        self.m = Parameter(material.m)
+        self.m_material = self.m
+        self.x_split_side = {s: Parameter(r.axis_x) for s, r in rolls.items()}
+        self.x_split = by_side(self.x_split_side[1], self.x_split_side[-1])
+        self.chi = GridFunction(fe_space(FacetFESpace, mesh, order=0))
+        self.tension_back, self.tension_front = Parameter(tensions[0]), Parameter(tensions[1])
+        self.top_elements = _elements_on(mesh, ARCS) if self.friction.uses_k else None
+        self.contact_regions = ARCS
+        self.roll_tilt = self.roll_hoop = None
+        self.dual = NortonHoffDual(mesh, material.eps0)
+        self._dual_cf = self.dual.cf if primal_dual else None
+        self.friction_dual = FrictionDual(mesh, ARCS) if primal_dual else None
+        self.tangent_points = TangentPoints(self.dual.space) if primal_dual else None
+        self.nonlinear = NonlinearProblem(self.fes, self.integrand, velocity_scale=slow.u_roll,
+                                          jacobian=self.jacobian,
+                                          pressure_row_scale=self.mu_ref)
+        if primal_dual:
+            self.dual.attach(self.nonlinear.velocity)
+            self.friction_dual.attach(self.nonlinear.velocity, self.slip, self.v_reg)
+            self.nonlinear.prepare = self._prepare_duals
+
+    def set_roll_speed(self, rp, v_reg):
+        raise NotImplementedError("the full strip's roll speeds are fixed (issue 52 stage 3)")
+
+    def roll_frame(self):
+        """(n, t) of the roll on each side: n into the roll, t along its surface's motion
+        (+x at the contact: the lower roll turns the other way)."""
+        from ngsolve import CF, sqrt, x, y
+
+        frames = []
+        for side in (1, -1):
+            cx, cy = self.rolls[side].centre
+            cy = side * cy                              # the lower roll's centre below
+            r = sqrt((x - cx) ** 2 + (y - cy) ** 2)
+            n = CF(((cx - x) / r, (cy - y) / r))
+            t = CF((-side * (y - cy) / r, side * (x - cx) / r))
+            frames.append((n, t))
+        (n1, t1), (n2, t2) = frames
+        return by_side(n1, n2), by_side(t1, t2)
+
+    def roll_speed(self):
+        return by_side(self.U_side[1], self.U_side[-1])
+
+    def friction_arguments(self, w, k=None, lam=None) -> dict:
+        law = self.friction
+        if law.uses_k and k is None:
+            k = self.shear_flow_stress(w)
+        return dict(a_f=None, m=self.m,
+                    pressure=self.pressure(w, lam) if law.uses_pressure else None,
+                    k=k if law.uses_k else None)
+
+    def multiplier_vertices(self):
+        cached = getattr(self, "_mult_vertices", None)
+        if cached is None:
+            import numpy as np
+
+            L, found = self.fes.components[2], {}
+            for el in self.mesh.Boundaries(ARCS).Elements():
+                for v, d in zip(el.vertices, L.GetDofNrs(el)):
+                    if d >= 0:
+                        found[v.nr] = d
+            verts = np.array(sorted(found), int)
+            cached = self._mult_vertices = (verts, np.array([found[v] for v in verts], int))
+        return cached
+
+    def constraint(self, u, v, lam, xi, regularise: float = 0.0, u_w=None, lam_w=None):
+        """s (lambda~ v.n + xi u.n) on both arcs (``RollingForm.constraint``, rigid strip)."""
+        from ngsolve import ds
+
+        n, _ = self.roll_frame()
+        term = self._lam * (lam * (v * n) + xi * (u * n))
+        if regularise:
+            term = term - regularise * self._lam * lam * xi
+        return term * ds(ARCS, bonus_intorder=2)
+
+    def boundary(self, u, w, v, friction: bool = True, lam=None):
+        """Friction on both arcs, the bounds (3.2a,b) on the free surfaces and the cut faces,
+        the tensions; no T* on the outlet."""
+        from ngsolve import IfPos, ds, specialcf, x
+
+        chi = self.chi
+        n, t = self.roll_frame()
+        friction_term = (chi * self.friction_coefficient(w, lam=lam) * self.slip(u) * (v * t)
+                         if friction else None)
+        inlet = self.inlet_penalty(u, w) * v[0]
+        outlet = self.outlet_penalty(u, w) * v[0]
+        free = IfPos(x - self.x_split, outlet, inlet)
+        nh = specialcf.normal(2)
+        rest = ((1.0 - chi) * free * ds(SURFACES)
+                + (inlet - self.tension_back * (v * nh)) * ds("in")
+                + (outlet - self.tension_front * (v * nh)) * ds("out"))
+        return friction_term * self.friction_measure() + rest if friction else rest

@@ -1,0 +1,288 @@
+"""Direct steady state on the full-thickness strip between two rolls (issue 52, stage 3).
+
+``SteadyRun``'s solve (Newton, the couplings inside it, the continuation in m) on the full
+strip (``fem/full_strip.py``) with the form of two contacts (``fem/gap_form.py``). Each roll's
+side of the strip has what the half model's top has (its ``TopBoundary`` read in the roll's own
+frame, its ``StripShape``, its traced free surfaces and its contact end): the couplings move
+both sides in one update. Not yet here: the strain and temperature fields, flattening rolls,
+a tandem speed, warm starts (refused by ``check_supported``).
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import replace
+
+import numpy as np
+
+from hotroll.fem import quantities as Q
+from hotroll.fem.free_surface import ContactEndSearch, StripShape, kinematic_update
+from hotroll.fem.full_strip import SUFFIX, FullStripMap, build_full_mesh
+from hotroll.fem.gap_form import GapForm
+from hotroll.fem.top_boundary import TopBoundary
+from hotroll.model.friction import FrictionLaw
+from hotroll.model.geometry import RollPass
+from hotroll.model.material import NortonHoff
+from hotroll.solvers import couplings as C
+from hotroll.solvers.gap_measure import gap_measure
+from hotroll.solvers.problem import Problem
+from hotroll.solvers.steady import SteadyRun
+from hotroll.solvers.steady_settings import SteadySettings, mesh_key
+
+SIDES = (1, -1)
+
+
+def reference_roll(rolls: dict[int, RollPass]) -> RollPass:
+    """The roll whose half strip both halves of the mesh are made from: the longer contact
+    (then the larger radius, the faster): chosen by the rolls, not by their sides, so that
+    swapping the rolls gives the mirrored mesh."""
+    return max(rolls.values(), key=lambda r: (r.contact_length, r.radius, r.u_roll))
+
+
+def check_supported(problem: Problem, settings: SteadySettings) -> None:
+    """Refuse what the full strip does not carry yet, naming it."""
+    missing = [name for name, on in (
+        ("a strain- or temperature-dependent flow stress (the strain and temperature fields)",
+         problem.flow_stress is not None or problem.thermal is not None),
+        ("a flattening roll ([roll] model)", problem.roll is not None),
+        ("the strip's elasticity", problem.strip_elasticity is not None),
+        ("the constrained free surface (plate.free_surface)", settings.free_surface != "traced"),
+        ("the penalty contact (contact.method)", settings.contact != "multiplier"),
+    ) if on]
+    if missing:
+        raise ValueError("the full-thickness strip (asymmetric passes) does not yet support: "
+                         + "; ".join(missing))
+
+
+class FullSteadyRun(SteadyRun):
+    """The steady full strip between the rolls ``rolls`` {+1: upper, -1: lower} (each a
+    ``RollPass`` in its own frame, the same axis_x and half_exit), with ``frictions`` (reduced
+    laws) and a_f per roll (``a_f``: a number or None for a law without it)."""
+
+    def __init__(self, problem: Problem, settings: SteadySettings, plate_length: float,
+                 rolls: dict[int, RollPass], frictions: dict[int, FrictionLaw],
+                 a_f: dict[int, float | None] | None = None):
+        import ngsolve
+
+        t0 = time.perf_counter()
+        check_supported(problem, settings)
+        self.rolls, self.frictions = rolls, frictions
+        self.a_f_given = a_f or {s: None for s in SIDES}
+        ref = reference_roll(rolls)
+        self.problem, self.s = replace(problem, rp=ref), settings
+        self.upstream, self.downstream, margin, core = settings.mesh_zone(ref, problem.h)
+        self.plate_length = plate_length
+        spec = replace(problem.mesh, core_factor=core)
+        self.mesh = build_full_mesh(ref, self.upstream, self.downstream, spec, margin)
+        mat = problem.material
+        self.strain = self.thermal = None
+        self.form = GapForm(self.mesh, rolls, NortonHoff(1.0, mat.m, mat.eps0), frictions,
+                            problem.h, tensions=problem.reduced_tensions)
+        V = self.form.fes.components[0]
+        self.disp = ngsolve.GridFunction(V)
+        self.d = self.disp.vec.FV().NumPy()
+        n = V.ndof // 2
+        self.tops = {s: TopBoundary(self.mesh, n, side=s, suffix=SUFFIX[s]) for s in SIDES}
+        self.top = self.tops[1]
+        self.arcs = {}
+        for s, top in self.tops.items():
+            self.arcs[s] = top.region == "arc"
+            rows = np.nonzero(self.arcs[s])[0]
+            top.set_midpoints(self.d, rows, ref.project(top.midpoint_positions(self.d, rows)))
+        self.d_ref = self.d.copy()
+        self.x_in = ref.x_touch - self.upstream
+        self.map = FullStripMap(ref, rolls, self.mesh, n, self.d_ref, self.x_in)
+        self.unilateral = settings.unilateral
+        self.end_searches = {s: ContactEndSearch() for s in SIDES}
+        self.shapes = {s: StripShape.flat(rolls[s]) for s in SIDES}
+        self._set_shape()
+        self.mesh_key = mesh_key(self.mesh)
+        self.mass_flux = None
+        self._roll_start = None
+        self.mesh_time = time.perf_counter() - t0
+        self.record = True
+
+    # --- what differs from the half strip ------------------------------------------------------
+    @property
+    def contact_start(self) -> float:
+        return min(sh.x_c for sh in self.shapes.values())
+
+    def measure(self, stats, index: int) -> dict:
+        row = {"step": index, "time": math.nan, "m": self.form.m.Get()}
+        row.update(gap_measure(self, self.problem.material.K))
+        row.update({"iterations": stats.iterations, "residual": stats.residual,
+                    "solver_converged": stats.converged})
+        return row
+
+    def _estimate_a_f(self) -> float:
+        raise ValueError("the full strip takes a_f given per roll (friction.a_f), not (3.15)")
+
+    def warm_start(self):
+        raise NotImplementedError("warm starts of the full strip: not yet")
+
+    def _couplings(self, warm: bool = False) -> list:
+        s, out = self.s, []
+        out.append(C.FreeSurface(self.update_surface, s.surface_tol * self.problem.h))
+        if self.unilateral:
+            out.append(C.ContactEnd(self.move_contact_end,
+                                    C.ContactEnd.TOLERANCE * s.surface_tol * self.problem.h))
+        return out
+
+    def _cold_start(self) -> None:
+        self.shapes = {s: StripShape.flat(self.rolls[s]) for s in SIDES}
+        self.end_searches = {s: ContactEndSearch() for s in SIDES}
+        self._tilt = None
+        self._set_shape()
+        self._kinematic_guess()
+        for s in SIDES:
+            a_f = self.a_f_given[s]
+            if a_f is None and self.frictions[s].uses_a_f:
+                raise ValueError(f"the full strip needs the {'upper' if s > 0 else 'lower'} "
+                                 f"roll's a_f given (friction.a_f)")
+            self.form.a_f_side[s].Set(1.0 if a_f is None else a_f)
+
+    def _set_contact(self) -> None:
+        chi = self.form.chi.vec.FV().NumPy()
+        chi[:] = 0.0
+        self._top_parts = {}
+        for s, top in self.tops.items():
+            top.set_contact_edges(self.arcs[s])
+            chi[top.edge[top.edge_contact]] = 1.0
+            xy = top.vertex_positions(self.d, top.verts[top.vertex_contact])
+            self.form.x_split_side[s].Set(float(np.median(xy[:, 0])))
+            self._top_parts[s] = self._parts(top)
+
+    @staticmethod
+    def _parts(top: TopBoundary) -> np.ndarray:
+        """``SteadyRun._top_parts`` of one side."""
+        xv = top.X0[top.verts, 0]
+        x_first = xv[top.vertex_contact].min()
+        verts = np.where(top.vertex_contact, 1, np.where(xv < x_first, 0, 2))
+        mids = np.where(top.edge_contact, 1, np.where(top.M0[:, 0] < x_first, 0, 2))
+        return np.concatenate([verts, mids])
+
+    def _set_shape(self) -> None:
+        self.d[:] = self.map.displacement(self.shapes)
+        self._set_contact()
+        self.mesh.SetDeformation(self.disp)
+
+    def update_surface(self) -> float:
+        """Both sides' free surfaces traced along the flow (``SteadyRun.update_surface``, each
+        in its roll's frame from its entry height at the inlet); the larger residual (m)."""
+        vel = self.form.nonlinear.gf.vec.FV().NumPy()
+        residual = 0.0
+        old = {s: sh.x_c for s, sh in self.shapes.items()}
+        for s, top in self.tops.items():
+            xy = np.vstack([top.vertex_positions(self.d), top.midpoint_positions(self.d)])
+            v = np.vstack([top.vertex_values(vel), top.midpoint_values(vel)])
+            order = np.argsort(xy[:, 0], kind="stable")
+            self.shapes[s], r = kinematic_update(self.rolls[s], self.shapes[s], xy[order],
+                                                 v[order], self._top_parts[s][order], self.x_in,
+                                                 self.map.x_bounds(s))
+            residual = max(residual, r)
+        self._relax_tilt(old)
+        self._set_shape()
+        return residual
+
+    def _relax_tilt(self, old: dict[int, float]) -> None:
+        """The contact starts' difference a = (x_c,upper - x_c,lower)/2 moved by a fraction
+        omega of its traced update (their mean as traced): with equal rolls the traced update
+        multiplies a by -4.7 per update on Example 1 (the strip tilting into the gap, a mode
+        the half model's symmetry removes), which diverges from any start. omega starts at
+        0.2 (-4.7 becomes -0.14), halves whenever the update changes sign (an oscillation)
+        and grows by 1.5 (to 1) while it keeps its sign."""
+        a_old = 0.5 * (old[1] - old[-1])
+        step = 0.5 * (self.shapes[1].x_c - self.shapes[-1].x_c) - a_old
+        omega, last = getattr(self, "_tilt", None) or (0.2, 0.0)
+        if step * last < 0.0:
+            omega *= 0.5
+        elif step * last > 0.0:
+            omega = min(1.0, 1.5 * omega)
+        self._tilt = (omega, step)
+        a = a_old + omega * step
+        mean = 0.5 * (self.shapes[1].x_c + self.shapes[-1].x_c)
+        for s in SIDES:
+            shift_contact_start(self.shapes[s], self.rolls[s], mean + s * a, self.x_in)
+
+    def move_contact_end(self) -> float:
+        """Each side's contact end by its own search (``ContactEndMixin.move_contact_end``)."""
+        out = 0.0
+        f = self.form
+        for s, top in self.tops.items():
+            verts = top.verts[top.vertex_contact]
+            x = top.vertex_positions(self.d, verts)[:, 0]
+            order = np.argsort(x)
+            p = f.vertex_pressure()[verts]
+            rp, sh = self.rolls[s], self.shapes[s]
+            old = sh.end(rp)
+            new, residual = self.end_searches[s].step(x[order], p[order],
+                                                      self.map.end_bounds(s))
+            sh.exit_x = sh.exit_x + (new - old)
+            sh.exit_y = sh.exit_y + float(rp.height(new) - rp.height(old))
+            sh.x_e = new
+            self._set_shape()
+            x_new = top.vertex_positions(self.d, verts)[:, 0]
+            mv, dofs = f.multiplier_vertices()
+            vec = f.multiplier.vec.FV().NumPy()
+            vec[dofs[np.searchsorted(mv, verts)]] = np.interp(x_new, x[order],
+                                                              p[order]) / f.lam_scale
+            out = max(out, residual, abs(new - old))
+        return out
+
+    def _kinematic_guess(self) -> None:
+        """Divergence-free flow between the two surfaces: stream function q zeta, zeta =
+        (y - y_b)/H, so v_x = q/H, v_y = q (y_b' + zeta H')/H (H = y_t - y_b), tangent to both;
+        q at 1 % forward slip on the slower roll."""
+        from ngsolve import CF, IfPos, sqrt, x, y
+
+        heights = {}
+        for s, rp in self.rolls.items():
+            cx, cy = rp.centre
+            R = rp.radius
+            root = sqrt(IfPos(R**2 - (x - cx) ** 2, R**2 - (x - cx) ** 2, 1e-300))
+            on_arc = IfPos(x - rp.x_touch, IfPos(rp.axis_x - x, 1.0, 0.0), 0.0)
+            H = on_arc * (cy - root) + (1.0 - on_arc) * IfPos(x - rp.axis_x, rp.half_exit,
+                                                                rp.half_entry)
+            heights[s] = (H, on_arc * (x - cx) / root)
+        (Hu, dHu), (Hl, dHl) = heights[1], heights[-1]
+        H, dH = Hu + Hl, dHu + dHl
+        zeta = (y + Hl) / H
+        q = 1.01 * min(r.u_roll for r in self.rolls.values()) * 2.0 * self.rolls[1].half_exit
+        self.form.nonlinear.gf.vec[:] = 0.0
+        self.form.nonlinear.gf.components[0].Set(CF((q / H, q * (-dHl + zeta * dH) / H)))
+
+    def head_x(self) -> float:
+        return self.problem.rp.axis_x + self.downstream
+
+    def side_profile(self, side: int, K: float) -> dict:
+        """The contact profile of one roll (``quantities.contact_profile``, in its own frame:
+        y up from the strip's mid-plane towards that roll)."""
+        return Q.contact_profile(_SideView(self.form, side, self.rolls[side]), self.tops[side],
+                                 self.d, K)
+
+
+def shift_contact_start(shape: StripShape, rp: RollPass, x_c: float, x_up: float) -> None:
+    """Move ``shape``'s contact start to ``x_c``, its entry curve carried along and blended
+    from ``x_up`` to end on the roll (as ``kinematic_update`` places it)."""
+    dx = x_c - shape.x_c
+    if dx == 0.0:
+        return
+    ex, ey = shape.entry_x.copy(), shape.entry_y.copy()
+    ex[1:] += dx
+    w = np.clip((ex - x_up) / max(x_c - x_up, 1e-300), 0.0, 1.0)
+    ey += w * (float(rp.height(x_c)) - ey[-1])
+    shape.entry_x, shape.entry_y, shape.x_c = ex, ey, x_c
+
+
+class _SideView:
+    """The form as one roll's side sees it (its pass, law and a_f): what
+    ``quantities.contact_profile`` reads."""
+
+    def __init__(self, form: GapForm, side: int, rp: RollPass):
+        self._form, self.rp = form, rp
+        self.law = form.laws[side]
+        self.a_f = form.a_f_side[side]
+        self.friction = form.laws[side]
+
+    def __getattr__(self, name):
+        return getattr(self._form, name)

@@ -1,0 +1,143 @@
+"""The figures of a full-thickness solve, per roll (issue 52): forces, torques, powers, the
+neutral points and forward slips, the entry guide's reaction, the exit's rotation and
+curvature, and the balances (identities of any converged solve: labelled so).
+
+Signs: a roll's force is the strip's push on it along its own axis direction (both positive
+in rolling); its torque and power are what its drive supplies (negative: the strip drives the
+roll). Curvature kappa > 0: the strip curls up (towards the upper roll), from the exit's rigid
+rotation Omega (counter-clockwise > 0) over its centreline speed (../shared/notes/
+asymmetric-rolling.md 4.4).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from hotroll.fem import quantities as Q
+from hotroll.fem.gap_form import ARCS, SURFACES
+from hotroll.fem.reproducible import integrate
+from hotroll.model.contact_figures import neutral_point
+from hotroll.model.material import edot_squared
+
+NAMES = {1: "upper", -1: "lower"}
+
+
+def gap_measure(run, K: float) -> dict:
+    """One history row of ``FullSteadyRun`` (SI; stresses times K)."""
+    from ngsolve import BND, CF, VOL, IfPos, InnerProduct, specialcf, sqrt, x, y
+
+    form, mesh = run.form, run.mesh
+    u = form.nonlinear.velocity
+    chi = form.chi
+    n, t = form.roll_frame()
+    s = form.slip(u)
+    kf = form.friction_coefficient(u)
+    nh = specialcf.normal(2)
+
+    def bnd(cf, region):
+        return integrate(CF(cf).Compile(), mesh, BND, definedon=mesh.Boundaries(region))
+
+    out = {}
+    sec_in, sec_out = Q.face_flow(form, "in"), Q.face_flow(form, "out")
+    v_exit = sec_out["velocity"]
+    for side, name in NAMES.items():
+        rp = run.rolls[side]
+        on = IfPos(side * y, 1.0, 0.0)
+        cx, cy = rp.centre
+        cy = side * cy
+        r = sqrt((x - cx) ** 2 + (y - cy) ** 2)
+        # the roll's force on the strip: the pressure's -p n and the friction's shear
+        f_strip = [-K * bnd(on * form.pressure(u) * n[i], ARCS)
+                   - K * form.integrate_friction(on * chi * kf * s * t[i]) for i in range(2)]
+        prof = run.side_profile(side, K)
+        (_, _), angle = neutral_point(prof, rp)
+        out.update({
+            f"{name}_roll_force": -side * f_strip[1],
+            f"{name}_horizontal_force": f_strip[0],
+            f"{name}_roll_torque": K * form.integrate_friction(on * chi * (-kf * s) * r),
+            f"{name}_roll_power": K * form.integrate_friction(
+                on * chi * (-kf * s) * form.U_side[side]),
+            f"{name}_contact_length": bnd(on * chi, ARCS),
+            f"{name}_neutral_angle": angle,
+            f"{name}_forward_slip": v_exit / rp.u_roll - 1.0,
+            f"{name}_contact_start": run.shapes[side].x_c,
+            f"{name}_contact_end": run.shapes[side].end(rp),
+            f"{name}_min_contact_pressure": float(np.min(-prof["normal_stress"]))
+            if len(prof["normal_stress"]) else math.nan,
+        })
+    eps = strain_rate_of(u)
+    e2 = edot_squared(eps)
+    mu = form.material.viscosity(e2, m=form.m_material, K=form.consistency)
+    out["plastic_power"] = K * integrate((mu * InnerProduct(eps, eps)).Compile(), mesh, VOL)
+    out["friction_power"] = K * form.integrate_friction(chi * kf * s * s)
+    out["tension_power"] = K * (bnd(form.tension_back * (u * nh), "in")
+                                + bnd(form.tension_front * (u * nh), "out"))
+    inlet = form.inlet_penalty(u, u) * u[0]
+    outlet = form.outlet_penalty(u, u) * u[0]
+    out["penalty_power"] = K * (bnd((1 - chi) * IfPos(x - form.x_split, outlet, inlet), SURFACES)
+                                + bnd(inlet, "in") + bnd(outlet, "out"))
+    supplied = out["upper_roll_power"] + out["lower_roll_power"] + out["tension_power"]
+    spent = out["plastic_power"] + out["friction_power"] + out["penalty_power"]
+    out["power_balance_error"] = abs(supplied - spent) / max(abs(supplied), 1e-300)
+    out["entry_guide_force_y"] = _inlet_reaction(form, K)
+    out["vertical_balance_error"] = abs(
+        -out["upper_roll_force"] + out["lower_roll_force"] + out["entry_guide_force_y"]) / max(
+        out["upper_roll_force"], 1e-300)
+    out.update({"entry_velocity": sec_in["velocity"], "exit_velocity": v_exit,
+                "mass_flux_in": sec_in["flux"], "mass_flux_out": sec_out["flux"],
+                "exit_thickness_measured": sec_out["thickness"]})
+    out["roll_force"] = 0.5 * (out["upper_roll_force"] + out["lower_roll_force"])
+    out.update(exit_rotation(run))
+    return out
+
+
+def strain_rate_of(u):
+    from hotroll.fem.forms import strain_rate
+
+    return strain_rate(u)
+
+
+def _inlet_reaction(form, K: float) -> float:
+    """The entry guide's vertical force on the strip (N/m): the residual of (3.6) in the
+    Dirichlet rows v_y = 0 of the inlet face, summed (the constant e_y's coefficients)."""
+    from hotroll.fem.reproducible import parallel
+
+    problem = form.nonlinear
+    r = problem.gf.vec.CreateVector()
+    with parallel():
+        problem.a_newton.Apply(problem.gf.vec, r)
+    nv = problem.n_velocity_dofs() // 2
+    rows = np.arange(nv, nv + form.mesh.nv)
+    fixed = ~problem.free_mask[rows]
+    return K * float(np.sum(r.FV().NumPy()[rows[fixed]]))
+
+
+def exit_rotation(run) -> dict:
+    """The exit's rigid motion v = V0 + Omega e_z x (x - x0), fitted by least squares to the
+    velocity at the P2 nodes of the strip's last half downstream of the gap: Omega (1/s),
+    kappa = Omega / |V| (1/m), the exit direction (rad, > 0 upwards) and the fit's residual
+    over |Omega| h (a rigid exit: small)."""
+    nodes = run.map.nodes
+    pos = nodes.X0 + nodes.values(run.d).T
+    vel = nodes.values(run.form.nonlinear.gf.vec.FV().NumPy()).T
+    axis = run.problem.rp.axis_x
+    x_out = float(pos[:, 0].max())
+    on = pos[:, 0] > axis + 0.5 * (x_out - axis)
+    X, Y = pos[on, 0], pos[on, 1]
+    n = int(on.sum())
+    # unknowns (a, b, Omega): v_x = a - Omega y, v_y = b + Omega x
+    A = np.zeros((2 * n, 3))
+    A[:n, 0], A[:n, 2] = 1.0, -Y
+    A[n:, 1], A[n:, 2] = 1.0, X
+    rhs = np.concatenate([vel[on, 0], vel[on, 1]])
+    sol, *_ = np.linalg.lstsq(A, rhs, rcond=None)
+    a, b, omega = sol
+    xm, ym = float(X.mean()), float(Y.mean())
+    vx, vy = a - omega * ym, b + omega * xm
+    speed = math.hypot(vx, vy)
+    resid = float(np.sqrt(np.mean((A @ sol - rhs) ** 2)))
+    h1 = 2.0 * run.rolls[1].half_exit
+    return {"exit_rotation_rate": float(omega), "exit_curvature": float(omega) / speed,
+            "exit_angle": math.atan2(vy, vx),
+            "exit_rotation_fit_residual": resid / max(abs(omega) * h1, 1e-300)}
