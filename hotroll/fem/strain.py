@@ -37,7 +37,8 @@ class StrainField:
         if profile is not None:
             fixed = ~np.array(list(self.space.FreeDofs()), dtype=bool)
             y = np.asarray(mesh.ngmesh.Coordinates())[: mesh.nv, 1][fixed]
-            self._inlet[fixed] = profile(y / np.max(y))
+            # over |y|: the full strip's inlet (y < 0 too, issue 52) reads it mirrored
+            self._inlet[fixed] = profile(np.abs(y) / np.max(np.abs(y)))
             self.entry = float(profile.mean())
             self._inlet[~fixed] = self.entry
         self.gf.vec.FV().NumPy()[:] = self._inlet

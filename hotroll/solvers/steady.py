@@ -526,6 +526,7 @@ class SteadyRun(ContactEndMixin):
         q = 1.01 * rp.u_roll * rp.half_exit
         self.form.nonlinear.gf.vec[:] = 0.0
         self.form.nonlinear.gf.components[0].Set(CF((q / H, q * y * dH / H**2)))
+        self.form.nonlinear.fix_dirichlet()     # v_y = 0 on the symmetry line exactly
 
     @property
     def solution(self) -> np.ndarray:
