@@ -51,7 +51,7 @@ def gap_measure(run, K: float) -> dict:
         f_strip = [-K * bnd(on * form.pressure(u) * n[i], ARCS)
                    - K * form.integrate_friction(on * chi * kf * s * t[i]) for i in range(2)]
         prof = run.side_profile(side, K)
-        (_, _), angle = neutral_point(prof, rp)
+        (xn, _), angle = neutral_point(prof, rp)
         out.update({
             f"{name}_roll_force": -side * f_strip[1],
             f"{name}_horizontal_force": f_strip[0],
@@ -60,6 +60,7 @@ def gap_measure(run, K: float) -> dict:
                 on * chi * (-kf * s) * form.U_side[side]),
             f"{name}_contact_length": bnd(on * chi, ARCS),
             f"{name}_neutral_angle": angle,
+            f"{name}_neutral_x": xn,
             f"{name}_forward_slip": v_exit / rp.u_roll - 1.0,
             f"{name}_contact_start": run.shapes[side].x_c,
             f"{name}_contact_end": run.shapes[side].end(rp),
@@ -88,6 +89,8 @@ def gap_measure(run, K: float) -> dict:
                 "mass_flux_in": sec_in["flux"], "mass_flux_out": sec_out["flux"],
                 "exit_thickness_measured": sec_out["thickness"]})
     out["roll_force"] = 0.5 * (out["upper_roll_force"] + out["lower_roll_force"])
+    # the cross-shear zone: between the two rolls' neutral points (m; 0 for equal rolls)
+    out["cross_shear_length"] = abs(out["upper_neutral_x"] - out["lower_neutral_x"])
     out.update(exit_rotation(run))
     return out
 
