@@ -4,7 +4,7 @@ exit curvature's well-posedness checks (outlet distance, v_reg, eps0). One JSON 
 (appended to OUT, resumed: a run already in OUT is skipped).
 
     python scripts/asymmetric_case_r.py OUT [--m 0.05] [--h 1e-3,6.67e-4] [--ratios 1,1.02]
-        [--checks]
+        [--checks] [--h0 0.01 --h1 0.008]
 """
 from __future__ import annotations
 
@@ -21,7 +21,7 @@ from hotroll.solvers.steady import SteadyRun
 from hotroll.theory.asymmetric import tresca_closed_form
 from hotroll.workflows.build import build_model, steady_settings
 
-R, H0, H1, MF = 0.25, 0.01, 0.008, 0.3
+R, H0, H1, MF = 0.25, 0.01, 0.008, 0.3     # Case R; --h0/--h1: another pass of the same roll
 
 
 def case_r(m: float, h: float, exit_length: float | None = None):
@@ -78,7 +78,10 @@ def main() -> None:
     ap.add_argument("--h", default="1e-3,6.67e-4")
     ap.add_argument("--ratios", default="1,1.01,1.02,1.05,1.1,1.2")
     ap.add_argument("--checks", action="store_true")
+    ap.add_argument("--h0", type=float, default=H0, help="entry thickness, m")
+    ap.add_argument("--h1", type=float, default=H1, help="exit thickness, m")
     a = ap.parse_args()
+    globals().update(H0=a.h0, H1=a.h1)
     done = set()
     if a.out.exists():
         done = {json.loads(line)["key"] for line in a.out.read_text().splitlines() if line}
@@ -94,11 +97,12 @@ def main() -> None:
             jobs.append((h, r, "v_reg/2", None))
             jobs.append((h, r, "eps0/10", None))
     for h, r, check, exit_length in jobs:
-        key = f"m={a.m} h={h:g} r={r} {check}".strip()
+        key = f"h0={H0:g} h1={H1:g} m={a.m} h={h:g} r={r} {check}".strip()
         if key in done:
             continue
         row = run(a.m, h, r, check, exit_length)
-        row.update({"key": key, "m": a.m, "h": h, "ratio": r, "check": check})
+        row.update({"key": key, "m": a.m, "h": h, "ratio": r, "check": check, "h0": H0,
+                    "h1": H1})
         if r is not None:
             row["slab"] = slab(r)
         with a.out.open("a") as f:

@@ -40,7 +40,6 @@ def gap_measure(run, K: float) -> dict:
 
     out = {}
     sec_in, sec_out = Q.face_flow(form, "in"), Q.face_flow(form, "out")
-    v_exit = sec_out["velocity"]
     for side, name in NAMES.items():
         rp = run.rolls[side]
         on = IfPos(side * y, 1.0, 0.0)
@@ -61,7 +60,6 @@ def gap_measure(run, K: float) -> dict:
             f"{name}_contact_length": bnd(on * chi, ARCS),
             f"{name}_neutral_angle": angle,
             f"{name}_neutral_x": xn,
-            f"{name}_forward_slip": v_exit / rp.u_roll - 1.0,
             f"{name}_contact_start": run.shapes[side].x_c,
             f"{name}_contact_end": run.shapes[side].end(rp),
             f"{name}_min_contact_pressure": float(np.min(-prof["normal_stress"]))
@@ -85,13 +83,21 @@ def gap_measure(run, K: float) -> dict:
     out["vertical_balance_error"] = abs(
         -out["upper_roll_force"] + out["lower_roll_force"] + out["entry_guide_force_y"]) / max(
         out["upper_roll_force"], 1e-300)
-    out.update({"entry_velocity": sec_in["velocity"], "exit_velocity": v_exit,
-                "mass_flux_in": sec_in["flux"], "mass_flux_out": sec_out["flux"],
-                "exit_thickness_measured": sec_out["thickness"]})
     out["roll_force"] = 0.5 * (out["upper_roll_force"] + out["lower_roll_force"])
     # the cross-shear zone: between the two rolls' neutral points (m; 0 for equal rolls)
     out["cross_shear_length"] = abs(out["upper_neutral_x"] - out["lower_neutral_x"])
     out.update(exit_rotation(run))
+    # a curling strip crosses the vertical outlet inclined by theta: its thickness there is
+    # the projected height times cos theta, its centreline speed the flux over that
+    # (face_flow's flux / height is the speed times cos theta)
+    cos_out = math.cos(out["outlet_angle"])
+    h_exit = sec_out["thickness"] * cos_out
+    v_exit = sec_out["flux"] / h_exit if h_exit > 0 else math.nan
+    out.update({"entry_velocity": sec_in["velocity"], "exit_velocity": v_exit,
+                "mass_flux_in": sec_in["flux"], "mass_flux_out": sec_out["flux"],
+                "exit_thickness_measured": h_exit})
+    for side, name in NAMES.items():
+        out[f"{name}_forward_slip"] = v_exit / run.rolls[side].u_roll - 1.0
     return out
 
 
@@ -141,6 +147,10 @@ def exit_rotation(run) -> dict:
     speed = math.hypot(vx, vy)
     resid = float(np.sqrt(np.mean((A @ sol - rhs) ** 2)))
     h1 = 2.0 * run.rolls[1].half_exit
+    # the direction at the outlet face's centre: the strip crosses it inclined
+    out = pos[:, 0] >= x_out - 1e-12 * max(1.0, abs(x_out))
+    y_out = 0.5 * (float(pos[out, 1].min()) + float(pos[out, 1].max()))
     return {"exit_rotation_rate": float(omega), "exit_curvature": float(omega) / speed,
             "exit_angle": math.atan2(vy, vx),
+            "outlet_angle": math.atan2(b + omega * x_out, a - omega * y_out),
             "exit_rotation_fit_residual": resid / max(abs(omega) * h1, 1e-300)}
