@@ -37,6 +37,7 @@ from hotroll.cli.common import (
 from hotroll.config.case import MESH_TABLE, Case, CaseError, load_case
 from hotroll.examples import EXAMPLES, example_path
 from hotroll.results.engineering import display
+from hotroll.results.gap_summary import MEAN_OF_ROLLS
 from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv
 from hotroll.results.units import UNITS
@@ -73,6 +74,12 @@ SUMMARY_KEYS = ["status", "free_surface", "h_contact", "neutral", "roll_force", 
 MILL_KEYS = ["contact_length", "roll_model", "roll_equivalent_radius", "roll_flattening",
              "roll_updates", "mill_stretch", "gap_setting", "roll_gap", "gauge_thickness",
              "gauge_solves"]
+#: An asymmetric pass (two rolls that differ): the strip's figures, then each roll's
+#: (``rolls``; the one-roll keys above are the two rolls' means: results/gap_summary.py).
+GAP_KEYS = ["speed_ratio", "cross_shear_length", "exit_curvature", "exit_angle",
+            "entry_guide_force_y"]
+ROLL_KEYS = ["surface_speed", "roll_force", "roll_torque", "roll_power", "forward_slip",
+             "neutral_angle", "contact_length", "min_contact_pressure"]
 #: With [thermal]: shown after the mechanics' figures (units from summary.json's ``units``).
 THERMAL_KEYS = ["exit_temperature_mean", "exit_temperature_surface", "plastic_heat",
                 "friction_heat_to_strip", "heat_to_roll", "heat_to_air", "heat_balance_error"]
@@ -174,15 +181,28 @@ def _summary_table(case: Case, summary: dict) -> ResultTable:
     thermal = THERMAL_KEYS if summary.get("thermal") else []
     # absent keys are not shown; the contact length only beside a flattened roll's figures
     mill = [k for k in MILL_KEYS if k != "contact_length" or summary.get("roll_model")]
-    keys = SUMMARY_KEYS[:-4] + mill + thermal + SUMMARY_KEYS[-4:]  # before the run's own figures
+    rolls = summary.get("rolls") or []
+    gap = GAP_KEYS if rolls else []
+    keys = SUMMARY_KEYS[:-4] + mill + gap + thermal + SUMMARY_KEYS[-4:]  # before the run's own
     units = summary.get("units", {})
+
+    def row(name: str, key: str, value, si: str | None) -> None:
+        text, unit = display(key, value, si)
+        si = UNITS.get(key, si or "")
+        table.rows.append([name, Shown(text if text is not None else _fmt(value), value),
+                           Shown(unit or si, si)])
+
     for key in keys:
         value = summary.get(key)
         if value is not None:
-            text, unit = display(key, value, units.get(key))
-            si = UNITS.get(key, units.get(key, ""))
-            table.rows.append([key, Shown(text if text is not None else _fmt(value), value),
-                               Shown(unit or UNITS.get(key, ""), si)])
+            row(f"{key} (mean of the two rolls)" if rolls and key in ("roll_force", *MEAN_OF_ROLLS) else key,
+                key, value, units.get(key))
+        if key == "entry_guide_force_y":        # each roll's figures after the strip's
+            for entry in rolls:
+                for k in ROLL_KEYS:
+                    if entry.get(k) is not None:
+                        row(f"{entry['side']} roll: {k}", k, entry[k],
+                            units.get(f"rolls.{k}"))
     return table
 
 

@@ -85,8 +85,8 @@ def _case(path: Path) -> None:
                    f"); {rolls}; speed ratio {gap.speed_ratio:.6g}; R_e = "
                    f"{1e3 * gap.equivalent_radius:.6g} mm; pass line {1e3 * gap.pass_line:.6g} "
                    f"mm, draft shares {1e3 * dh1:.6g} / {1e3 * dh2:.6g} mm; the derived values "
-                   f"above are the upper roll's; a run needs the full-thickness model, not yet "
-                   f"available")
+                   f"above are the upper roll's; a run solves the full-thickness strip between the "
+                   f"two rolls")
     # what a run would report and go on with (config/plausibility.py), as TOML comments
     for text in case.warnings():
         typer.echo("# warning: " + str(text).replace("\n", "\n# "))

@@ -20,6 +20,7 @@ EXAMPLES: dict[str, list[str]] = {
     "tension_pass": ["tension_pass"],
     "hot_strip_finishing_thermal": ["hot_strip_finishing_thermal"],
     "thin_strip": ["thin_strip"],
+    "asymmetric_plate": ["asymmetric_plate"],
 }
 
 

@@ -9,6 +9,7 @@ It reads the run's ``Solution`` record (``model/solution.py``, filled by
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +19,14 @@ from hotroll.config.plausibility import solved_warnings
 from hotroll.model import contact_figures as Q
 from hotroll.model.solution import RollContact, Solution
 from hotroll.results.engineering import mill_setup, negative_gap_warning, width_totals
+from hotroll.results.gap_summary import (
+    gap_figures,
+    gap_force_balance,
+    legacy_row,
+    roll_units,
+    shifted_history,
+    upper_a_f,
+)
 from hotroll.results.neutral import decide
 from hotroll.results.outcome import conservation_problem, exit_code, leak_to_slip
 from hotroll.results.output import write_csv, write_json, write_npz
@@ -84,7 +93,9 @@ def write_results(case: Case, sol: Solution, out: Path, wall: float,
     """summary.json, contact.csv, top.csv, history.csv, fields.npz (thermal.npz,
     exit_profile.csv, fields.vtu where the run has them) of the solved run ``sol`` (its
     ``Solution`` record, ``solvers/record.py``) into ``out``; the typed summary."""
-    pd, hist, (contact,) = sol.pass_data, sol.history, sol.contacts   # one roll: the half model
+    # the half model's one roll, or an asymmetric pass's two (upper, lower: results/gap_summary)
+    pd, hist, contact = sol.pass_data, sol.history, sol.contacts[0]
+    two = len(sol.contacts) == 2
     prof = dict(contact.profile)
     exact = contact.exact     # exact contact: the raw multiplier needs no exit correction
     prof["normal_stress_corrected"] = (Q.exit_corrected(prof, pd.h)
@@ -101,11 +112,19 @@ def write_results(case: Case, sol: Solution, out: Path, wall: float,
     write_csv(out / "contact.csv", {**prof, "x": prof["x"] + shift})
     top = sol.tops[0]
     write_csv(out / "top.csv", {**top, "x": top["x"] + shift})
-    write_csv(out / "history.csv", [{**r, **{k: r[k] + shift for k in ("neutral_x", "head_x")
-                                             if k in r}} for r in hist])
+    if two:       # the lower roll's contact and free surface, in its own frame (y mirrored)
+        lower = dict(sol.contacts[1].profile)
+        write_csv(out / "contact_lower.csv", {**lower, "x": lower["x"] + shift})
+        write_csv(out / "top_lower.csv", {**sol.tops[1], "x": sol.tops[1]["x"] + shift})
+        write_csv(out / "history.csv", shifted_history(hist, shift))
+    else:
+        write_csv(out / "history.csv", [{**r, **{k: r[k] + shift for k in ("neutral_x", "head_x")
+                                                 if k in r}} for r in hist])
     fields = sol.fields.arrays()
     fields["points"] = fields["points"] + [shift, 0.0]
-    write_npz(out / "fields.npz", **fields, contact_edges=sol.fields.contact_edges[0],
+    write_npz(out / "fields.npz", **fields,
+              contact_edges=np.concatenate(sol.fields.contact_edges) if two
+              else sol.fields.contact_edges[0],
               roll_centre=np.array(rp.centre), roll_radius=rp.radius)
     if sol.thermal_strip is not None:         # the temperature's own (finer) strip mesh
         strip = dict(sol.thermal_strip)
@@ -113,7 +132,18 @@ def write_results(case: Case, sol: Solution, out: Path, wall: float,
         write_npz(out / "thermal.npz", **strip)
     if case.output.vtk and sol.write_vtk is not None:    # a record built without FE has none
         sol.write_vtk(out / "fields.vtu", shift)
-    summary = summarise(case, sol, prof, wall) | (extra or {})
+    if two:
+        summary = summarise(case, replace(sol, history=[
+            legacy_row(r, upper_a_f(case)) for r in hist]), prof, wall) | (extra or {})
+        last = hist[-1]
+        summary.update(gap_figures(window_rows(sol), sol.contacts, case.roll_gap().speed_ratio,
+                                   shift))
+        summary.update(force_balance=gap_force_balance(last),
+                       balance_error=last["vertical_balance_error"],
+                       symmetry_stress_force_y=None, free_top_force_share=None,
+                       neutral_angle_flux=None)
+    else:
+        summary = summarise(case, sol, prof, wall) | (extra or {})
     shift_positions(summary, shift)
     summary["leak_to_slip"] = leak_to_slip(summary)
     problem = conservation_problem(summary) if summary["converged"] else None
@@ -143,6 +173,8 @@ def write_results(case: Case, sol: Solution, out: Path, wall: float,
                    for k, v in profile.items()})
 
     summary["units"] = {k: u for k, u in UNITS.items() if k in summary}
+    if two:
+        summary["units"].update(roll_units())
 
     summary["exit_code"] = exit_code(summary)
     typed = Summary.from_dict(summary)      # every key declared once, with its unit
@@ -237,14 +269,20 @@ def flattening(rp, x_start: float) -> float:
     return float(np.max(rigid - rp.height(x)))
 
 
+def window_rows(sol: Solution) -> list[dict]:
+    """The history rows the summary's means take: the last ``window`` rows but those whose
+    nonlinear solve did not converge (max_iterations reached: not a solution; their figures
+    stay in history.csv), or all of the window if none converged."""
+    window = sol.history[-sol.window:]
+    return [r for r in window if r.get("solver_converged", True)] or window
+
+
 def summarise(case: Case, sol: Solution, prof: dict, wall: float) -> dict:
     """The summary.json dictionary: last-window means and run figures."""
-    (contact,), pd, last = sol.contacts, sol.pass_data, sol.history[-1]
+    contact, pd, last = sol.contacts[0], sol.pass_data, sol.history[-1]
     rp, state, stats = contact.rp, sol, sol.solve_stats
-    # a step whose nonlinear solve did not converge (max_iterations reached) is not a solution:
-    # its figures stay in history.csv but not in the means
     window = state.history[-sol.window:]
-    solved = [r for r in window if r.get("solver_converged", True)] or window
+    solved = window_rows(sol)
     steady_solver = case.solver.method == "steady"
     mean = {k: float(np.nanmean([r[k] for r in solved])) if any(
         math.isfinite(r[k]) for r in solved) else math.nan for k in AVERAGED}

@@ -25,6 +25,29 @@ class _Absent:
 ABSENT: Any = _Absent()
 #: The groups of the HTML page's table (in this order; the rest under "Other").
 GROUPS = ("Pass", "Temperature and heat", "Checks", "Solver")
+#: An asymmetric pass's ``rolls`` entry (one per roll, the upper's first): key -> (SI unit or
+#: None, meaning). Each figure is that roll's history column (``upper_<key>``, ``lower_<key>``:
+#: solvers/gap_measure.py), the window's mean; x positions where the case puts the roll axes.
+ROLL_ENTRY: dict[str, tuple[str | None, str]] = {
+    "side": (None, "`upper` or `lower`"),
+    "radius": ("m", "the roll's radius"),
+    "surface_speed": ("m/s", "the roll's surface speed omega R"),
+    "roll_force": ("N/m", "the strip's push on the roll along its axis direction (> 0), per m "
+                   "of width"),
+    "horizontal_force": ("N/m", "the roll's horizontal force on the strip (> 0: drives it on)"),
+    "roll_torque": ("N m/m", "the torque the roll's drive supplies (< 0: the strip drives the "
+                    "roll, a braking roll)"),
+    "roll_power": ("W/m", "the power the roll's drive supplies (< 0: the roll takes power)"),
+    "contact_length": ("m", "the arc in contact"),
+    "neutral_angle": ("rad", "where the slip changes sign, from the roll's vertical centre "
+                      "line, positive towards the entry; null where it does not"),
+    "neutral_x": ("m", "x of the neutral point"),
+    "forward_slip": ("-", "v_exit / U of this roll - 1"),
+    "contact_start": ("m", "x where the strip first touches this roll"),
+    "contact_end": ("m", "x where it leaves this roll"),
+    "min_contact_pressure": ("Pa", "the lowest contact pressure on this roll"),
+}
+_ASYM = "; an asymmetric pass: "
 
 
 def _f(unit: str | None, label: str, meaning: str = "", *, group: str | None = None,
@@ -50,20 +73,23 @@ class Summary(Mapping):
     outlet_driven: bool = _f(None, "outlet driven", "no neutral point: the outlet penalty drives "
                              "the strip (exit code 6)")
     # --- the pass (group "Pass", in the page's order) -----------------------------------------
-    roll_force: float = _f("N/m", "roll force, one roll", "per m of width, one roll", group="Pass")
+    roll_force: float = _f("N/m", "roll force, one roll", "per m of width, one roll" + _ASYM
+                           + "the mean of the two rolls' (each in `rolls`)", group="Pass")
     roll_force_total: float = _f("N", "roll force, whole width", "one roll's force over the whole "
                                  "width", group="Pass", when="width")
-    roll_torque: float = _f("N m/m", "roll torque, one roll", "per m of width, one roll",
+    roll_torque: float = _f("N m/m", "roll torque, one roll", "per m of width, one roll"
+                            + _ASYM + "the mean of the two rolls' (each in `rolls`)",
                             group="Pass")
     roll_torque_total: float = _f("N m", "roll torque, whole width", "one roll's torque",
                                   group="Pass", when="width")
-    roll_power: float = _f("W/m", "roll power, one roll", "per m of width, one roll",
-                           group="Pass")
+    roll_power: float = _f("W/m", "roll power, one roll", "per m of width, one roll" + _ASYM
+                           + "the mean of the two rolls' (each in `rolls`)", group="Pass")
     roll_power_total: float = _f("W", "roll power, whole width", "one roll's power", group="Pass",
                                  when="width")
     mill_power: float = _f("W", "mill power, both rolls", "both rolls' power",
                            group="Pass", when="width")
-    forward_slip: float = _f("-", "forward slip", "v_exit / |U_roll| - 1", group="Pass")
+    forward_slip: float = _f("-", "forward slip", "v_exit / |U_roll| - 1" + _ASYM + "the mean "
+                             "of the two rolls' (each in `rolls`)", group="Pass")
     neutral: str = _f(None, "neutral point", "the neutral story in words, the one every "
                       "output shows (`results/neutral.py`): the point's angle in degrees and "
                       "radians, or `none: sticking zone from ... to ...` (the strip skids, "
@@ -84,7 +110,8 @@ class Summary(Mapping):
                                  group="Pass")
     mean_strain_rate: float = _f("1/s", "mean strain rate in the gap", "mean over the roll gap",
                                  group="Pass")
-    contact_length: float = _f("m", "contact arc length", "the arc in contact", group="Pass")
+    contact_length: float = _f("m", "contact arc length", "the arc in contact" + _ASYM
+                               + "the mean of the two rolls'", group="Pass")
     entry_velocity: float = _f("m/s", "entry velocity", "", group="Pass")
     exit_velocity: float = _f("m/s", "exit velocity", "", group="Pass")
     exit_strain: float | None = _f("-", "exit strain (mean)", "the strain carried to the exit",
@@ -92,7 +119,30 @@ class Summary(Mapping):
     homogeneous_exit_strain: float = _f("-", "homogeneous exit strain", "entry strain + 2/sqrt3 "
                                         "ln(h0/h1)", group="Pass")
     horizontal_force: float = _f("N/m", "horizontal roll force", "the roll's horizontal force on "
-                                 "the plate", group="Pass")
+                                 "the plate" + _ASYM + "the mean of the two rolls'",
+                                 group="Pass")
+    speed_ratio: float = _f("-", "speed ratio", "the upper roll's surface speed over the "
+                            "lower's", group="Pass", when="asymmetric")
+    rolls: list = _f(None, "the two rolls", "one entry per roll, the upper's then the lower's, "
+                     "each with the keys of the table below (their units in `units` as "
+                     "`rolls.<key>`); neutral story, contact start and end, angles and "
+                     "pressures of the legacy one-roll keys are the upper roll's",
+                     group="Pass", when="asymmetric")
+    cross_shear_length: float = _f("m", "cross-shear zone length", "the distance between the "
+                                   "two rolls' neutral points (0 for equal rolls; null where a "
+                                   "roll has none)", group="Pass", when="asymmetric")
+    exit_curvature: float = _f("1/m", "exit curvature", "the exit strip's curvature from its "
+                               "rigid rotation over its speed; > 0 curls up (towards the upper "
+                               "roll)", group="Pass", when="asymmetric")
+    exit_angle: float = _f("rad", "exit angle", "the exit strip's direction, > 0 upwards",
+                           group="Pass", when="asymmetric")
+    entry_guide_force_y: float = _f("N/m", "entry guide force", "the vertical force the entry "
+                                    "guide (v_y = 0 on the inlet) puts on the strip",
+                                    group="Pass", when="asymmetric")
+    vertical_balance_error: float = _f("-", "vertical balance error", "|rolls' and entry "
+                                       "guide's vertical forces| over the upper roll's force "
+                                       "(an identity of a converged solve)", group="Checks",
+                                       when="asymmetric")
     a_f: float | None = _f("m^-m", "friction coefficient a_f", "the viscoplastic friction "
                            "parameter used (estimated or given); null for another law",
                            group="Pass")
@@ -121,7 +171,8 @@ class Summary(Mapping):
                              group="Temperature and heat", when="thermal")
     # --- checks -------------------------------------------------------------------------------
     balance_error: float = _f("-", "force balance error", "the sum of `force_balance` over the "
-                              "roll force", group="Checks")
+                              "roll force" + _ASYM + "the vertical balance's "
+                              "(`vertical_balance_error`)", group="Checks")
     power_balance_error: float = _f("-", "power balance error", "", group="Checks")
     mass_flux_error: float = _f("-", "mass flux error", "|out - in| / in", group="Checks")
     heat_balance_error: float = _f("-", "heat balance error", "", group="Checks", when="thermal")
@@ -163,8 +214,8 @@ class Summary(Mapping):
                                           "y(phi) U cos(phi) = q, slab theory's neutral angle "
                                           "of the computed flux; not the neutral point "
                                           "(`neutral`), defined on a sticking arc too")
-    mass_flux_in: float = _f("m^2/s", "mass flux in", "half strip")
-    mass_flux_out: float = _f("m^2/s", "mass flux out", "half strip")
+    mass_flux_in: float = _f("m^2/s", "mass flux in", "half strip" + _ASYM + "the whole strip")
+    mass_flux_out: float = _f("m^2/s", "mass flux out", "half strip" + _ASYM + "the whole strip")
     plastic_power: float = _f("W/m", "plastic power", "")
     friction_power: float = _f("W/m", "friction power", "")
     penalty_power: float = _f("W/m", "penalty power", "")
@@ -172,7 +223,8 @@ class Summary(Mapping):
     tension_power: float = _f("W/m", "tension power", "")
     force_balance: dict = _f("N/m", "force balance", "the forces on the plate (x, y) from the "
                              "roll, the free tops, the cut faces (`tension`) and the symmetry "
-                             "line")
+                             "line" + _ASYM + "from each roll (`upper_roll`, `lower_roll`) and "
+                             "the entry guide")
     symmetry_stress_force_y: float = _f("N/m", "symmetry stress force y", "the force through the "
                                         "symmetry line from the stress on it")
     contact_loss: list = _f(None, "contact loss", "stretches (x from, x to) where the pressure "
@@ -350,7 +402,9 @@ class Summary(Mapping):
                 "roll": "with `[roll] model` hitchcock or elastic",
                 "mill": "with `[pass] mill_modulus`",
                 "gap": "with `[pass] roll_gap`",
-                "run": "written by a run (`hotroll run`, a schedule, a study)"}
+                "run": "written by a run (`hotroll run`, a schedule, a study)",
+                "asymmetric": "for an asymmetric pass (two rolls that differ: the "
+                              "full-thickness strip)"}
         rows = []
         for f in fields(cls):
             if f.metadata.get("internal"):
@@ -370,4 +424,7 @@ def summary_keys_markdown() -> str:
     bar = "\\|"          # a | inside a table cell
     lines += [f"| `{k}` | {u} | {lab} | {m.replace('|', bar)} |"
               for k, u, lab, m in Summary.reference_rows()]
+    lines += ["", "Each entry of `rolls` (an asymmetric pass):", "",
+              "| key | unit | meaning |", "|---|---|---|"]
+    lines += [f"| `{k}` | {u or ''} | {m} |" for k, (u, m) in ROLL_ENTRY.items()]
     return "\n".join(lines) + "\n"

@@ -4,7 +4,7 @@ implement, and the ``Solution`` their ``run`` returns (``model/solution.py``, re
 ``solution_record`` fills in its fields for the results: docs/architecture.md)."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable, Protocol
 
 from hotroll.fem.mesh import MeshSpec
@@ -15,6 +15,25 @@ from hotroll.model.material import NortonHoff
 from hotroll.model.solution import Solution  # noqa: F401 (re-exported: the solvers' callers)
 from hotroll.solvers.thermal_coupling import ThermalCoupling
 from hotroll.solvers.thermal_lagrangian import LagrangianThermal
+
+
+@dataclass(frozen=True)
+class GapRolls:
+    """The two rolls of an asymmetric pass, what the full-thickness strip takes
+    (``solvers/full_steady.FullSteadyRun``), keyed by side (+1 upper, -1 lower): ``rolls`` each
+    roll's ``RollPass`` in its own frame (``RollGap.arc``: y mirrored for the lower), the same
+    axis_x and half_exit; ``frictions`` each roll's law in reduced units (stresses over K, v_reg
+    from that roll's surface speed); ``a_f`` each roll's a_f (m^-m; None for a law without
+    it); ``speed_ratio`` the upper over the lower surface speed (-)."""
+
+    rolls: dict
+    frictions: dict
+    a_f: dict
+    speed_ratio: float
+
+    def at_axis(self, axis_x: float) -> GapRolls:
+        """The same rolls with their axes at x = ``axis_x`` (m)."""
+        return replace(self, rolls={s: replace(rp, axis_x=axis_x) for s, rp in self.rolls.items()})
 
 
 @dataclass
@@ -43,6 +62,8 @@ class Problem:
                                            # roll speed (the laws' default), None: v_reg given
     strip_elasticity: tuple | None = None  # (E_s Pa, nu_s) of the strip: its elastic thickness
                                            # strain in the contact (docs/theory.md 1e), or None
+    gap: GapRolls | None = None    # an asymmetric pass's two rolls (the full-thickness strip),
+                                   # or None: the half model with its symmetry plane
 
     @property
     def strip_compliance(self) -> float | None:

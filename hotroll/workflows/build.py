@@ -5,10 +5,11 @@ from __future__ import annotations
 from dataclasses import replace
 
 from hotroll.config.case import Case, CaseError
+from hotroll.config.roll_sides import SIDES
 from hotroll.fem.mesh import MeshSpec, plate_fine_length
 from hotroll.model.material import NortonHoff
 from hotroll.model.roll_elastic import FlatteningRoll, RollElasticity
-from hotroll.solvers.problem import Problem
+from hotroll.solvers.problem import GapRolls, Problem
 from hotroll.solvers.settling import default_end_time
 from hotroll.solvers.steady_settings import SteadySettings, stage_iterations
 from hotroll.solvers.transient import TransientSettings
@@ -35,25 +36,81 @@ def reference_material(case: Case):
 
 
 def asymmetric_refusal(case: Case) -> CaseError | None:
-    """The refusal of a pass whose two rolls differ (``RollGap.symmetric`` false), or None:
-    the solvers have the half model with its symmetry plane only, until the full-thickness
-    model lands (issue 52, stage 3)."""
+    """The refusal of an asymmetric pass (``RollGap.symmetric`` false) that asks for what the
+    full-thickness strip (``solvers/full_steady.py``) does not carry yet, each line naming its
+    key; None for a symmetric pass or one the full strip solves. Made before any computation
+    (``build_model``, ``hotroll run``)."""
     gap = case.roll_gap()
     if gap.symmetric:
         return None
+    lines = []
+    if case.solver.method != "steady":
+        lines.append(f'solver.method: an asymmetric pass needs "steady" (the report\'s scheme '
+                     f'has the half model only), got "{case.solver.method}"')
+    if case.thermal is not None:
+        lines.append("thermal: the full-thickness strip has no temperature field yet; remove "
+                     "the [thermal] section (an isothermal pass)")
+    for key, model in (("roll.model", case.roll.model),
+                       *((f"roll.{n}.model", getattr(case.roll, n).model)
+                         for n in SIDES.values() if getattr(case.roll, n) is not None)):
+        if model not in (None, "rigid"):
+            lines.append(f'{key}: the full-thickness strip takes rigid rolls only (allowed: '
+                         f'"rigid"), got "{model}"')
+    if case.strip_elasticity is not None:
+        lines.append('contact.strip_youngs_modulus: the full-thickness strip is rigid-plastic '
+                     '(allowed: "off", or "auto" without a grade), got '
+                     f'{case.contact.strip_youngs_modulus!r}')
+    if case.plate.free_surface != "traced":
+        lines.append('plate.free_surface: the full-thickness strip traces both free surfaces '
+                     f'(allowed: "traced"), got "{case.plate.free_surface}"')
+    if case.contact.resolved(case.solver.method) != "multiplier":
+        lines.append('contact.method: the full-thickness strip has the exact contact only '
+                     f'(allowed: "multiplier" or "auto"), got "{case.contact.method}"')
+    if case.pass_.roll_gap is not None:
+        lines.append("pass.roll_gap: the gap's search (gaugemeter) runs the half model only; "
+                     "give pass.exit_thickness")
+    for name, section in _friction_sections(case):
+        if section.uses_a_f and section.a_f_rule is None:
+            lines.append(f'{name}.a_f: the full-thickness strip needs each roll\'s a_f given '
+                         f'(m^-m, > 0), not "estimate" ((3.15) is the half model\'s)')
+    if not lines:
+        return None
     u, lo = gap.upper, gap.lower
-    return CaseError(
-        f"pass: asymmetric passes need the full-thickness model, not yet available (issue 52, "
-        f"stage 3): the rolls differ in {', '.join(gap.differences())} (upper: R = "
-        f"{1e3 * u.radius:g} mm, U = {u.surface_speed:.6g} m/s, {u.model}; lower: R = "
-        f"{1e3 * lo.radius:g} mm, U = {lo.surface_speed:.6g} m/s, {lo.model}; speed ratio "
-        f"{gap.speed_ratio:.6g}); the half model takes two equal rolls only (the case is "
-        f"otherwise valid)", case.name, "pass for the solvers")
+    return CaseError(lines, case.name, (
+        f"asymmetric pass for the full-thickness strip (the rolls differ in "
+        f"{', '.join(gap.differences())}; upper: R = {1e3 * u.radius:g} mm, U = "
+        f"{u.surface_speed:.6g} m/s; lower: R = {1e3 * lo.radius:g} mm, U = "
+        f"{lo.surface_speed:.6g} m/s; speed ratio {gap.speed_ratio:.6g})"))
+
+
+def _friction_sections(case: Case) -> list:
+    """(key, friction section) of each roll: ``[friction.upper]``/``[friction.lower]`` where
+    given (they hold [friction]'s keys they do not change), else ``[friction]``."""
+    out = []
+    for name in SIDES.values():
+        own = getattr(case.friction, name)
+        out.append((f"friction.{name}", own) if own is not None else ("friction", case.friction))
+    return out
+
+
+def gap_rolls(case: Case, m: float) -> GapRolls:
+    """The two rolls of an asymmetric pass for the full strip (``Problem.gap``): each roll's
+    arc (``RollGap.arc``), its friction law (its section's, v_reg from its own surface speed;
+    reduced units, rate exponent ``m``) and a_f (given; None for a law without it)."""
+    gap = case.roll_gap()
+    rolls, frictions, a_f = {}, {}, {}
+    for side, (_, section) in zip(SIDES, _friction_sections(case)):
+        rp = gap.arc(side)
+        rolls[side] = rp
+        frictions[side] = section.law_object(rp.u_roll, m)
+        a_f[side] = section.a_f_rule if section.uses_a_f else None
+    return GapRolls(rolls, frictions, a_f, gap.speed_ratio)
 
 
 def build_model(case: Case):
-    """Translate the case description into the solver's model and settings; a pass whose two
-    rolls differ is refused (``asymmetric_refusal``)."""
+    """Translate the case description into the solver's model and settings. A pass whose two
+    rolls differ also carries them (``Problem.gap``: the full-thickness strip), after the
+    refusal of what that strip does not carry yet (``asymmetric_refusal``)."""
     refusal = asymmetric_refusal(case)
     if refusal is not None:
         raise refusal
@@ -81,6 +138,8 @@ def build_model(case: Case):
                          v_reg_per_speed=None if case.friction.v_reg is not None
                          else case.friction.regularisation_velocity(1.0),
                          strip_elasticity=case.strip_elasticity)
+    if not case.roll_gap().symmetric:
+        model = replace(model, gap=gap_rolls(case, material.m))
     if case.roll.model != "rigid":
         shaped, roll = FlatteningRoll.start(
             rp, case.roll.model, RollElasticity(case.roll.youngs_modulus, case.roll.poissons_ratio),

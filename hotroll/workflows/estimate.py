@@ -116,6 +116,8 @@ def estimate(case) -> Estimate:
         x0, x1, lo, hi = plate_zone(rp, case.plate.length, plate_fine_length(rp, h, end))
         core = spec.core_factor
     tri = MESHER_FACTOR * triangles(rp, h, far, x0, x1, lo, hi, core, case.mesh.grading)
+    if not case.roll_gap().symmetric:      # the full-thickness strip: the half strip mirrored
+        tri *= 2
     dofs = DOFS_PER_TRIANGLE * tri
     if case.solver.method == "steady":
         seconds = STEADY_ITERATIONS * (SECONDS_A * dofs + SECONDS_B * dofs**1.5)

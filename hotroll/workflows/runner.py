@@ -19,6 +19,8 @@ from hotroll.results.output import (
 )
 from hotroll.results.run_dir import RunDir
 from hotroll.results.run_summary import write_results
+from hotroll.solvers.full_steady import FullSteadyRun
+from hotroll.solvers.record_full import solution_record as full_record
 from hotroll.solvers.settling import default_end_time  # noqa: F401  (runner's API)
 from hotroll.solvers.steady import SteadyRun
 from hotroll.solvers.threads import parallel, solver_threads, threads_used
@@ -60,7 +62,9 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
     has solved on the same mesh (``warm_start_from`` in the summary). ``mass_flux`` (steady
     only): (inlet flux m^2/s of the half strip, relative tolerance) of a tandem stand whose
     roll speed the solve finds (``solvers/couplings.TandemSpeed``); the case's speed is the
-    start, the speed found is written (case.toml, summary.json)."""
+    start, the speed found is written (case.toml, summary.json). An asymmetric pass (two
+    rolls that differ, ``Problem.gap``) runs the full-thickness strip
+    (``solvers/full_steady.FullSteadyRun``, its record ``solvers/record_full.py``)."""
     if case.pass_.roll_gap is not None:      # the exit thickness follows from the gap
         return run_gap_case(case, Path(out), run_case, progress=progress, sweep=sweep)
     est = check(case)                     # ResourceError before anything is written or meshed
@@ -87,7 +91,13 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
             shift = model.rp.axis_x
             model = replace(model, rp=replace(model.rp, axis_x=0.0))
             near = warm = None
-            if sweep is None:
+            if model.gap is not None:
+                # an asymmetric pass: the full-thickness strip between its two rolls (each
+                # in its own frame, their axes at x = 0); no warm start from a sweep yet
+                gap = model.gap.at_axis(0.0)
+                run = FullSteadyRun(model, steady_settings(case), case.plate.length,
+                                    gap.rolls, gap.frictions, gap.a_f)
+            elif sweep is None:
                 run = SteadyRun(model, steady_settings(case), case.plate.length)
             else:
                 run = sweep.steady_run(case, model)
@@ -95,10 +105,10 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
             run.mass_flux = mass_flux
             run.run(progress, warm=warm)
             omega = run.problem.rp.omega
-            if omega != case.pass_.roll_angular_velocity:      # a tandem speed found in the solve
+            if model.gap is None and omega != case.pass_.roll_angular_velocity:      # a tandem speed found in the solve
                 case = case.with_overrides(**{"pass.roll_angular_velocity": omega})
                 write_text(out / "case.toml", case.to_toml())
-            if sweep is not None:
+            if sweep is not None and model.gap is None:
                 sweep.add(case, run)
             extra["warm_start_from"] = near
             extra["warm_start_failed"] = bool(run.result.warm_failed)
@@ -109,8 +119,9 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
         wall = time.perf_counter() - t0
         with parallel():              # the measures: one parallel region (fem/reproducible)
             # the solved pass as data (solvers/record.py): all the results read
-            summary = write_results(case, run.solution_record(frame_shift=shift), out, wall,
-                                    extra)
+            record = (full_record(run, frame_shift=shift) if model.gap is not None
+                      else run.solution_record(frame_shift=shift))
+            summary = write_results(case, record, out, wall, extra)
     if case.output.figures:
         from hotroll.results.figures import plot_all  # matplotlib only when drawing
 

@@ -32,6 +32,7 @@ from hotroll.results.figures.fields import fig_mesh, fig_sigma_ef, fig_velocity 
 from hotroll.results.figures.history import fig_history  # noqa: E402
 from hotroll.results.figures.profiles import fig_contact, fig_contact_angle, fig_top  # noqa: E402
 from hotroll.results.figures.roll import fig_roll  # noqa: E402
+from hotroll.results.figures.rolls import fig_rolls  # noqa: E402
 from hotroll.results.figures.run_files import RunFiles  # noqa: E402
 from hotroll.results.figures.thermal import fig_temperature  # noqa: E402
 
@@ -48,6 +49,7 @@ FIGURES: tuple[tuple[str, Callable[[RunFiles, Path], Path | None]], ...] = (
     ("fig_history.png", fig_history),
     ("fig_temperature.png", fig_temperature),   # a coupled run's (None without [thermal])
     ("fig_roll.png", fig_roll),                 # a flattening roll's (None for a rigid one)
+    ("fig_rolls.png", fig_rolls),               # an asymmetric pass's two rolls (else None)
 )
 
 

@@ -37,6 +37,11 @@ class RunFiles:
         self.history = files.table("history.csv")
         self.fields = files.fields()
 
+    def dir_table(self, name: str) -> Table | None:
+        """Another CSV table of the run directory (e.g. an asymmetric pass's
+        ``contact_lower.csv``), None if missing."""
+        return RunDir(self.dir).table(name)
+
     # -- derived quantities ---------------------------------------------
     @property
     def name(self) -> str:

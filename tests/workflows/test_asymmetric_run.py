@@ -1,0 +1,171 @@
+"""An asymmetric pass end to end (issue 52): the bundled asymmetric_plate (speed ratio 1.15)
+through `hotroll run`, its summary (the per-roll `rolls`, the legacy one-roll keys as the two
+rolls' means, the strip's curl and cross-shear zone), the refusals of what the full-thickness
+strip does not carry yet, and a symmetric pass untouched by the asymmetric keys.
+
+Labels: [plumb] the command line writes what it should; [id] identities between the summary
+and the history rows it is made of (they catch a summary that swaps, scales or mixes up the
+rolls, not a wrong solve: tests/solvers/test_full_strip.py checks the solve); [hand] numbers
+the case gives."""
+from __future__ import annotations
+
+import csv
+import json
+
+import pytest
+from typer.testing import CliRunner
+
+from hotroll.cli import app
+from hotroll.config.case import CaseError, load_case
+from hotroll.examples import EXAMPLES, example_path
+from hotroll.results.summary import ROLL_ENTRY, Summary
+from hotroll.workflows.build import asymmetric_refusal, build_model
+
+NAME = "asymmetric_plate"
+GAP_KEYS = ("speed_ratio", "cross_shear_length", "exit_curvature", "exit_angle",
+            "entry_guide_force_y", "vertical_balance_error")
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    """`hotroll run asymmetric_plate` (the bundled name; with its figures): exit code, output,
+    summary.json and history.csv's last row."""
+    out = tmp_path_factory.mktemp("asym") / "out"
+    result = CliRunner().invoke(app, ["run", NAME, "--out", str(out)])
+    summary = json.loads((out / "summary.json").read_text()) if (
+        out / "summary.json").exists() else None
+    with open(out / "history.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    last = {k: float(v) if v not in ("", "True", "False") else v for k, v in rows[-1].items()}
+    return result, summary, last, out
+
+
+def test_the_bundled_asymmetric_pass_is_listed_and_asymmetric():
+    """[hand] registered as an example; the case's rolls: equal radii, the upper at 2 m/s and
+    the lower at 2/1.15 m/s."""
+    assert EXAMPLES[NAME] == [NAME]
+    gap = load_case(example_path(NAME)).roll_gap()
+    assert not gap.symmetric and gap.differences() == ["omega"]
+    assert gap.upper.surface_speed == pytest.approx(2.0, rel=1e-12)
+    assert gap.lower.surface_speed == pytest.approx(2.0 / 1.15, rel=1e-12)
+
+
+def test_hotroll_run_exits_0_with_the_asymmetric_keys(run):
+    """[plumb] exit 0, a typed summary with every asymmetric key and both rolls, their units
+    in the summary's table; the console table shows both rolls; the two-roll figure."""
+    result, summary, _, out = run
+    assert result.exit_code == 0, result.output
+    Summary.from_dict(summary)          # every key declared, every unconditional one there
+    for key in ("rolls", *GAP_KEYS, "roll_force", "roll_torque", "roll_power"):
+        assert summary[key] is not None, key
+    assert [r["side"] for r in summary["rolls"]] == ["upper", "lower"]
+    assert set(summary["rolls"][0]) == set(ROLL_ENTRY)
+    units = summary["units"]
+    assert units["exit_curvature"] == "1/m" and units["cross_shear_length"] == "m"
+    assert units["rolls.roll_torque"] == "N m/m" and units["rolls.roll_power"] == "W/m"
+    assert units["rolls.roll_force"] == "N/m" and units["rolls.neutral_angle"] == "rad"
+    text = " ".join(result.output.split())
+    assert "upper roll: roll_force" in text and "lower roll: roll_force" in text
+    assert "roll_force (mean of the two rolls)" in text
+    assert (out / "contact_lower.csv").exists() and (out / "fig_rolls.png").exists()
+
+
+def test_the_rolls_entries_are_the_history_rows_figures(run):
+    """[id] each roll's entry = its history column of the last (converged) row, the steady
+    solver's window; radius and speed [hand] from the case; the strip's keys likewise."""
+    _, summary, last, _ = run
+    for entry in summary["rolls"]:
+        side = entry["side"]
+        for key in ROLL_ENTRY:
+            if key in ("side", "radius", "surface_speed"):
+                continue
+            assert entry[key] == pytest.approx(last[f"{side}_{key}"], rel=1e-12, abs=1e-12), \
+                (side, key)
+    upper, lower = summary["rolls"]
+    assert upper["radius"] == lower["radius"] == 0.4
+    assert (upper["surface_speed"], lower["surface_speed"]) == pytest.approx((2.0, 2.0 / 1.15))
+    for key in GAP_KEYS[1:]:
+        assert summary[key] == pytest.approx(last[key], rel=1e-12, abs=1e-15), key
+    assert summary["speed_ratio"] == pytest.approx(1.15, rel=1e-12)
+
+
+def test_the_legacy_keys_are_the_two_rolls_means(run):
+    """[id] roll_force, roll_torque, roll_power, contact_length, forward_slip: the mean of
+    the two rolls' (as their descriptions say); the force balance holds each roll's."""
+    _, summary, _, _ = run
+    upper, lower = summary["rolls"]
+    for key in ("roll_force", "roll_torque", "roll_power", "contact_length", "forward_slip"):
+        assert summary[key] == pytest.approx(0.5 * (upper[key] + lower[key]), rel=1e-12), key
+    fb = summary["force_balance"]
+    assert fb["upper_roll"][1] == -upper["roll_force"] and fb["lower_roll"][1] == \
+        lower["roll_force"]
+
+
+def test_the_pass_converged_and_balances(run):
+    """[id] a converged solve's balances (vertical forces; the rolls' power against the
+    dissipation) and the flux, and the faster roll supplies the more torque."""
+    _, summary, _, _ = run
+    assert summary["exit_code"] == 0 and summary["converged"]
+    assert summary["vertical_balance_error"] < 1e-8
+    assert summary["power_balance_error"] < 1e-2 and summary["mass_flux_error"] < 1e-2
+    upper, lower = summary["rolls"]
+    assert upper["roll_torque"] > lower["roll_torque"]
+
+
+#: (overrides on asymmetric_plate, the key its refusal names)
+REFUSED = [
+    ({"solver.method": "transient", "contact.method": "penalty"}, "solver.method"),
+    ({"thermal": {"htc_contact": 2e4, "roll_temperature": 350.0, "htc_air": 20.0,
+                  "emissivity": 0.8}, "material.density": 7800.0,
+      "material.specific_heat": 650.0, "material.conductivity": 30.0}, "thermal"),
+    ({"roll.model": "hitchcock"}, "roll.model"),
+    ({"roll.lower": {"model": "elastic"}}, "roll.lower.model"),
+    ({"contact.strip_youngs_modulus": 2e11}, "contact.strip_youngs_modulus"),
+    ({"plate.free_surface": "constrained"}, "plate.free_surface"),
+    ({"contact.method": "penalty"}, "contact.method"),
+    ({"pass.roll_gap": 0.018, "pass.mill_modulus": 5e9, "pass.width": 2.0}, "pass.roll_gap"),
+    ({"friction": {"law": "viscoplastic", "a_f": "estimate"}}, "friction.a_f"),
+    ({"friction": {"law": "viscoplastic", "a_f": 0.3, "lower": {"a_f": "estimate"}}},
+     "friction.lower.a_f"),
+]
+
+
+@pytest.mark.parametrize("over,key", REFUSED, ids=[k for _, k in REFUSED])
+def test_each_refusal_names_its_key_before_any_computation(over, key, monkeypatch):
+    """The full strip's refusals, each a line starting with its key, from build_model before
+    anything is built (the reference law, the first thing it computes, would fail the test)."""
+    import hotroll.workflows.build as build
+
+    case = load_case(example_path(NAME), over)
+    refusal = asymmetric_refusal(case)
+    assert refusal is not None and any(p.startswith(f"{key}: ") for p in refusal.problems), \
+        refusal
+    monkeypatch.setattr(build, "reference_material", lambda c: pytest.fail("computed"))
+    with pytest.raises(CaseError, match=key.replace(".", r"\.")):
+        build_model(case)
+
+
+def test_a_viscoplastic_pass_with_a_given_a_f_per_roll_builds():
+    """[plumb] a_f given per roll reaches the full strip's Problem.gap, each roll's own."""
+    case = load_case(example_path(NAME), {"friction": {
+        "law": "viscoplastic", "a_f": 0.3, "lower": {"a_f": 0.4}}})
+    assert asymmetric_refusal(case) is None
+    problem, _ = build_model(case)
+    assert problem.gap.a_f == {1: 0.3, -1: 0.4}
+    assert problem.gap.rolls[-1].u_roll == pytest.approx(2.0 / 1.15)
+
+
+def test_a_symmetric_pass_has_no_asymmetric_keys(tmp_path):
+    """[plumb] a symmetric pass takes the half model: none of the asymmetric keys, its
+    roll_force the history row's own (not a mean of two) [id]."""
+    out = tmp_path / "sym"
+    case = load_case(example_path(NAME), {"pass.speed_ratio": None, "output.figures": False})
+    assert case.roll_gap().symmetric and build_model(case)[0].gap is None
+    from hotroll.workflows.runner import run_case
+
+    summary = run_case(case, out)
+    assert not any(k in summary for k in ("rolls", *GAP_KEYS))
+    assert not (out / "contact_lower.csv").exists()
+    with open(out / "history.csv", newline="") as fh:
+        last = list(csv.DictReader(fh))[-1]
+    assert summary["roll_force"] == pytest.approx(float(last["roll_force"]), rel=1e-12)
