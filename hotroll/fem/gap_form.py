@@ -19,8 +19,6 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from hotroll.fem.forms import NonlinearProblem
-from hotroll.fem.primal_dual import FrictionDual, NortonHoffDual, TangentPoints
 from hotroll.fem.reproducible import fe_space
 from hotroll.fem.rolling_form import RollingForm, ScaledPenalties, _elements_on, reference_viscosity
 from hotroll.fem.spaces import taylor_hood
@@ -110,17 +108,7 @@ class GapForm(RollingForm):
         self.top_elements = _elements_on(mesh, ARCS) if self.friction.uses_k else None
         self.contact_regions = ARCS
         self.roll_tilt = self.roll_hoop = None
-        self.dual = NortonHoffDual(mesh, material.eps0)
-        self._dual_cf = self.dual.cf if primal_dual else None
-        self.friction_dual = FrictionDual(mesh, ARCS) if primal_dual else None
-        self.tangent_points = TangentPoints(self.dual.space) if primal_dual else None
-        self.nonlinear = NonlinearProblem(self.fes, self.integrand, velocity_scale=slow.u_roll,
-                                          jacobian=self.jacobian,
-                                          pressure_row_scale=self.mu_ref)
-        if primal_dual:
-            self.dual.attach(self.nonlinear.velocity)
-            self.friction_dual.attach(self.nonlinear.velocity, self.slip, self.v_reg)
-            self.nonlinear.prepare = self._prepare_duals
+        self._newton_problem(material.eps0, ARCS, slow.u_roll, primal_dual)
 
     def set_roll_speed(self, rp, v_reg):
         raise NotImplementedError("the full strip's roll speeds are fixed (issue 52 stage 3)")

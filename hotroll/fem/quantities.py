@@ -294,13 +294,7 @@ def force_balance(form: RollingForm, K: float) -> dict:
     # symmetry reaction: the residual of (3.6) in the Dirichlet rows v_y = 0, at the vertices
     # (the constant e_y has coefficient 1 there and 0 on the edge bubbles)
     problem = form.nonlinear
-    r = problem.gf.vec.CreateVector()
-    with parallel():
-        problem.a_newton.Apply(problem.gf.vec, r)
-    nv = problem.n_velocity_dofs() // 2
-    rows = np.arange(nv, nv + form.mesh.nv)
-    fixed = ~problem.free_mask[rows]
-    sym_y = K * float(np.sum(r.FV().NumPy()[rows[fixed]]))
+    sym_y = dirichlet_reaction_y(form, K)
     # the same reaction from the stress itself: -int sigma_yy dx over the symmetry line. On
     # y = 0 only the tangential derivative is at hand (a boundary integral sees the surface
     # gradient); symmetry (u_y = 0, du_x/dy = 0) and incompressibility give eps_yy = -eps_xx,
@@ -317,6 +311,20 @@ def force_balance(form: RollingForm, K: float) -> dict:
     for name, f in (("roll", roll), ("free_top", tops), ("face", face), ("tension", tension)):
         out[f"{name}_force_x"], out[f"{name}_force_y"] = float(f[0]), float(f[1])
     return out
+
+
+def dirichlet_reaction_y(form: RollingForm, K: float) -> float:
+    """The vertical force (N/m) the Dirichlet rows v_y = 0 carry (the half strip's symmetry
+    line, the full strip's inlet guide): the residual of (3.6) in those rows at the vertices,
+    summed (the constant e_y has coefficient 1 there and 0 on the edge bubbles)."""
+    problem = form.nonlinear
+    r = problem.gf.vec.CreateVector()
+    with parallel():
+        problem.a_newton.Apply(problem.gf.vec, r)
+    nv = problem.n_velocity_dofs() // 2
+    rows = np.arange(nv, nv + form.mesh.nv)
+    fixed = ~problem.free_mask[rows]
+    return K * float(np.sum(r.FV().NumPy()[rows[fixed]]))
 
 
 def a_f_inputs(form: RollingForm) -> tuple[float, float]:

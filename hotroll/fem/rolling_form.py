@@ -193,15 +193,22 @@ class RollingForm:
             P1 = fe_space(H1, mesh, order=1)
             self.roll_tilt, self.roll_hoop = GridFunction(P1), GridFunction(P1)
             self.roll_cx = Parameter(rp.centre[0])     # moves with the lowest point
+        self._newton_problem(material.eps0, contact_regions, rp.u_roll, primal_dual)
+
+    def _newton_problem(self, eps0: float, contact_regions: str, velocity_scale: float,
+                        primal_dual: bool) -> None:
+        """The Newton problem of the form and its tangent's duals."""
+        mesh = self.mesh
         # Newton's tangent: primal-dual (fem/primal_dual.py) or the primal one; the volume
         # terms of both forms are integrated on the dual's quadrature points either way
-        self.dual = NortonHoffDual(mesh, material.eps0)
+        self.dual = NortonHoffDual(mesh, eps0)
         self._dual_cf = self.dual.cf if primal_dual else None
         # ... and the friction's slip (FrictionDual) where the law has a tangent in the slip
         self.friction_dual = FrictionDual(mesh, contact_regions) if primal_dual else None
         # ... and the tangent's coefficients at those points, interpolated once an iteration
         self.tangent_points = TangentPoints(self.dual.space) if primal_dual else None
-        self.nonlinear = NonlinearProblem(self.fes, self.integrand, velocity_scale=rp.u_roll,
+        self.nonlinear = NonlinearProblem(self.fes, self.integrand,
+                                          velocity_scale=velocity_scale,
                                           jacobian=self.jacobian,
                                           pressure_row_scale=self.mu_ref)
         if primal_dual:

@@ -27,7 +27,7 @@ from hotroll.model.material import NortonHoff
 from hotroll.solvers import couplings as C
 from hotroll.solvers.gap_measure import gap_measure
 from hotroll.solvers.problem import Problem
-from hotroll.solvers.steady import SteadyRun
+from hotroll.solvers.steady import SteadyRun, top_parts
 from hotroll.solvers.steady_settings import SteadySettings, mesh_key
 
 SIDES = (1, -1)
@@ -160,16 +160,7 @@ class FullSteadyRun(SteadyRun):
             chi[top.edge[top.edge_contact]] = 1.0
             xy = top.vertex_positions(self.d, top.verts[top.vertex_contact])
             self.form.x_split_side[s].Set(float(np.median(xy[:, 0])))
-            self._top_parts[s] = self._parts(top)
-
-    @staticmethod
-    def _parts(top: TopBoundary) -> np.ndarray:
-        """``SteadyRun._top_parts`` of one side."""
-        xv = top.X0[top.verts, 0]
-        x_first = xv[top.vertex_contact].min()
-        verts = np.where(top.vertex_contact, 1, np.where(xv < x_first, 0, 2))
-        mids = np.where(top.edge_contact, 1, np.where(top.M0[:, 0] < x_first, 0, 2))
-        return np.concatenate([verts, mids])
+            self._top_parts[s] = top_parts(top)
 
     def _set_shape(self) -> None:
         self.d[:] = self.map.displacement(self.shapes)

@@ -79,7 +79,8 @@ def gap_measure(run, K: float) -> dict:
     supplied = out["upper_roll_power"] + out["lower_roll_power"] + out["tension_power"]
     spent = out["plastic_power"] + out["friction_power"] + out["penalty_power"]
     out["power_balance_error"] = abs(supplied - spent) / max(abs(supplied), 1e-300)
-    out["entry_guide_force_y"] = _inlet_reaction(form, K)
+    # the entry guide's vertical force on the strip: the inlet's Dirichlet rows v_y = 0
+    out["entry_guide_force_y"] = Q.dirichlet_reaction_y(form, K)
     out["vertical_balance_error"] = abs(
         -out["upper_roll_force"] + out["lower_roll_force"] + out["entry_guide_force_y"]) / max(
         out["upper_roll_force"], 1e-300)
@@ -105,21 +106,6 @@ def strain_rate_of(u):
     from hotroll.fem.forms import strain_rate
 
     return strain_rate(u)
-
-
-def _inlet_reaction(form, K: float) -> float:
-    """The entry guide's vertical force on the strip (N/m): the residual of (3.6) in the
-    Dirichlet rows v_y = 0 of the inlet face, summed (the constant e_y's coefficients)."""
-    from hotroll.fem.reproducible import parallel
-
-    problem = form.nonlinear
-    r = problem.gf.vec.CreateVector()
-    with parallel():
-        problem.a_newton.Apply(problem.gf.vec, r)
-    nv = problem.n_velocity_dofs() // 2
-    rows = np.arange(nv, nv + form.mesh.nv)
-    fixed = ~problem.free_mask[rows]
-    return K * float(np.sum(r.FV().NumPy()[rows[fixed]]))
 
 
 def exit_rotation(run) -> dict:

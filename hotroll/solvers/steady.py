@@ -59,6 +59,17 @@ from hotroll.solvers.threads import solver_threads
 COUPLE_BELOW_ELASTIC = 1e-3
 
 
+def top_parts(top: TopBoundary) -> np.ndarray:
+    """Part of every top P2 node (vertices, then edge midpoints, as ``Q.top_nodes``): 0 free
+    entry top (before the first contact vertex), 1 contact, 2 free exit top (after it: the flat
+    exit and a stretch of the arc the strip has left)."""
+    xv = top.X0[top.verts, 0]
+    x_first = xv[top.vertex_contact].min()
+    verts = np.where(top.vertex_contact, 1, np.where(xv < x_first, 0, 2))
+    mids = np.where(top.edge_contact, 1, np.where(top.M0[:, 0] < x_first, 0, 2))
+    return np.concatenate([verts, mids])
+
+
 class SteadyRun(ContactEndMixin):
     """The steady strip, its form and the coupled Newton solve."""
 
@@ -473,15 +484,7 @@ class SteadyRun(ContactEndMixin):
         return self.thermal.update_steady(max_iter=newton_steps, fresh=fresh)
 
     def _top_parts(self) -> np.ndarray:
-        """Part of every top P2 node (vertices, then edge midpoints, as ``Q.top_nodes``):
-        0 free entry top (before the first contact vertex), 1 contact, 2 free exit top (after
-        it: the flat exit and a stretch of the arc the strip has left)."""
-        top = self.top
-        xv = top.X0[top.verts, 0]
-        x_first = xv[top.vertex_contact].min()
-        verts = np.where(top.vertex_contact, 1, np.where(xv < x_first, 0, 2))
-        mids = np.where(top.edge_contact, 1, np.where(top.M0[:, 0] < x_first, 0, 2))
-        return np.concatenate([verts, mids])
+        return top_parts(self.top)
 
     def update_surface(self) -> float:
         """Trace the free tops along the flow, move the contact start, remap the mesh.
