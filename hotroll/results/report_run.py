@@ -103,11 +103,29 @@ def summary_groups(s: dict) -> list[tuple[str, list[dict]]]:
         seen.update(keys)
         if rows:
             out.append((name, rows))
+        if name == "Pass":          # an asymmetric pass: each roll's figures after the pass's
+            out += roll_groups(s.get("rolls") or [], units)
     skip = {"exit_code", "roll_centre", "contact_end", "K", "m", "roll_radius"}
     rest = [r for k, v in s.items() if k not in seen and k not in skip
             and (r := show(k, v, unit_of(k, units)))]
     if rest:
         out.append(("Other", rest))
+    return out
+
+
+def roll_groups(rolls: list[dict], units: dict) -> list[tuple[str, list[dict]]]:
+    """An asymmetric pass's ``rolls`` entries as groups of rows, one per roll (units from
+    summary.json's ``rolls.<key>``)."""
+    out = []
+    for entry in rolls:
+        side, rows = entry.get("side", "?"), []
+        for k, v in entry.items():
+            r = show(k, v, unit_of(f"rolls.{k}", units))
+            if r:
+                rows.append({**r, "key": f"rolls.{side}.{k}",
+                             "label": f"{side} roll: {k.replace('_', ' ')}"})
+        if rows:
+            out.append((f"{side.title()} roll", rows))
     return out
 
 
@@ -236,6 +254,8 @@ FIGURE_CAPTIONS = {
     "fig_top.png": "The strip's top surface",
     "fig_history.png": "Convergence history",
     "fig_temperature.png": "Temperature over the strip and at the roll bite",
+    "fig_rolls.png": "Both rolls' contact pressure and shear against their angles "
+                     "(an asymmetric pass)",
     "compare.png": "FE and slab theory: contact pressure and shear",
     "schedule.png": "The schedule pass by pass",
 }

@@ -169,3 +169,14 @@ def test_a_symmetric_pass_has_no_asymmetric_keys(tmp_path):
     with open(out / "history.csv", newline="") as fh:
         last = list(csv.DictReader(fh))[-1]
     assert summary["roll_force"] == pytest.approx(float(last["roll_force"]), rel=1e-12)
+
+
+def test_the_report_page_shows_both_rolls(run):
+    """[plumb] `hotroll report`: a group per roll (its figures with their units) and the
+    two-roll figure."""
+    _, summary, _, out = run
+    result = CliRunner().invoke(app, ["report", str(out)])
+    assert result.exit_code == 0, result.output
+    page = (out / "report.html").read_text()
+    assert 'data-key="rolls.lower.roll_torque"' in page and "<h3>Upper roll</h3>" in page
+    assert "Both rolls&#39; contact pressure and shear" in page
