@@ -232,7 +232,7 @@ def newton(
     max_it: int = 20,
     min_step: float = 1.0 / 64,
     couple: Callable[[float], bool] | None = None,
-    couple_below: float = 1e-3,
+    couple_below: float | Callable[[], float] = 1e-3,
     full_step: bool = False,
     chord: bool = False,
     last_residual: bool = True,
@@ -241,8 +241,8 @@ def newton(
     (``min_step = 1``: no search, the full step).
 
     ``couple`` (optional) updates data the form depends on (a_f, the free surface) once the
-    velocity update is below ``couple_below`` (it is given that update, over the velocity
-    scale); it returns True while that data still moves,
+    velocity update is below ``couple_below`` (a number, or a callable giving it now; it is
+    given that update, over the velocity scale); it returns True while that data still moves,
     and the iteration only stops when it returns False and the update is below ``tol``.
     ``chord``: the Jacobian's kept factors instead of new ones (Newton-chord). ``full_step``:
     the steady solver's final solve (a direction below ``tol`` is taken whole; a search that
@@ -322,7 +322,8 @@ def newton(
             if TRACE is not None:
                 TRACE(problem, it, stats.update, alpha, r0, r1)
             residual_ready = True
-            if couple is not None and stats.update <= couple_below:
+            below = couple_below() if callable(couple_below) else couple_below
+            if couple is not None and stats.update <= below:
                 if couple(stats.update):
                     residual_ready = False   # the form changed: its residual must be re-evaluated
                     continue

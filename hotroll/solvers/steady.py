@@ -344,11 +344,16 @@ class SteadyRun(ContactEndMixin):
         coupled = any(c.in_fixed_point for c in self.couplings)
         st = newton(f.nonlinear, s.tol, s.max_it + 3 * s.max_outer,
                     couple=couple if coupled else None,
-                    couple_below=s.couple_below if couple_below is None else couple_below,
+                    couple_below=lambda: self._couple_below(state, couple_below),
                     full_step=True)
         res.stats.append(st)
         res.settled = state["settled"] or not coupled
         record(st)
+
+    def _couple_below(self, state: dict, given: float | None) -> float:
+        """The Newton update (over U) below which the couplings move now: ``given`` or the
+        settings' (``state``: the fixed point's rounds so far, for a solver that tightens it)."""
+        return self.s.couple_below if given is None else given
 
     def _couplings(self, warm: bool = False) -> list[C.Coupling]:
         """The run's couplings in their update order (``solvers/couplings.py``): the strain, the

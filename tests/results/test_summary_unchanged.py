@@ -17,7 +17,11 @@ the couplings' tolerances) and adds entry_pressure; the golden summary is that r
 (one neutral story) added two keys, `neutral` (the story in words) and `sticking_zone_x`, and
 made `temperature` null where nothing depends on it (Norton-Hoff, no [thermal]): the golden
 summary keeps its numbers (the run after the change is the same to 1e-8) and takes those three
-from that run.
+from that run. Issue 52 made the symmetry line hold v_y = 0 exactly (a642130: the kinematic
+guess's projection error had stayed on it, 2e-4 U on Case R): an intended correction, measured
+against the summary before (force 2.1e-4, torque 1.5e-4, forward slip 5.9e-4, the power
+balance's error 3.4e-4 -> 3.3e-5; docs/validation/recut.md); the golden summary is that run's
+(made with ``scripts/summary_diff.py run`` at a642130).
 
 The whole set (every bundled example, the schedule and a study) is compared by
 ``python scripts/summary_diff.py run DIR`` on two commits and ``... compare BEFORE AFTER``

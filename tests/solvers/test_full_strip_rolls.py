@@ -13,7 +13,7 @@ import pytest
 
 from hotroll.config.case import load_case
 from hotroll.model.roll_gap import Roll, RollGap
-from hotroll.solvers.full_steady import COUPLE_BELOW, FullSteadyRun
+from hotroll.solvers.full_steady import FullSteadyRun
 from hotroll.solvers.steady import SteadyRun
 from hotroll.theory.asymmetric import tresca_closed_form
 from hotroll.workflows.build import build_model, steady_settings
@@ -40,7 +40,7 @@ def test_unequal_radii_at_one_surface_speed_roll_the_equivalent_radius():
     R1, R2 = 0.275, 0.225
     Re = 2 * R1 * R2 / (R1 + R2)
     problem, st = _case(Re)
-    half = SteadyRun(problem, replace(st, couple_below=COUPLE_BELOW), 0.2)
+    half = SteadyRun(problem, st, 0.2)
     ref = half.run().history[-1]
     gap = RollGap(Roll(R1, U / R1, side=1), Roll(R2, U / R2, side=-1), 0.01, 0.008,
                   axis_x=problem.rp.axis_x)
