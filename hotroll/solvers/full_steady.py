@@ -123,6 +123,12 @@ class FullSteadyRun(SteadyRun):
                     "solver_converged": stats.converged})
         return row
 
+    def solution_record(self, frame_shift: float = 0.0):
+        """The full strip's ``Solution`` (``solvers/record_full.py``: two ``RollContact``s)."""
+        from hotroll.solvers.record_full import solution_record
+
+        return solution_record(self, frame_shift)
+
     def _couple_below(self, state: dict, given: float | None) -> float:
         """The settings' threshold, tightened by 10 every ``COUPLE_ROUNDS`` rounds to
         ``COUPLE_BELOW``."""
