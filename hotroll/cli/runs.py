@@ -119,6 +119,11 @@ def schedule(
                 "DRX: share of the section where dynamic recrystallisation started (strain >= "
                 "eps_c); after the transport, section means: X recrystallised (-), d grain "
                 f"size (um), e ret the strain handed on (-); figure {out / 'microstructure.png'}"))
+        if any("speed_ratio" in r for r in rows):
+            console.print(Text(
+                "an asymmetric pass (r: speed ratio upper/lower): F and M the two rolls' "
+                "means, M up / M low each roll's torque; kappa: the exit curvature (1/m, > 0 "
+                "curls up; 0 for a symmetric pass); T out '-': an isothermal pass"))
         console.print(Text(
             f"force and torque per roll{', whole width' if width else ''}; exit temperature: "
             f"mixing-cup mean after the gap; all columns (power, surface temperature, "
@@ -145,6 +150,7 @@ def _schedule_table(sch, rows: list[dict]) -> ResultTable:
     flat = any("roll_equivalent_radius" in r for r in rows)
     gaps = any("gap_setting" in r for r in rows)
     micro = any("drx_onset_share" in r for r in rows)
+    asym = any("speed_ratio" in r for r in rows)      # an asymmetric pass: the curl, per roll
     cols = [Column("pass", left=True), Column("h", "mm", ".1f", parts=("in", "out")),
             Column("U", "m/s", ".2f")]
     cols += [Column("t front", "MPa", ".2f")] if tensions else []
@@ -155,6 +161,9 @@ def _schedule_table(sch, rows: list[dict]) -> ResultTable:
     cols += [Column("gap", "mm", ".3f")] if gaps else []
     cols += [Column("DRX", spec=".2f"), Column("X", spec=".3f"), Column("d", "um", ".1f"),
              Column("e ret", spec=".3f")] if micro else []
+    cols += [Column("kappa", "1/m", ".3g"), Column("r", spec=".3g"),
+             Column("M up", "kNm" if width else "kNm/m", ".0f"),
+             Column("M low", "kNm" if width else "kNm/m", ".0f")] if asym else []
     cols += [Column("FE"), Column("s", spec=".1f")]
     table = ResultTable(f"{sch.name}: schedule", cols)
     for r in rows:
@@ -174,6 +183,11 @@ def _schedule_table(sch, rows: list[dict]) -> ResultTable:
                       r["recrystallised_fraction_mean"] if after else None,
                       1e6 * r["grain_size_mean"] if after else None,
                       r["retained_strain_mean"] if after else None]
+        if asym:
+            two = "speed_ratio" in r
+            cells += [r["exit_curvature"], r.get("speed_ratio")]
+            cells += [1e-3 * w * r[f"{side}_roll_torque"] if two else None
+                      for side in ("upper", "lower")]
         cells += [r["fe_solves"], r["wall_time"]]
         table.rows.append(cells)
     return table

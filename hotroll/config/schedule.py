@@ -15,7 +15,10 @@
     [mesh] [solver] [output]   defaults of every pass's case
     [[pass]]           roll_radius, exit_thickness (or roll_gap with mill_modulus),
                        roll_surface_speed or roll_angular_velocity, back_tension,
-                       front_tension, mill_modulus, friction, name
+                       front_tension, mill_modulus, friction, name; an asymmetric pass:
+                       speed_ratio, [pass.upper]/[pass.lower] (a roll's own radius and
+                       speed, as a case's), [pass.friction.upper]/[pass.friction.lower],
+                       isothermal (config/schedule_rolls.py)
     [pass.transport]   after the pass: duration (s) or distance (m, at the exit speed),
                        htc_air, emissivity (default [thermal]'s), strain_retained
 
@@ -28,7 +31,7 @@ import tomllib
 from pathlib import Path
 from typing import Any, Literal
 
-from pydantic import Field, ValidationError, field_validator, model_validator
+from pydantic import Field, StrictBool, ValidationError, field_validator, model_validator
 
 from hotroll.config.base import PosFloat, Problems, Section, field, problem_lines
 from hotroll.config.case import (
@@ -45,6 +48,8 @@ from hotroll.config.case import (
     check_profile,
 )
 from hotroll.config.microstructure import MicrostructureConfig, check_schedule
+from hotroll.config.roll_sides import RollSideConfig
+from hotroll.config.schedule_rolls import asymmetric_problems, pass_rolls
 from hotroll.config.sections import preloaded_gap
 from hotroll.config.thermal import ThermalConfig
 from hotroll.model.profile import ThicknessProfile
@@ -142,7 +147,23 @@ class PassEntry(Section):
     back_tension: float = field(0.0, "back tension", "Pa", ">= 0", ge=0)
     front_tension: float = field(0.0, "front tension", "Pa", ">= 0", ge=0)
     friction: FrictionConfig | None = Field(None, description="this pass's friction (omit: "
-                                            "the schedule's [friction])")
+                                            "the schedule's [friction]); its upper and lower "
+                                            "tables as a case's")
+    speed_ratio: PosFloat | None = field(
+        None, "an asymmetric pass: the upper roll's surface speed over the lower's, as a "
+        "case's pass.speed_ratio (omit: each roll at its own speed)", "", "> 0")
+    upper: RollSideConfig | None = field(
+        None, "the upper roll's own radius and speed, [pass.upper] after this [[pass]] (as a "
+        "case's; omit: the pass's)", "",
+        "a table of roll_radius, roll_angular_velocity or roll_surface_speed")
+    lower: RollSideConfig | None = field(
+        None, "the lower roll's own radius and speed, [pass.lower] (as [pass.upper])", "",
+        "a table of roll_radius, roll_angular_velocity or roll_surface_speed")
+    isothermal: StrictBool = field(
+        False, "solve this pass without the temperature field: the strip leaves with the "
+        "temperature profile it enters with, the transport after it still cools (an "
+        "asymmetric pass needs it: the full-thickness strip has no temperature field yet)",
+        "", "true or false")
     transport: TransportConfig | None = Field(None, description="the transport after the pass")
 
     @property
@@ -249,7 +270,6 @@ class Schedule(Section):
             "mesh": self.mesh.model_dump(exclude_none=True),
             "solver": self.solver.model_dump(exclude_none=True),
             "output": self.output.model_dump(exclude_none=True),
-            "thermal": self.thermal.model_dump(exclude_none=True),
             "roll": self.roll.model_dump(exclude_none=True),
             "contact": self.contact.model_dump(exclude_none=True),
         }
@@ -258,7 +278,10 @@ class Schedule(Section):
                 d["pass"][key] = getattr(p, key)
         if self.strip.width is not None:
             d["pass"]["width"] = self.strip.width
-        if temperature_profile is not None:
+        d["pass"].update(pass_rolls(p))
+        if not p.isothermal:
+            d["thermal"] = self.thermal.model_dump(exclude_none=True)
+        if temperature_profile is not None and not p.isothermal:
             d["plate"]["temperature_profile"] = temperature_profile.pairs()
         if strain_profile is not None:
             d["plate"]["strain_profile"] = strain_profile.pairs()
@@ -285,6 +308,7 @@ class Schedule(Section):
             try:
                 cases.append(self.pass_case(k, h, self.strip.temperature, None,
                                             self.strip.strain, None, omega))
+                problems += asymmetric_problems(self, k, cases[-1])
             except CaseError as e:
                 problems += [q for q in e.problems if q not in problems]
             h = p.nominal_exit

@@ -26,6 +26,10 @@ UNITS: dict[str, str] = {
     "retained_strain_mean": "-", "retained_strain_surface": "-", "retained_strain_centre": "-",
     "mechanism_surface": "-", "mechanism_centre": "-", "kinetics_temperature_min": "K",
     "kinetics_extrapolated_share": "-",
+    # an asymmetric pass's rolls in the schedule table (workflows/schedule_rolls.py)
+    **{f"{side}_{key}": unit for side in ("upper", "lower") for key, unit in (
+        ("roll_radius", "m"), ("roll_surface_speed", "m/s"), ("roll_force", "N/m"),
+        ("roll_torque", "N m/m"), ("roll_power", "W/m"))},
     # a tandem's tensions (schedule.csv, schedule.json)
     "back_tension": "Pa", "front_tension": "Pa", "interstand_tensions": "Pa",
     "flux_mismatch": "-", "tension_runs": "-", "stand_flux_error": "-",

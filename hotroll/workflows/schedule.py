@@ -42,6 +42,7 @@ from hotroll.results.units import UNITS
 from hotroll.workflows import microstructure as MS
 from hotroll.workflows.gauge import negative_gap_warning
 from hotroll.workflows.runner import finished_summary, run_case
+from hotroll.workflows.schedule_rolls import asymmetric_exit, curl_columns
 from hotroll.workflows.sweep import Sweep
 from hotroll.workflows.tandem import solve_tensions
 
@@ -97,13 +98,23 @@ def _profile_enthalpy_mean(props: ThermalProperties, T: ThicknessProfile) -> flo
 
 
 def exit_state(sch: Schedule, case, summary: dict,
-               grain: ThicknessProfile | None = None) -> StripState:
+               grain: ThicknessProfile | None = None,
+               entry: StripState | None = None) -> StripState:
     """The state at the pass's outlet (``summary["exit_profile"]``); without a strain field
     (a law independent of strain) the homogeneous exit strain, uniform. ``grain``: the grain
-    size entering the pass (it changes in the transport after it)."""
-    prof = summary["exit_profile"]
+    size entering the pass (it changes in the transport after it). ``entry``: the state the
+    pass entered with; an isothermal pass (no [thermal] in its case) hands on its temperature
+    profile unchanged, and a pass without an exit profile (an asymmetric pass: the
+    full-thickness strip writes none yet; an isothermal one whose law ignores the strain) its
+    strain profile raised by the pass's mean strain (``asymmetric_exit``)."""
+    prof = summary.get("exit_profile")
+    if prof is None and entry is not None:
+        return StripState(exit_thickness(case, summary),
+                          *asymmetric_exit(summary, entry.temperature, entry.strain), grain)
     eta = np.asarray(prof["eta"], dtype=float)
     T = ThicknessProfile(tuple(eta), tuple(prof["temperature"]))
+    if case.thermal is None and entry is not None:
+        T = entry.temperature
     if prof.get("strain") is not None:
         e = ThicknessProfile(tuple(eta), tuple(np.maximum(prof["strain"], 0.0)))
     else:
@@ -161,9 +172,11 @@ def transport(sch: Schedule, k: int, state: StripState, exit_velocity: float,
 
 
 def _reuse(case, out: Path) -> dict | None:
-    """A finished, converged pass's summary when its case file is the same (resume)."""
+    """A finished, converged pass's summary when its case file is the same (resume); a thermal
+    pass's with its exit profile (an isothermal pass may have none)."""
     summary = finished_summary(case, out)
-    if summary and summary.get("exit_code") == 0 and summary.get("exit_profile"):
+    if summary and summary.get("exit_code") == 0 and (summary.get("exit_profile")
+                                                       or case.thermal is None):
         return summary
     return None
 
@@ -282,7 +295,7 @@ def _roll(sch: Schedule, out: Path, resume: bool, sweep: Sweep, say, tensions=No
         ps = None
         if sch.microstructure.kinetics is not None:
             ps = MS.deformed(sch, state.strain, state.grain, summary, k)
-        state = exit_state(sch, case, summary, state.grain)
+        state = exit_state(sch, case, summary, state.grain, state)
         row = _pass_row(sch, k, case, summary, entry_T, entry_e, solves, iterations,
                         time.perf_counter() - t0)
         row["outlet_temperature_mean"] = _enthalpy_mean(sch, state.temperature)
@@ -345,6 +358,7 @@ def _pass_row(sch, k, case, s, entry_T, entry_e, solves, iterations, wall) -> di
                                         "roll_gap", "gauge_thickness", "mill_stretch",
                                         "gap_setting")
                 if key in s})
+    row.update(curl_columns(s))
     if sch.strip.width is not None:
         row.update({"roll_force_total": s.get("roll_force_total"),
                     "roll_torque_total": s.get("roll_torque_total"),
@@ -356,8 +370,15 @@ def _line(r: dict) -> str:
     text = (f"{r['name']}: {1e3 * r['entry_thickness']:.2f} -> {1e3 * r['exit_thickness']:.2f}"
             f" mm, {r['roll_surface_speed']:.3g} m/s, force {1e-6 * r['roll_force']:.3f} MN/m,"
             f" torque {1e-3 * r['roll_torque']:.2f} kN m/m, exit "
-            f"{r['exit_temperature_mean']:.1f} K, strain {r['exit_strain_mean']:.3f}, "
+            + (f"{r['exit_temperature_mean']:.1f} K" if r.get('exit_temperature_mean')
+               is not None else "isothermal")
+            + f", strain {r['exit_strain_mean']:.3f}, "
             f"{r['fe_solves']} FE solve(s), {r['wall_time']:.1f} s")
+    if "speed_ratio" in r:
+        text += (f"; asymmetric (speed ratio {r['speed_ratio']:.4g}): exit curvature "
+                 f"{r['exit_curvature']:.4g} 1/m, angle {r['exit_angle']:.4g} rad, torques "
+                 f"{1e-3 * r['upper_roll_torque']:.2f} / {1e-3 * r['lower_roll_torque']:.2f} "
+                 f"kN m/m (upper / lower)")
     if "transport_duration" in r:
         text += (f"; transport {r['transport_duration']:.2f} s -> "
                  f"{r['next_entry_temperature_mean']:.1f} K")
