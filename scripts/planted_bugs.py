@@ -505,6 +505,23 @@ BUGS: dict[str, tuple[str, str, str, str]] = {
     "validate_warnings": ("hotroll/cli/validate.py", "    for text in case.warnings():",
                           "    for text in case.warnings()[:0]:",
                           "validate of a case lists no warning"),
+    # --- issue 52: the full-thickness strip's per-roll figures ---
+    "roll_force_per_roll": ("hotroll/solvers/gap_measure.py",
+                            'f"{name}_roll_force": -side * f_strip[1],',
+                            'f"{name}_roll_force": -side * (1.1 if side > 0 else 1.0) * f_strip[1],',
+                            "the upper roll's force x 1.1 (full strip)"),
+    "roll_torque_per_roll": ("hotroll/solvers/gap_measure.py",
+                             'f"{name}_roll_torque": K * form.integrate_friction(',
+                             'f"{name}_roll_torque": (1.1 if side < 0 else 1.0) * K * form.integrate_friction(',
+                             "the lower roll's torque x 1.1 (full strip)"),
+    "curvature": ("hotroll/solvers/gap_measure.py",
+                  '"exit_curvature": float(omega) / speed,',
+                  '"exit_curvature": 1.1 * float(omega) / speed,',
+                  "the exit curvature x 1.1 (full strip)"),
+    "lower_roll_turns": ("hotroll/fem/gap_form.py",
+                         "t = CF((-side * (y - cy) / r, side * (x - cx) / r))",
+                         "t = CF((-(y - cy) / r, (x - cx) / r))",
+                         "the lower roll turning the wrong way (its tangent the upper's formula)"),
 }
 
 

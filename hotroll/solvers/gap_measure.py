@@ -88,6 +88,7 @@ def gap_measure(run, K: float) -> dict:
     # the cross-shear zone: between the two rolls' neutral points (m; 0 for equal rolls)
     out["cross_shear_length"] = abs(out["upper_neutral_x"] - out["lower_neutral_x"])
     out.update(exit_rotation(run))
+    out["exit_surface_curvature"] = exit_surface_curvature(run)
     # a curling strip crosses the vertical outlet inclined by theta: its thickness there is
     # the projected height times cos theta, its centreline speed the flux over that
     # (face_flow's flux / height is the speed times cos theta)
@@ -140,3 +141,22 @@ def exit_rotation(run) -> dict:
             "exit_angle": math.atan2(vy, vx),
             "outlet_angle": math.atan2(b + omega * x_out, a - omega * y_out),
             "exit_rotation_fit_residual": resid / max(abs(omega) * h1, 1e-300)}
+
+
+def exit_surface_curvature(run) -> float:
+    """The exit's curvature from its shape, not its velocity (note 4.4's cross-check): the
+    centreline between the two traced free surfaces, y_c = (y_upper + y_lower)/2, over the
+    last half of the exit strip, fitted by a parabola; kappa = y_c'' / (1 + y_c'^2)^(3/2) at
+    the zone's middle (1/m, > 0 curls up)."""
+    nodes = run.map.nodes
+    X = nodes.X0[:, 0] + nodes.values(run.d)[0]
+    axis = run.problem.rp.axis_x
+    x_out = float(X.max())
+    xs = np.linspace(axis + 0.5 * (x_out - axis), x_out, 41)
+    ys = []
+    for side in (1, -1):
+        sh = run.shapes[side]
+        ys.append(side * np.interp(xs, sh.exit_x, sh.exit_y))
+    yc = 0.5 * (ys[0] + ys[1])
+    a, b, _ = np.polyfit(xs - xs.mean(), yc, 2)
+    return float(2.0 * a / (1.0 + b * b) ** 1.5)
