@@ -55,16 +55,24 @@ import tempfile
 from pathlib import Path
 
 try:
-    from pyroll.core import BaseRollPass, FlatGroove, Hook, RollPass, Rotator, Transport
+    import pyroll.core as _core
+    from pyroll.core import (
+        BaseRollPass,
+        FlatGroove,
+        Hook,
+        RollPass,
+        Rotator,
+        SymmetricRollPass,
+        Transport,
+    )
 except ImportError as e:      # pragma: no cover - the extra is not installed
     raise ImportError("hotroll.pyroll needs pyroll-core: pip install 'hotroll[pyroll]'") from e
 
+from hotroll import pyroll_asymmetric as _asym
 from hotroll import pyroll_flow_stress as _flow
 from hotroll import pyroll_inputs as _in
 from hotroll.config.case import Case, case_from_dict
-from hotroll.model.interpass import enthalpy_mean
-from hotroll.model.profile import ThicknessProfile
-from hotroll.model.thermal_properties import ThermalProperties
+from hotroll.config.full_strip import asymmetric_refusal
 from hotroll.workflows.runner import run_case
 from hotroll.workflows.sweep import Sweep
 
@@ -134,7 +142,9 @@ flow-stress fit (``flow_stress_fit``) and the case (``case_toml``)."""
 
 
 def is_flat(rp) -> bool:
-    return isinstance(getattr(rp.roll, "groove", None), FlatGroove)
+    """A flat pass: its roll's groove (both rolls' of an asymmetric pass) a ``FlatGroove``."""
+    rolls = (rp.upper_roll, rp.lower_roll) if _asym.is_asymmetric(rp) else (rp.roll,)
+    return all(isinstance(getattr(r, "groove", None), FlatGroove) for r in rolls)
 
 
 _value = _in.value     # a hook's value if it can be computed, else the default
@@ -145,7 +155,11 @@ def _missing(rp, profile=None) -> str | None:
     temperature, a flow stress (``pyroll_flow_stress.missing``) and a flat strip (filling at
     least ``Config.MIN_RECTANGULARITY`` of its bounding box). ``profile``: the strip entering
     (default the pass's in profile)."""
-    if _in.roll_speed(rp) is None:
+    if _asym.is_asymmetric(rp):
+        why = _asym.missing(rp)
+        if why is not None:
+            return why
+    elif _in.roll_speed(rp) is None:
         return ("no roll speed (the roll's rotational_frequency, surface_velocity or "
                 "working_velocity, or the pass's velocity)")
     ip = rp.in_profile if profile is None else profile
@@ -173,19 +187,21 @@ def handles(rp) -> bool:
     return True
 
 
-def _properties(profile) -> ThermalProperties:
-    """The profile's density, specific heat and conductivity (else ``Config.PROPERTIES``)."""
-    props = Config.PROPERTIES
-    return ThermalProperties(
-        float(_value(profile, "density", props["density"])),
-        float(_value(profile, "specific_heat_capacity", props["specific_heat"])),
-        float(_value(profile, "thermal_conductivity", props["conductivity"])))
+def _properties(profile):
+    """The profile's thermal properties, else ``Config.PROPERTIES`` (``pyroll_inputs``)."""
+    return _in.properties(profile, Config.PROPERTIES)
 
 
 def pass_case(rp) -> tuple[Case, dict]:
-    """The hotroll case of a flat PyRolL roll pass and its flow-stress description."""
+    """The hotroll case of a flat PyRolL roll pass and its flow-stress description. An
+    asymmetric pass (``upper_roll`` and ``lower_roll``, ``hotroll/pyroll_asymmetric.py``)
+    takes each roll's radius and speed from that roll, is isothermal (no [thermal]: the
+    full-thickness strip has none yet; the strip leaves at the temperature it enters), and its
+    strip rigid-plastic unless the in profile gives its elastic modulus; what the full strip
+    does not carry is refused naming what PyRolL described (``ValueError``)."""
     ip = rp.in_profile
-    R = _in.radius(rp)
+    two = _asym.is_asymmetric(rp)
+    R = _in.roll_radius(rp.upper_roll) if two else _in.radius(rp)
     h0, h1 = round(float(ip.height), 6), round(float(rp.height), 6)
     width = float(ip.width)
     if "vertical" in _value(ip, "classifiers", set()) and h0 > width:
@@ -193,7 +209,7 @@ def pass_case(rp) -> tuple[Case, dict]:
                          f"({h0:g} m high, {width:g} m wide): PyRolL turned it by 90 degrees "
                          f"before this flat pass; give the pass rotation=False (or put a "
                          f"Rotator(rotation=0) before it)")
-    U = round(_in.roll_speed(rp), 9)
+    U = round(_asym.rolls(rp)[0][1] if two else _in.roll_speed(rp), 9)
     T0 = round(float(ip.temperature), 2)
     e0 = round(float(_value(ip, "strain", 0.0)), 6)
     lc = math.sqrt(R * 0.5 * (h0 - h1))
@@ -203,9 +219,10 @@ def pass_case(rp) -> tuple[Case, dict]:
                     conductivity=props.conductivity)
     mu = _value(rp, "coulomb_friction_coefficient", None)
     thermal = dict(Config.THERMAL)
-    thermal["roll_temperature"] = float(_value(rp.roll, "temperature",
+    roll = rp.upper_roll if two else rp.roll
+    thermal["roll_temperature"] = float(_value(roll, "temperature",
                                                thermal["roll_temperature"]))
-    thermal["htc_contact"] = float(_value(rp.roll, "contact_heat_transfer_coefficient",
+    thermal["htc_contact"] = float(_value(roll, "contact_heat_transfer_coefficient",
                                           thermal["htc_contact"]))
     d = {
         "name": str(rp.label or "pass"),
@@ -222,10 +239,22 @@ def pass_case(rp) -> tuple[Case, dict]:
         "solver": {"method": "steady", **Config.SOLVER},
         "output": {"figures": False, "vtk": False},
         "thermal": thermal,
-        "roll": _in.roll_table(rp.roll, Config.ROLL),
+        "roll": _in.roll_table(roll, Config.ROLL),
         "contact": _in.contact_table(ip),
     }
-    return case_from_dict(d), fit
+    if not two:
+        return case_from_dict(d), fit
+    d["pass"].update(_asym.pass_rolls(rp))
+    del d["thermal"]
+    d["contact"].setdefault("strip_youngs_modulus", "off")
+    lower = _in.roll_table(rp.lower_roll, Config.ROLL)
+    if lower != d["roll"]:
+        d["roll"]["lower"] = {"model": lower.get("model", "rigid")}
+    case = case_from_dict(d)
+    refused = asymmetric_refusal(case)
+    if refused is not None:
+        raise ValueError(_asym.refusal(rp, refused.problems))
+    return case, fit
 
 
 def solve(rp) -> dict:
@@ -255,25 +284,11 @@ def solve(rp) -> dict:
                            f"its output is in {out}")
     # PyRolL's pass velocity is U cos(phi_n): the next call's roll speed uses this phi_n
     rp.__dict__["_hotroll_neutral"] = float(summary.get("neutral_angle") or 0.0)
-    T_out, e_out = _outlet_means(case, summary)
+    T_out, e_out = _in.outlet_means(case, summary)
     summary = dict(summary, flow_stress_fit=fit, case_toml=key, output_dir=str(out),
                    outlet_temperature_mean=T_out, outlet_strain_mean=e_out)
     cache[key] = summary
     return summary
-
-
-def _outlet_means(case: Case, s: dict) -> tuple[float, float]:
-    """(temperature K, strain) means of the profile at the FE strip's outlet (the temperature
-    by its heat content)."""
-    import numpy as np
-
-    prof = s["exit_profile"]
-    T = ThicknessProfile(tuple(prof["eta"]), tuple(prof["temperature"]))
-    T_mean = enthalpy_mean(case.material.thermal_properties(), np.asarray(T.values),
-                           T.weights())
-    e = (ThicknessProfile(tuple(prof["eta"]), tuple(prof["strain"])).mean()
-         if prof.get("strain") is not None else s["homogeneous_exit_strain"])
-    return T_mean, e
 
 
 @RollPass.hotroll_result
@@ -312,18 +327,16 @@ def neutral_angle(self: RollPass.Roll):
     return None if ang is None else -ang
 
 
-@BaseRollPass.Roll.contact_length(tryfirst=True)
 def contact_length(self):
-    """hotroll's contact length (m): where the strip touches the (flattened) roll."""
+    """hotroll's contact length (m): where the strip touches the (flattened) roll (an
+    asymmetric pass: this roll's)."""
     rp = self.roll_pass
-    return solve(rp)["contact_length"] if handles(rp) else None
+    if not handles(rp):
+        return None
+    return _asym.roll_figure(solve(rp), int(self is getattr(rp, "lower_roll", None)),
+                             "contact_length")
 
 
-_declare(BaseRollPass.Roll, "flattened_radius", "the flattened roll's radius R' (m)")
-_declare(BaseRollPass.Roll, "flattening_ratio", "R'/R, the flattened over the rigid radius")
-
-
-@BaseRollPass.Roll.flattened_radius(tryfirst=True)
 def flattened_radius(self):
     """R' (m): the radius of the circle fitted to hotroll's flattened roll over the contact
     (``roll_equivalent_radius``); the rigid radius for a rigid roll. The names are those of
@@ -331,15 +344,34 @@ def flattened_radius(self):
     rp = self.roll_pass
     if not handles(rp):
         return None
-    return solve(rp).get("roll_equivalent_radius", _in.radius(rp))
+    return solve(rp).get("roll_equivalent_radius", _in.roll_radius(self))
 
 
-@BaseRollPass.Roll.flattening_ratio(tryfirst=True)
 def flattening_ratio(self):
     rp = self.roll_pass
     if not handles(rp):
         return None
-    return solve(rp).get("roll_equivalent_radius", _in.radius(rp)) / _in.radius(rp)
+    return solve(rp).get("roll_equivalent_radius", _in.roll_radius(self)) / _in.radius(rp)
+
+
+#: pyroll-core's asymmetric pass (its PR #251), None in pyroll-core 3.1
+ASYMMETRIC_PASS = getattr(_core, "AsymmetricTwoRollPass", None)
+
+
+def register_roll_hooks(host) -> None:
+    """The base pass's roll hooks on ``host`` (``_asym.roll_hosts``): hotroll's contact length;
+    the flattened radius and ratio, declared there if no other plugin did."""
+    host.contact_length(tryfirst=True)(contact_length)
+    _declare(host, "flattened_radius", "the flattened roll's radius R' (m)")
+    _declare(host, "flattening_ratio", "R'/R, the flattened over the rigid radius")
+    host.flattened_radius(tryfirst=True)(flattened_radius)
+    host.flattening_ratio(tryfirst=True)(flattening_ratio)
+
+
+for _host in _asym.roll_hosts(BaseRollPass, SymmetricRollPass, ASYMMETRIC_PASS):
+    register_roll_hooks(_host)
+if ASYMMETRIC_PASS is not None:
+    _asym.install_on(ASYMMETRIC_PASS, lambda rp: solve(rp), handles, _declare)
 
 
 @RollPass.OutProfile.velocity(tryfirst=True)

@@ -8,6 +8,10 @@ from __future__ import annotations
 
 import math
 
+from hotroll.model.interpass import enthalpy_mean
+from hotroll.model.profile import ThicknessProfile
+from hotroll.model.thermal_properties import ThermalProperties
+
 
 def value(obj, name: str, default):
     """A PyRolL hook's value on ``obj`` if it can be computed, else ``default``."""
@@ -20,7 +24,11 @@ def value(obj, name: str, default):
 def radius(rp) -> float:
     """The rigid roll's radius (m): the working radius the user set, else the nominal one
     (not PyRolL's working radius, which a flattening plugin raises to R')."""
-    roll = rp.roll
+    return roll_radius(rp.roll)
+
+
+def roll_radius(roll) -> float:
+    """A PyRolL ``Roll``'s rigid radius (m), as ``radius``."""
     if roll.has_set("working_radius"):
         return float(roll.working_radius)
     return float(roll.nominal_radius)
@@ -31,17 +39,26 @@ def roll_speed(rp) -> float | None:
     rotational_frequency or surface_velocity, or the pass's velocity v, PyRolL's strip speed
     at the neutral point, U cos(phi_n) (hotroll's phi_n of the last solve, rounded to 1e-9
     rad: the pass is solved again until U settles); None if nothing is set."""
-    roll = rp.roll
-    R = radius(rp)
+    own = surface_speed(rp.roll)
+    if own is not None:
+        return own
+    if rp.has_set("velocity"):
+        phi = round(rp.__dict__.get("_hotroll_neutral", 0.0), 9)
+        return float(rp.velocity) / math.cos(phi)
+    return None
+
+
+def surface_speed(roll) -> float | None:
+    """A PyRolL ``Roll``'s surface speed (m/s) from what the user set on it: its
+    working_velocity, rotational_frequency (2 pi f R) or surface_velocity (at the nominal
+    radius, scaled to R); None if none is set."""
+    R = roll_radius(roll)
     if roll.has_set("working_velocity"):
         return float(roll.working_velocity)
     if roll.has_set("rotational_frequency"):
         return 2.0 * math.pi * float(roll.rotational_frequency) * R
     if roll.has_set("surface_velocity"):
         return float(roll.surface_velocity) * R / float(roll.nominal_radius)
-    if rp.has_set("velocity"):
-        phi = round(rp.__dict__.get("_hotroll_neutral", 0.0), 9)
-        return float(rp.velocity) / math.cos(phi)
     return None
 
 
@@ -90,3 +107,29 @@ def roll_table(roll, base: dict) -> dict:
     if nu is not None:
         table["poissons_ratio"] = float(nu)
     return table
+
+
+def properties(profile, defaults: dict) -> ThermalProperties:
+    """The profile's density, specific heat and conductivity (else ``defaults``: ``Config.PROPERTIES``)."""
+    props = defaults
+    return ThermalProperties(
+        float(value(profile, "density", props["density"])),
+        float(value(profile, "specific_heat_capacity", props["specific_heat"])),
+        float(value(profile, "thermal_conductivity", props["conductivity"])))
+
+
+def outlet_means(case, s: dict) -> tuple[float, float]:
+    """(temperature K, strain) means of the profile at the FE strip's outlet (the temperature
+    by its heat content)."""
+    import numpy as np
+
+    prof = s["exit_profile"]
+    if prof is None:      # an isothermal pass without strain field (an asymmetric pass)
+        e = s.get("exit_strain")
+        return case.plate.temperature, s["homogeneous_exit_strain"] if e is None else e
+    T = ThicknessProfile(tuple(prof["eta"]), tuple(prof["temperature"]))
+    T_mean = enthalpy_mean(case.material.thermal_properties(), np.asarray(T.values),
+                           T.weights())
+    e = (ThicknessProfile(tuple(prof["eta"]), tuple(prof["strain"])).mean()
+         if prof.get("strain") is not None else s["homogeneous_exit_strain"])
+    return T_mean, e

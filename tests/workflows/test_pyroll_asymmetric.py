@@ -1,0 +1,163 @@
+"""The PyRolL plugin and PyRolL's asymmetric pass (issue 52 item 4; hotroll/pyroll_asymmetric.py).
+
+pyroll-core 3.1 has no asymmetric pass; its PR #251 adds ``AsymmetricTwoRollPass`` (hook hosts
+``UpperRoll``/``LowerRoll``) and removes ``BaseRollPass.Roll``. Both are faked here by class
+layouts: [plumb] the roll hooks land on ``SymmetricRollPass.Roll`` when ``BaseRollPass.Roll`` is
+gone, and on the asymmetric hosts; [hand] a fake asymmetric pass (real pyroll ``Roll`` objects)
+becomes an asymmetric hotroll case with each roll's radius and speed as set; [refusal] what the
+full strip cannot carry is refused naming what PyRolL described; [id] the asymmetric hooks give
+the summary's per-roll figures (a canned summary: no FE solve in this file)."""
+from __future__ import annotations
+
+import math
+
+import pytest
+
+pr = pytest.importorskip("pyroll.core", reason="the [pyroll] extra (scripts/setup.sh installs it)")
+
+from pyroll.core import Hook  # noqa: E402
+from pyroll.core.hooks import HookHost  # noqa: E402
+
+import hotroll.pyroll as hp  # noqa: E402
+import hotroll.pyroll_asymmetric as ha  # noqa: E402
+
+WIDTH = 1.5
+
+
+def test_roll_hosts_follow_the_class_layout():
+    """[plumb] pyroll-core 3.1: BaseRollPass.Roll; PR #251's layout (no BaseRollPass.Roll):
+    SymmetricRollPass.Roll, plus the asymmetric pass's UpperRoll and LowerRoll."""
+    assert ha.roll_hosts(pr.BaseRollPass, pr.SymmetricRollPass) == [pr.BaseRollPass.Roll]
+
+    class Base:        # BaseRollPass after the PR: no Roll
+        pass
+
+    class Asym:
+        class UpperRoll:
+            pass
+
+        class LowerRoll:
+            pass
+
+    hosts = ha.roll_hosts(Base, pr.SymmetricRollPass, Asym)
+    assert hosts == [pr.SymmetricRollPass.Roll, Asym.UpperRoll, Asym.LowerRoll]
+
+
+def _fake_roll_class():
+    class Roll(HookHost):
+        contact_length = Hook[float]()
+    return Roll
+
+
+def test_the_roll_hooks_register_on_a_host_without_them_declared():
+    """[plumb] register_roll_hooks on a fresh host (as SymmetricRollPass.Roll after the PR):
+    hotroll's contact length first, flattened_radius and flattening_ratio declared there."""
+    host = _fake_roll_class()
+    hp.register_roll_hooks(host)
+    assert [f.function for f in host.contact_length._first_functions] == [hp.contact_length]
+    assert isinstance(host.__dict__["flattened_radius"], Hook)
+    assert [f.function for f in host.flattening_ratio._first_functions] == [hp.flattening_ratio]
+
+
+def _pass(upper: dict, lower: dict, label="A1"):
+    """A fake PR #251 pass: real pyroll Rolls (flat grooves), a real in profile; the reads
+    the plugin makes (has_value, has_set) on the pass itself."""
+    def roll(R, **speed):
+        return pr.Roll(groove=pr.FlatGroove(usable_width=WIDTH), nominal_radius=R, **speed)
+
+    class FakeAsymmetricPass:
+        def __init__(self):
+            self.label = label
+            self.upper_roll, self.lower_roll = roll(**upper), roll(**lower)
+            self.in_profile = pr.Profile.box(height=0.025, width=WIDTH, temperature=1373.15,
+                                             strain=0.0, flow_stress=1.2e8)
+            self.height = self.gap = 0.02
+
+        def has_value(self, name):
+            return getattr(self, name, None) is not None
+
+        def has_set(self, name):
+            return name in self.__dict__
+
+    return FakeAsymmetricPass()
+
+
+def test_an_asymmetric_pass_becomes_an_asymmetric_case():
+    """[hand] each roll's radius and surface speed from its own Roll (rotational frequency
+    f: U = 2 pi f R; working_velocity as given); isothermal, rigid-plastic strip."""
+    rp = _pass({"R": 0.4, "rotational_frequency": 0.8}, {"R": 0.38, "working_velocity": 1.7})
+    assert ha.is_asymmetric(rp) and hp.is_flat(rp) and hp.handles(rp)
+    case, _ = hp.pass_case(rp)
+    gap = case.roll_gap()
+    assert not gap.symmetric
+    assert gap.upper.radius == 0.4 and gap.lower.radius == 0.38
+    assert gap.upper.surface_speed == pytest.approx(2 * math.pi * 0.8 * 0.4, rel=1e-9)
+    assert gap.lower.surface_speed == pytest.approx(1.7, rel=1e-12)
+    assert case.thermal is None and case.pass_.exit_thickness == 0.02
+
+
+def test_a_symmetric_pass_is_no_asymmetric_one():
+    """[plumb] a RollPass has no upper_roll/lower_roll: the symmetric path."""
+    rp = pr.RollPass(label="S", gap=0.02, roll=pr.Roll(groove=pr.FlatGroove(usable_width=1.0),
+                                                       nominal_radius=0.4))
+    assert not ha.is_asymmetric(rp)
+
+
+def test_what_the_full_strip_cannot_carry_is_refused_naming_both_sides():
+    """[refusal] an elastic lower roll (PyRolL's elastic_modulus on it): the message names the
+    pass, both rolls as PyRolL described them and the key hotroll needs."""
+    rp = _pass({"R": 0.4, "rotational_frequency": 0.8},
+               {"R": 0.4, "working_velocity": 1.7, "elastic_modulus": 2.1e11})
+    with pytest.raises(ValueError) as e:
+        hp.pass_case(rp)
+    msg = str(e.value)
+    assert "pass 'A1'" in msg and "asymmetric two-roll pass" in msg
+    assert "lower roll R = 400 mm, U = 1.7 m/s" in msg and "roll.lower.model" in msg
+
+
+def test_a_roll_without_its_own_speed_is_left_with_the_reason(caplog):
+    """[refusal] the lower roll without a speed: hotroll does not solve the pass, and says why."""
+    rp = _pass({"R": 0.4, "rotational_frequency": 0.8}, {"R": 0.4})
+    assert not hp.handles(rp)
+    assert "no roll speed on lower_roll" in caplog.text
+
+
+SUMMARY = {"roll_force": 7.0e6, "exit_velocity": 2.0, "outlet_strain_mean": 0.26,
+           "exit_curvature": -1.55,
+           "rolls": [{"roll_torque": 6.7e5, "neutral_angle": 0.028, "contact_length": 0.039},
+                     {"roll_torque": -3.2e5, "neutral_angle": 0.05, "contact_length": 0.041}]}
+
+
+def test_the_asymmetric_hooks_give_each_rolls_figures(monkeypatch):
+    """[id] on a fake PR #251 class layout: roll_force = the summary's (mean) x width, each
+    roll's torque its own x width, neutral angles in PyRolL's sign, the out profile's
+    curvature; the contact length per roll through the roll hosts."""
+    class Out(HookHost):
+        velocity, strain, width = Hook[float](), Hook[float](), Hook[float]()
+
+    class Asym(HookHost):
+        roll_force = Hook[float]()
+        OutProfile = Out
+
+        class UpperRoll(HookHost):
+            roll_torque, neutral_angle = Hook[float](), Hook[float]()
+
+        class LowerRoll(HookHost):
+            roll_torque, neutral_angle = Hook[float](), Hook[float]()
+
+    ha.install_on(Asym, lambda rp: SUMMARY, lambda rp: True, hp._declare)
+    rp = _pass({"R": 0.4, "rotational_frequency": 0.8}, {"R": 0.4, "working_velocity": 1.7})
+    first = lambda host, name: getattr(host, name)._first_functions[0].function  # noqa: E731
+    assert first(Asym, "roll_force")(rp) == 7.0e6 * WIDTH
+    up = type("U", (), {"roll_pass": rp})()
+    low = type("L", (), {"roll_pass": rp})()
+    assert first(Asym.UpperRoll, "roll_torque")(up) == 6.7e5 * WIDTH
+    assert first(Asym.LowerRoll, "roll_torque")(low) == -3.2e5 * WIDTH
+    assert first(Asym.LowerRoll, "neutral_angle")(low) == -0.05
+    out = type("O", (), {"roll_pass": rp})()
+    assert first(Out, "curvature")(out) == -1.55 and first(Out, "velocity")(out) == 2.0
+    monkeypatch.setattr(hp, "solve", lambda rp: SUMMARY)
+    monkeypatch.setattr(hp, "handles", lambda rp: True)
+    lower_roll = rp.lower_roll
+    lower_roll.__dict__["roll_pass"] = rp
+    assert hp.contact_length(lower_roll) == 0.041
