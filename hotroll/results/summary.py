@@ -134,6 +134,10 @@ class Summary(Mapping):
     exit_curvature: float = _f("1/m", "exit curvature", "the exit strip's curvature from its "
                                "rigid rotation over its speed; > 0 curls up (towards the upper "
                                "roll)", group="Pass", when="asymmetric")
+    exit_surface_curvature: float = _f("1/m", "exit curvature from the surfaces", "the "
+                                       "same curvature from the traced free surfaces' "
+                                       "centreline (a second measure: it should equal "
+                                       "exit_curvature)", group="Checks", when="asymmetric")
     exit_angle: float = _f("rad", "exit angle", "the exit strip's direction, > 0 upwards",
                            group="Pass", when="asymmetric")
     entry_guide_force_y: float = _f("N/m", "entry guide force", "the vertical force the entry "
