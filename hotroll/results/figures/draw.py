@@ -41,25 +41,23 @@ def save_figure(fig: plt.Figure, path: Path) -> Path:
 
 
 def draw_roll(ax, run: RunFiles, x_range: tuple[float, float] | None = None) -> None:
-    """Draw the roll as a grey area bounded by its lower arc."""
-    roll = run.roll()
-    if roll is None:
-        return
-    (xc, yc), radius = roll
-    if x_range is None:
-        x_range = (xc - radius, xc + radius)
-    # phi such that xc - R sin(phi) sweeps x_range (clipped to the circle)
-    s0 = np.clip((xc - x_range[1]) / radius, -1.0, 1.0)
-    s1 = np.clip((xc - x_range[0]) / radius, -1.0, 1.0)
-    phi = np.linspace(np.arcsin(s0), np.arcsin(s1), 400)
-    ax_x = xc - radius * np.sin(phi)
-    ax_y = yc - radius * np.cos(phi)
-    poly = np.column_stack([np.r_[ax_x, ax_x[-1], ax_x[0]],
-                            np.r_[ax_y, yc, yc]])
-    ax.add_patch(Polygon(poly, closed=True, facecolor=ROLL_FACE, edgecolor="none",
-                         alpha=0.5, zorder=0.5))
-    ax.plot(ax_x, ax_y, color="k", lw=1.2, zorder=3, label="roll")
-    ax.plot([xc], [yc], marker="+", color="k", ms=8, zorder=3)
+    """Draw the roll as a grey area bounded by its arc facing the strip (an asymmetric pass:
+    both rolls, ``RunFiles.rolls``)."""
+    for k, ((xc, yc), radius, side) in enumerate(run.rolls()):
+        if x_range is None:
+            x_range = (xc - radius, xc + radius)
+        # phi such that xc - R sin(phi) sweeps x_range (clipped to the circle)
+        s0 = np.clip((xc - x_range[1]) / radius, -1.0, 1.0)
+        s1 = np.clip((xc - x_range[0]) / radius, -1.0, 1.0)
+        phi = np.linspace(np.arcsin(s0), np.arcsin(s1), 400)
+        ax_x = xc - radius * np.sin(phi)
+        ax_y = yc - side * radius * np.cos(phi)
+        poly = np.column_stack([np.r_[ax_x, ax_x[-1], ax_x[0]],
+                                np.r_[ax_y, yc, yc]])
+        ax.add_patch(Polygon(poly, closed=True, facecolor=ROLL_FACE, edgecolor="none",
+                             alpha=0.5, zorder=0.5))
+        ax.plot(ax_x, ax_y, color="k", lw=1.2, zorder=3, label="roll" if k == 0 else None)
+        ax.plot([xc], [yc], marker="+", color="k", ms=8, zorder=3)
 
 
 def draw_contact_edges(ax, run: RunFiles, lw: float = 2.0) -> None:

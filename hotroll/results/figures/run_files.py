@@ -60,6 +60,21 @@ class RunFiles:
             return None
         return centre[:2], float(np.asarray(radius, dtype=float))
 
+    def rolls(self) -> list[tuple[np.ndarray, float, int]]:
+        """(centre, radius, side) of each roll drawn: the upper (``roll``), and for an
+        asymmetric pass (a summary with two ``rolls``) the lower, its centre below the exit
+        mid-plane (y = 0) by h1/2 + its radius."""
+        roll = self.roll()
+        if roll is None:
+            return []
+        out = [(roll[0], roll[1], 1)]
+        rolls = self.summary.get("rolls") or []
+        if len(rolls) == 2 and rolls[1].get("radius"):
+            (xc, yc), R = roll
+            R2 = float(rolls[1]["radius"])
+            out.append((np.array([xc, -(yc - R) - R2]), R2, -1))
+        return out
+
     def neutral(self) -> Neutral:
         """The run's neutral story, as its summary tells it (``results/neutral.py``): every
         figure draws this one, never a sign change of its own."""
@@ -116,4 +131,7 @@ class RunFiles:
             ymax = float(np.nanmax(self.top["y"]))
         if ymax is None:
             ymax = length
+        if len(self.rolls()) == 2 and self.fields is not None:      # the whole thickness
+            ymin = float(self.fields["points"][:, 1].min())
+            return x0, x1, 1.12 * ymin, 1.12 * ymax
         return x0, x1, 0.0, 1.12 * ymax
