@@ -180,3 +180,21 @@ def test_the_report_page_shows_both_rolls(run):
     page = (out / "report.html").read_text()
     assert 'data-key="rolls.lower.roll_torque"' in page and "<h3>Upper roll</h3>" in page
     assert "Both rolls&#39; contact pressure and shear" in page
+
+
+def test_the_figures_draw_both_rolls_where_they_are(run):
+    """RunFiles.rolls (the figures' rolls): the upper at the summary's roll centre, the lower
+    below the exit mid-plane by h1/2 + its radius, so that both arcs touch the strip's exit
+    surfaces at the gap (hand geometry: y = +-h1/2 at x = the axis, h1 the exit thickness)."""
+    from hotroll.results.figures.run_files import RunFiles
+
+    _, summary, _, out = run
+    rolls = RunFiles(out).rolls()
+    assert [side for _, _, side in rolls] == [1, -1]
+    h1 = 0.02                                     # asymmetric_plate's exit thickness, m
+    (xu, yu), Ru, _ = rolls[0]
+    (xl, yl), Rl, _ = rolls[1]
+    assert xl == pytest.approx(xu)
+    assert yu - Ru == pytest.approx(0.5 * h1, rel=1e-9)
+    assert yl + Rl == pytest.approx(-0.5 * h1, rel=1e-9)
+    assert Rl == pytest.approx(summary["rolls"][1]["radius"])
