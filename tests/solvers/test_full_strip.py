@@ -231,3 +231,26 @@ def test_what_the_full_strip_does_not_carry_is_refused_by_name():
     with pytest.raises(ValueError, match="flattening roll"):
         check_supported(replace(problem, roll=object()), st)
     assert np.isfinite(problem.h)
+
+
+def test_equal_rolls_give_the_half_model_on_a_bundled_pass_with_tensions():
+    """The bundled tension_pass (Hensel-Spittel, a strain field, back and front tension; the
+    strip's elasticity off: the full strip does not carry it yet) with two equal rolls: the
+    half model's figures to the coupling tolerance (the two fixed points stop in different
+    rounds: measured 5e-6 in force; hot_strip_finishing 1e-7, roughing_slab 1.6e-5)."""
+    from hotroll.examples import example_path
+
+    case = load_case(example_path("tension_pass"), {"contact.strip_youngs_modulus": "off"})
+    problem, _ = build_model(case)
+    st = steady_settings(case)
+    half = SteadyRun(problem, st, case.plate.length).run().history[-1]
+    run = FullSteadyRun(problem, st, case.plate.length, {1: problem.rp, -1: problem.rp},
+                        {1: problem.friction, -1: problem.friction}, {1: st.a_f, -1: st.a_f})
+    sol = run.run()
+    full = sol.history[-1]
+    assert sol.status == "steady"
+    for side in ("upper", "lower"):
+        assert full[f"{side}_roll_force"] == pytest.approx(half["roll_force"], rel=1e-4)
+        assert full[f"{side}_roll_torque"] == pytest.approx(half["roll_torque"], rel=1e-4)
+        assert full[f"{side}_forward_slip"] == pytest.approx(half["forward_slip"], abs=1e-5)
+    assert full["power_balance_error"] < 1e-3
