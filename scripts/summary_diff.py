@@ -26,7 +26,7 @@ ROOT = Path(__file__).resolve().parents[1]
 #: The bundled runs: (kind, name); examples by the CLI's names.
 RUNS = [("example", n) for n in ("1", "2", "hot_strip_finishing", "roughing_slab",
                                  "hot_aluminium", "tension_pass", "hot_strip_finishing_thermal",
-                                 "asymmetric_plate")]
+                                 "asymmetric_plate", "asymmetric_radii")]
 RUNS += [("schedule", "finishing_mill"), ("study", "af_study")]
 #: Keys that change from run to run by nature (time, place), not by the arithmetic.
 VOLATILE = ("wall_time", "wall_s", "seconds", "elapsed", "path", "dir", "out", "date",

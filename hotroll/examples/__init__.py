@@ -21,6 +21,7 @@ EXAMPLES: dict[str, list[str]] = {
     "hot_strip_finishing_thermal": ["hot_strip_finishing_thermal"],
     "thin_strip": ["thin_strip"],
     "asymmetric_plate": ["asymmetric_plate"],
+    "asymmetric_radii": ["asymmetric_radii"],
 }
 
 

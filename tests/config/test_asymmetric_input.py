@@ -18,9 +18,9 @@ from hotroll.model.geometry import RollPass
 from hotroll.model.roll_gap import RollFriction
 from hotroll.workflows.build import asymmetric_refusal, build_model
 
-#: the bundled asymmetric pass (hotroll/examples/cases/asymmetric_plate.toml) aside
+#: the bundled asymmetric passes (hotroll/examples/cases/asymmetric_*.toml) aside
 EXAMPLES = sorted(p.stem for p in example_path("example1").parent.glob("*.toml")
-                  if p.stem != "asymmetric_plate")
+                  if not p.stem.startswith("asymmetric"))
 #: hot_strip_finishing: R = 350 mm, 8 -> 6 mm, omega = 100/7 rad/s (5 m/s), Coulomb mu = 0.3
 BASE = tomllib.loads(example_path("hot_strip_finishing").read_text())
 

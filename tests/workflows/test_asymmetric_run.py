@@ -198,3 +198,22 @@ def test_the_figures_draw_both_rolls_where_they_are(run):
     assert yu - Ru == pytest.approx(0.5 * h1, rel=1e-9)
     assert yl + Rl == pytest.approx(-0.5 * h1, rel=1e-9)
     assert Rl == pytest.approx(summary["rolls"][1]["radius"])
+
+
+def test_the_bundled_reground_roll_pass_is_two_radii_on_one_drive():
+    """asymmetric_radii: the lower roll 360 mm against 400 mm, both at 5 rad/s (no speed
+    ratio: each roll its own angular velocity), so the lower surface runs at 1.8 m/s against
+    2.0 (hand: omega R), the speed ratio is 10/9, and the pass line sits where both bite at the
+    same x: dh (R2 - R1) / (2 (R1 + R2 - dh)) = -0.1316 mm (hand, dh = 5 mm), below the exit
+    mid-plane because the upper roll is the larger."""
+    from hotroll.config.case import load_case
+    from hotroll.examples import example_path
+
+    gap = load_case(example_path("asymmetric_radii")).roll_gap()
+    assert not gap.symmetric
+    assert gap.upper.surface_speed == pytest.approx(2.0, rel=1e-12)
+    assert gap.lower.surface_speed == pytest.approx(1.8, rel=1e-12)
+    assert gap.speed_ratio == pytest.approx(10.0 / 9.0, rel=1e-12)
+    dh, R1, R2 = 0.005, 0.4, 0.36
+    assert gap.pass_line == pytest.approx(dh * (R2 - R1) / (2 * (R1 + R2 - dh)), rel=1e-12)
+    assert gap.arc(1).x_touch == pytest.approx(gap.arc(-1).x_touch, abs=1e-12)
