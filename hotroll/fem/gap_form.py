@@ -73,6 +73,8 @@ class GapForm(RollingForm):
     """Spaces, parameters and forms of (3.6) on the full strip: ``rolls`` {+1: upper, -1:
     lower} each a ``RollPass`` in its own frame (centre above), ``frictions`` the same."""
 
+    MULTIPLIER_ON = ARCS
+
     def __init__(self, mesh, rolls: dict[int, RollPass], material: NortonHoff,
                  frictions: dict[int, FrictionLaw], h: float, tensions: tuple = (0.0, 0.0),
                  consistency=1.0, primal_dual: bool = True):
@@ -139,20 +141,6 @@ class GapForm(RollingForm):
         return dict(a_f=None, m=self.m,
                     pressure=self.pressure(w, lam) if law.uses_pressure else None,
                     k=k if law.uses_k else None)
-
-    def multiplier_vertices(self):
-        cached = getattr(self, "_mult_vertices", None)
-        if cached is None:
-            import numpy as np
-
-            L, found = self.fes.components[2], {}
-            for el in self.mesh.Boundaries(ARCS).Elements():
-                for v, d in zip(el.vertices, L.GetDofNrs(el)):
-                    if d >= 0:
-                        found[v.nr] = d
-            verts = np.array(sorted(found), int)
-            cached = self._mult_vertices = (verts, np.array([found[v] for v in verts], int))
-        return cached
 
     def constraint(self, u, v, lam, xi, regularise: float = 0.0, u_w=None, lam_w=None):
         """s (lambda~ v.n + xi u.n) on both arcs (``RollingForm.constraint``, rigid strip)."""

@@ -131,6 +131,9 @@ def _elements_on(mesh, regions: str):
 class RollingForm:
     """Spaces, parameters and the Newton/Picard forms of (3.6) on one (moving) mesh."""
 
+    #: the boundary the contact multiplier lives on (taylor_hood's ``multiplier_on``)
+    MULTIPLIER_ON = "arc"
+
     def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: FrictionLaw,
                  penalties: PenaltyTable, free_surface: str, tensions: tuple = (0.0, 0.0),
                  consistency=1.0, rate_offset=None, contact: str = "penalty",
@@ -167,7 +170,7 @@ class RollingForm:
         # fem/strain.py), 1 for Norton-Hoff
         self.consistency = consistency
         self.fes = taylor_hood(mesh, dirichlety="sym",
-                               multiplier_on="arc" if contact == "multiplier" else None)
+                               multiplier_on=self.MULTIPLIER_ON if contact == "multiplier" else None)
         self.m = Parameter(material.m)      # set to 1 for the very first iterate (Section 3.4)
         # the material's rate exponent: m, plus m(T) - m_ref (a CF) where a temperature-
         # dependent law's exponent varies (solvers/thermal_feedback.py); the friction law keeps m
@@ -316,7 +319,7 @@ class RollingForm:
             # element's vertex order): one lookup per arc edge where one per mesh vertex took
             # 22 ms a pass
             L, found = self.fes.components[2], {}
-            for el in self.mesh.Boundaries("arc").Elements():    # multiplier_on (__init__)
+            for el in self.mesh.Boundaries(self.MULTIPLIER_ON).Elements():
                 for v, d in zip(el.vertices, L.GetDofNrs(el)):
                     if d >= 0:
                         found[v.nr] = d
