@@ -117,3 +117,28 @@ class StrainField:
         band = IfPos(x - x0, IfPos(x1 - x, 1.0, 0.0), 0.0)
         area = integrate(band, self.mesh)
         return integrate(band * self.gf, self.mesh) / area if area > 0 else float("nan")
+
+
+class ShearStrainField(StrainField):
+    """The engineering shear strain gamma_xy carried by the steady flow (issue 52: asymmetric
+    rolling shears the strip through its thickness): v . grad gamma = du_x/dy + du_y/dx, gamma
+    = 0 on the inlet (small-strain accumulation along the streamlines, signed: > 0 where the
+    upper layers move forward relative to the lower)."""
+
+    def __init__(self, mesh, inlet: str = "in"):
+        super().__init__(mesh, 0.0, inlet=inlet)
+
+    def _rate(self, velocity):
+        from ngsolve import Grad
+
+        g = Grad(velocity)
+        return g[0, 1] + g[1, 0]
+
+    def on_boundary(self, region: str, y_of_vertex) -> tuple[np.ndarray, np.ndarray]:
+        """(y, gamma) at the vertices of the boundary ``region`` (e.g. the outlet ``out``),
+        sorted by y; ``y_of_vertex``: the vertices' current y (m, an array over the mesh)."""
+        verts = sorted({v.nr for el in self.mesh.Boundaries(region).Elements()
+                        for v in el.vertices})
+        y = np.asarray(y_of_vertex)[verts]
+        order = np.argsort(y)
+        return y[order], self.values[np.asarray(verts)[order]]

@@ -33,7 +33,8 @@ MEAN_OF_ROLLS = ("roll_torque", "roll_power", "horizontal_force", "contact_lengt
                  "forward_slip")
 #: The strip's own figures of the full-thickness history (window means), summary keys as named.
 GAP_KEYS = ("cross_shear_length", "exit_curvature", "exit_surface_curvature", "exit_angle",
-            "entry_guide_force_y", "vertical_balance_error")
+            "entry_guide_force_y", "vertical_balance_error", "exit_shear_strain_upper",
+            "exit_shear_strain_mid", "exit_shear_strain_lower", "exit_shear_strain_mean")
 #: The per-roll history columns the summary moves by the frame shift (x positions, m).
 X_COLUMNS = ("neutral_x", "contact_start", "contact_end")
 

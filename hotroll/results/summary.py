@@ -140,6 +140,20 @@ class Summary(Mapping):
                                        "exit_curvature)", group="Checks", when="asymmetric")
     exit_angle: float = _f("rad", "exit angle", "the exit strip's direction, > 0 upwards",
                            group="Pass", when="asymmetric")
+    exit_shear_strain_upper: float = _f("-", "exit shear strain, upper surface", "the "
+                                        "engineering shear strain gamma_xy the pass leaves at "
+                                        "the strip's upper surface (> 0: the upper layers "
+                                        "moved forward relative to the lower)", group="Pass",
+                                        when="asymmetric")
+    exit_shear_strain_mid: float = _f("-", "exit shear strain, mid-thickness", "gamma_xy at "
+                                      "the strip's mid-thickness at the exit", group="Pass",
+                                      when="asymmetric")
+    exit_shear_strain_lower: float = _f("-", "exit shear strain, lower surface", "gamma_xy "
+                                        "at the strip's lower surface at the exit",
+                                        group="Pass", when="asymmetric")
+    exit_shear_strain_mean: float = _f("-", "exit shear strain, thickness mean", "gamma_xy "
+                                       "averaged through the thickness at the exit (0 for "
+                                       "equal rolls)", group="Pass", when="asymmetric")
     entry_guide_force_y: float = _f("N/m", "entry guide force", "the vertical force the entry "
                                     "guide (v_y = 0 on the inlet) puts on the strip",
                                     group="Pass", when="asymmetric")

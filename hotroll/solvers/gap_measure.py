@@ -89,6 +89,7 @@ def gap_measure(run, K: float) -> dict:
     out["cross_shear_length"] = abs(out["upper_neutral_x"] - out["lower_neutral_x"])
     out.update(exit_rotation(run))
     out["exit_surface_curvature"] = exit_surface_curvature(run)
+    out.update(exit_shear(run))
     # a curling strip crosses the vertical outlet inclined by theta: its thickness there is
     # the projected height times cos theta, its centreline speed the flux over that
     # (face_flow's flux / height is the speed times cos theta)
@@ -160,3 +161,26 @@ def exit_surface_curvature(run) -> float:
     yc = 0.5 * (ys[0] + ys[1])
     a, b, _ = np.polyfit(xs - xs.mean(), yc, 2)
     return float(2.0 * a / (1.0 + b * b) ** 1.5)
+
+
+def exit_shear(run) -> dict:
+    """The through-thickness shear the pass leaves in the strip: the engineering shear strain
+    gamma_xy carried along the streamlines (``fem/strain.py: ShearStrainField``) at the outlet,
+    at its upper and lower surfaces and at mid-thickness (linear between the outlet's
+    vertices), and its thickness mean (-)."""
+    from hotroll.fem.strain import ShearStrainField
+
+    field = getattr(run, "_shear_field", None)
+    if field is None:
+        field = run._shear_field = ShearStrainField(run.mesh)
+    field.transport(run.form.nonlinear.velocity)
+    nv = run.mesh.nv
+    n = run.map.nodes.n
+    y_now = run.map.nodes.X0[:nv, 1] + run.d[n:n + nv]
+    y, gamma = field.on_boundary("out", y_now)
+    mid = 0.5 * (y[0] + y[-1])
+    mean = float(np.trapezoid(gamma, y) / (y[-1] - y[0])) if len(y) > 1 else math.nan
+    return {"exit_shear_strain_upper": float(gamma[-1]),
+            "exit_shear_strain_lower": float(gamma[0]),
+            "exit_shear_strain_mid": float(np.interp(mid, y, gamma)),
+            "exit_shear_strain_mean": mean}
