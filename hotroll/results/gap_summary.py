@@ -16,8 +16,9 @@ summary gives:
   angles, ``min_contact_pressure``, ``entry_pressure``, ``roll_centre``, ``roll_radius``,
   ``roll_surface_speed``) are the UPPER roll's; ``force_balance`` holds each roll's and the
   entry guide's force on the strip; ``balance_error`` is the vertical balance's;
-- ``speed_ratio``, ``cross_shear_length``, ``exit_curvature``, ``exit_angle``,
-  ``entry_guide_force_y``, ``vertical_balance_error`` (``GAP_KEYS``).
+- ``speed_ratio``, ``cross_shear_length``, ``exit_curvature`` (and its second measure
+  ``exit_surface_curvature``), ``exit_angle``, ``entry_guide_force_y``,
+  ``vertical_balance_error``, the exit's shear strain ``exit_shear_strain_*`` (``GAP_KEYS``).
 """
 from __future__ import annotations
 
