@@ -1,16 +1,16 @@
 """What the steady solve needs from a discretisation of the strip (issue 52, the seam for 3D).
 
-``SteadyRun.solve`` (solvers/steady.py: the Newton with the couplings inside it, the
-continuation in m, the history rows) calls only the methods and attributes below on the run
-it drives. Two strips implement them today: the half strip with its symmetry plane
+``SteadySolve`` (solvers/steady_solve.py: the Newton with the couplings inside it, the
+continuation in m, the history rows; a mixin of each strip) calls only the methods and
+attributes below on the strip it drives. Two strips implement them today: the half strip with its symmetry plane
 (``SteadyRun`` itself: ``fem/mesh.py``, ``fem/rolling_form.py``, one ``TopBoundary``) and the
 full-thickness strip between two rolls (``FullSteadyRun``: ``fem/full_strip.py``,
 ``fem/gap_form.py``, one ``TopBoundary`` per roll's side). A third (a 3D strip with spread)
 implements them with its own mesh, spaces and form and inherits the solve unchanged.
 
-Not yet cut (next): the solve still lives in ``SteadyRun``, which the full strip subclasses; a
-strip object of its own, passed to a ``SteadySolve``, is the composition this Protocol is
-written for (docs/notes/issue52-plan.md, stage 4).
+Not yet cut: the full strip still subclasses the half strip for a few shared helpers; a strip
+object passed to the solve (composition rather than a mixin) is the next step
+(docs/notes/issue52-plan.md, stage 4).
 """
 from __future__ import annotations
 
@@ -39,6 +39,9 @@ class StripDiscretisation(Protocol):
 
     def _cold_start(self) -> None:
         """The reference shape, the kinematic velocity guess and the friction parameters."""
+
+    def _fresh_searches(self) -> None:
+        """The contact ends' searches afresh (each solve)."""
 
     def _couplings(self, warm: bool = False) -> list:
         """The couplings of the fixed point, in their update order (solvers/couplings.py)."""

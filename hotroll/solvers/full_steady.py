@@ -159,6 +159,9 @@ class FullSteadyRun(SteadyRun):
             out.append(end)
         return out
 
+    def _fresh_searches(self) -> None:
+        self.end_searches = {s: ContactEndSearch() for s in SIDES}
+
     def _cold_start(self) -> None:
         self.shapes = {s: StripShape.flat(self.rolls[s]) for s in SIDES}
         self.end_searches = {s: ContactEndSearch() for s in SIDES}

@@ -741,7 +741,7 @@ def test_a_failing_linear_solve_ends_a_steady_run_with_its_reason(monkeypatch):
     factor 1, R/h0 = 100, 50 %: no direct solver reached 1e-6) escaped the runner as a
     traceback; now the continuation in m is tried, and if that fails too the run ends with
     exit code 3 and the reason."""
-    import hotroll.solvers.steady as S
+    import hotroll.solvers.steady_solve as S  # the steady solve's loop calls newton
     from hotroll.fem.nonlinear import LinearSolveError
 
     real, calls = S.newton, {"n": 0, "fail": {1}}
