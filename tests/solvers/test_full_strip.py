@@ -287,3 +287,16 @@ def test_the_shear_strain_of_a_simple_shear_flow_is_the_analytic_one():
     ys, gamma = field.on_boundary("right", np.array([v.point[1] for v in mesh.vertices]))
     assert np.allclose(gamma, b / (1.0 + b * ys), rtol=1e-2)
     assert abs(gamma[0] - b) < 1e-2 * b          # y = 0: gamma = b
+
+
+def test_the_cross_shear_zone_lies_between_the_two_neutral_points(runs):
+    """cross_shear_length from the two rolls' neutral angles by hand (equal radii, centres on
+    one vertical line: x_n = x_axis - R sin(angle)); 0 for equal rolls, and at r = 1.02 it
+    grows with the ratio (measured 0.057 L; the slab's 0.122 L: docs/validation/asymmetric.md)."""
+    R = 0.25
+    for name in ("r102", "r102_swapped", "r102_long"):
+        row = runs[name][1]
+        by_hand = R * abs(math.sin(row["upper_neutral_angle"]) - math.sin(row["lower_neutral_angle"]))
+        assert row["cross_shear_length"] == pytest.approx(by_hand, rel=1e-6)
+    assert runs["equal"][1]["cross_shear_length"] < 1e-9
+    assert runs["r102"][1]["cross_shear_length"] > 0.03 * math.sqrt(R * 0.002)
