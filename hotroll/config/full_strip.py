@@ -20,9 +20,6 @@ def asymmetric_refusal(case: Case) -> CaseError | None:
     if case.solver.method != "steady":
         lines.append(f'solver.method: an asymmetric pass needs "steady" (the report\'s scheme '
                      f'has the half model only), got "{case.solver.method}"')
-    if case.thermal is not None:
-        lines.append("thermal: the full-thickness strip has no temperature field yet; remove "
-                     "the [thermal] section (an isothermal pass)")
     for key, model in (("roll.model", case.roll.model),
                        *((f"roll.{n}.model", getattr(case.roll, n).model)
                          for n in SIDES.values() if getattr(case.roll, n) is not None)):

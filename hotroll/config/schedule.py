@@ -162,7 +162,8 @@ class PassEntry(Section):
     isothermal: StrictBool = field(
         False, "solve this pass without the temperature field: the strip leaves with the "
         "temperature profile it enters with, the transport after it still cools (an "
-        "asymmetric pass needs it: the full-thickness strip has no temperature field yet)",
+        "asymmetric pass needs it: the full-thickness strip does not write the exit temperature "
+        "profile the next pass enters with yet)",
         "", "true or false")
     transport: TransportConfig | None = Field(None, description="the transport after the pass")
 

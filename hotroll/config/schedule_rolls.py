@@ -6,7 +6,8 @@ computation and naming ``pass[k]`` and the key, what that strip does not carry y
 (``config/full_strip.asymmetric_refusal``, in the schedule's terms) and what a schedule asks of
 a pass that the full strip cannot give: a tandem's stand speed or tension from the mass flux
 (the full strip takes its rolls' speeds as given, and its flux is the whole thickness's, the
-half model's the half's) and the microstructure's streamline histories."""
+half model's the half's), the microstructure's streamline histories and the exit temperature
+profile the next pass enters with."""
 from __future__ import annotations
 
 from hotroll.config.full_strip import asymmetric_refusal
@@ -44,6 +45,12 @@ def asymmetric_problems(sch, k: int, case) -> list[str]:
         out.append(f"microstructure.kinetics: {what} has no streamline histories at its outlet "
                    f"(the full-thickness strip does not write them yet); omit "
                    f"microstructure.kinetics or make the pass symmetric")
+    if case.thermal is not None:
+        out.append(f"{where}.isothermal: {what}: the full-thickness strip does not write its "
+                   f"exit temperature profile through the thickness yet, which the next pass "
+                   f"enters with; set isothermal = true on this pass (it leaves with the "
+                   f"temperature it enters with, the transport after it still cools), got "
+                   f"false")
     refusal = asymmetric_refusal(case)
     for line in refusal.problems if refusal is not None else []:
         line = _in_schedule(line, where, what, p)
@@ -54,10 +61,6 @@ def asymmetric_problems(sch, k: int, case) -> list[str]:
 def _in_schedule(line: str, where: str, what: str, p) -> str:
     """A line of ``asymmetric_refusal`` in the schedule's keys."""
     key, _, why = line.partition(": ")
-    if key == "thermal":
-        return (f"{where}.isothermal: {what}: the full-thickness strip has no temperature "
-                f"field yet; set isothermal = true on this pass (it leaves with the temperature "
-                f"it enters with, the transport after it still cools), got false")
     if key.startswith("pass."):
         return f"{where}.{key[len('pass.'):]}: {why}"
     if key.startswith("friction") and p.friction is not None:

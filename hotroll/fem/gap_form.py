@@ -77,7 +77,7 @@ class GapForm(RollingForm):
 
     def __init__(self, mesh, rolls: dict[int, RollPass], material: NortonHoff,
                  frictions: dict[int, FrictionLaw], h: float, tensions: tuple = (0.0, 0.0),
-                 consistency=1.0, primal_dual: bool = True):
+                 consistency=1.0, primal_dual: bool = True, rate_offset=None):
         from ngsolve import FacetFESpace, GridFunction, Parameter
 
         self.mesh, self.rolls = mesh, rolls
@@ -102,7 +102,8 @@ class GapForm(RollingForm):
         self.consistency = consistency
         self.fes = taylor_hood(mesh, dirichlety=INLET_GUIDE, multiplier_on=ARCS)
         self.m = Parameter(material.m)
-        self.m_material = self.m
+        # m(T) - m_ref where a temperature-dependent law's exponent varies (RollingForm's)
+        self.m_material = self.m if rate_offset is None else self.m + rate_offset
         self.x_split_side = {s: Parameter(r.axis_x) for s, r in rolls.items()}
         self.x_split = by_side(self.x_split_side[1], self.x_split_side[-1])
         self.chi = GridFunction(fe_space(FacetFESpace, mesh, order=0))

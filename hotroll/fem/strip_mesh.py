@@ -15,6 +15,10 @@ displacement (``place``), so it follows the traced free surface; a point of the 
 is found in it by its logical coordinates (``logical``), with no search in deformed
 coordinates. Boundaries: ``bottom`` (symmetry line), ``left`` (inlet), ``right`` (outlet),
 ``top``.
+
+The full strip between two rolls (``full=True``, issue 52): eta in [-1, 1], its rows thin at
+both surfaces and mirror images of each other about eta = 0 (the mesh too: ``mirrored``);
+``bottom`` is then the lower roll's surface.
 """
 from __future__ import annotations
 
@@ -76,9 +80,12 @@ def layer_thickness(rp, alpha: float) -> float:
 class ThermalStrip:
     """The structured P1 mesh of the steady strip for the temperature (module docstring)."""
 
-    def __init__(self, rp, top_ref: np.ndarray, h: float, delta: float, refine: float = 1.0):
+    def __init__(self, rp, top_ref: np.ndarray, h: float, delta: float, refine: float = 1.0,
+                 full: bool = False, breaks=()):
         """``top_ref``: the reference top vertices of the mechanics mesh (N, 2), inlet to
-        outlet; ``h`` its contact size; ``delta`` the layer thickness (``layer_thickness``)."""
+        outlet; ``h`` its contact size; ``delta`` the layer thickness (``layer_thickness``);
+        ``full``: the whole thickness between two surfaces at +-H_ref (module docstring);
+        ``breaks``: more x (m) inside the fine columns (another roll's contact start)."""
         from ngsolve import CF, H1, GridFunction, VectorH1, grad
 
         if not refine > 0.0:
@@ -91,14 +98,18 @@ class ThermalStrip:
         fine = min(lc / COLUMNS_PER_CONTACT, h / 2.0) / refine
         coarse = max(fine, min(rp.half_entry / 2.0, 8.0 * h) / refine)
         self.X = graded_axis(self.x_in, self.x_out,
-                             [rp.x_touch - 0.25 * lc, rp.x_touch, rp.axis_x, rp.axis_x + 0.25 * lc],
+                             [rp.x_touch - 0.25 * lc, rp.x_touch, rp.axis_x, rp.axis_x + 0.25 * lc,
+                              *(z for b in breaks for z in (b - 0.25 * lc, b))],
                              fine, coarse)
         largest = min(h / 2.0, h1 / 8.0) / refine / h1
         first = min(FIRST_CELL * self.delta / refine / h1, largest)
         self.eta = top_rows(first, largest)
+        self.full = bool(full)
+        if self.full:
+            self.eta = np.concatenate([-self.eta[:0:-1], self.eta])
         X, eta = self.X, self.eta
         nx, ny = len(X) - 1, len(eta) - 1
-        self.mesh = structured_triangle_mesh(X, eta)
+        self.mesh = structured_triangle_mesh(X, eta, mirrored=self.full)
         # vertex i + j (nx + 1): column i, row j
         self.shape = (ny + 1, nx + 1)
         Xg, Eg = np.meshgrid(X, eta)
@@ -123,7 +134,7 @@ class ThermalStrip:
         """Logical (X, eta) of reference points (N, 2) of the mechanics mesh, clipped into
         the strip."""
         X = np.clip(ref[:, 0], self.x_in, self.x_out)
-        eta = np.clip(ref[:, 1] / self.top_height(X), 0.0, 1.0)
+        eta = np.clip(ref[:, 1] / self.top_height(X), -1.0 if self.full else 0.0, 1.0)
         return X, eta
 
     def place(self, physical: np.ndarray) -> None:
@@ -138,9 +149,9 @@ class ThermalStrip:
 
     def set_stream_function(self, flux: np.ndarray, total: float) -> None:
         """psi at the vertices from the flux below each vertex along its column (``flux``,
-        (ny+1, nx+1), 0 on the symmetry line): rescaled per column to ``total`` at the top,
-        so that the velocity curl psi is divergence-free, the top and the symmetry line are
-        streamlines and every section carries ``total`` (m^2/s)."""
+        (ny+1, nx+1), 0 on the symmetry line, or the lower surface): rescaled per column to
+        ``total`` at the top, so that the velocity curl psi is divergence-free, the top and the
+        bottom are streamlines and every section carries ``total`` (m^2/s)."""
         flux = np.asarray(flux, dtype=float).reshape(self.shape)
         top = flux[-1]
         if np.any(top <= 0.0):

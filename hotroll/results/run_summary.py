@@ -375,6 +375,9 @@ def summarise(case: Case, sol: Solution, prof: dict, wall: float) -> dict:
            if case.thermal is not None},
         **({"thermal_dofs": last["thermal_dofs"], "thermal_layer": last["thermal_layer"]}
            if case.thermal is not None else {}),
+        **({"exit_temperature_surface_lower": _nanmean(
+            [r["exit_temperature_surface_lower"] for r in solved])}
+           if case.thermal is not None and "exit_temperature_surface_lower" in last else {}),
         **roll_figures(case, contact, prof),
     }
 

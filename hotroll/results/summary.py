@@ -48,6 +48,7 @@ ROLL_ENTRY: dict[str, tuple[str | None, str]] = {
     "min_contact_pressure": ("Pa", "the lowest contact pressure on this roll"),
 }
 _ASYM = "; an asymmetric pass: "
+_WHOLE = _ASYM + "the whole strip"
 
 
 def _f(unit: str | None, label: str, meaning: str = "", *, group: str | None = None,
@@ -168,18 +169,23 @@ class Summary(Mapping):
     exit_temperature_mean: float = _f("K", "exit temperature, mean", "the outlet's mean",
                                       group="Temperature and heat", when="thermal")
     exit_temperature_surface: float = _f("K", "exit temperature, surface", "the surface at the "
-                                         "gap", group="Temperature and heat", when="thermal")
+                                         "gap" + _ASYM + "the upper roll's surface",
+                                         group="Temperature and heat", when="thermal")
+    exit_temperature_surface_lower: float = _f("K", "exit temperature, lower surface",
+                                               "an asymmetric pass: the lower roll's surface "
+                                               "at the gap", group="Temperature and heat",
+                                               when="thermal, asymmetric")
     max_temperature: float = _f("K", "max temperature", "over the strip",
                                 group="Temperature and heat", when="thermal")
     min_temperature: float = _f("K", "min temperature", "over the strip",
                                 group="Temperature and heat", when="thermal")
-    plastic_heat: float = _f("W/m", "plastic heat", "half strip", group="Temperature and heat",
-                             when="thermal")
-    friction_heat_to_strip: float = _f("W/m", "friction heat to the strip", "half strip",
-                                       group="Temperature and heat", when="thermal")
-    heat_to_roll: float = _f("W/m", "heat to the roll", "half strip",
+    plastic_heat: float = _f("W/m", "plastic heat", "half strip" + _WHOLE,
                              group="Temperature and heat", when="thermal")
-    heat_to_air: float = _f("W/m", "heat to the air", "half strip",
+    friction_heat_to_strip: float = _f("W/m", "friction heat to the strip", "half strip"
+                                       + _WHOLE, group="Temperature and heat", when="thermal")
+    heat_to_roll: float = _f("W/m", "heat to the roll", "half strip" + _WHOLE
+                             + " (to both rolls)", group="Temperature and heat", when="thermal")
+    heat_to_air: float = _f("W/m", "heat to the air", "half strip" + _WHOLE,
                             group="Temperature and heat", when="thermal")
     advected_in: float = _f("W/m", "advected in", "heat carried in through the inlet",
                             group="Temperature and heat", when="thermal")

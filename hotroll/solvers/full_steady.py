@@ -52,7 +52,6 @@ def reference_roll(rolls: dict[int, RollPass]) -> RollPass:
 def check_supported(problem: Problem, settings: SteadySettings) -> None:
     """Refuse what the full strip does not carry yet, naming it."""
     missing = [name for name, on in (
-        ("the temperature field ([thermal])", problem.thermal is not None),
         ("a flattening roll ([roll] model)", problem.roll is not None),
         ("the strip's elasticity", problem.strip_elasticity is not None),
         ("the constrained free surface (plate.free_surface)", settings.free_surface != "traced"),
@@ -87,13 +86,18 @@ class FullSteadyRun(SteadyRun):
         self.strain, self.thermal, consistency = problem.field_setup(self.mesh)
         self.form = GapForm(self.mesh, rolls, NortonHoff(1.0, mat.m, mat.eps0), frictions,
                             problem.h, tensions=problem.reduced_tensions,
-                            consistency=consistency)
+                            consistency=consistency,
+                            rate_offset=self.thermal.rate_offset()
+                            if self.thermal is not None else None)
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.d = self.disp.vec.FV().NumPy()
         n = V.ndof // 2
         self.tops = {s: TopBoundary(self.mesh, n, side=s, suffix=SUFFIX[s]) for s in SIDES}
         self.top = self.tops[1]
+        if self.thermal is not None:     # one strip mesh over the whole thickness
+            self.thermal.attach(self.form, self.disp, self.tops[1], lower=self.tops[-1],
+                                rp=ref, breaks=[r.x_touch for r in rolls.values()])
         self.arcs = {}
         for s, top in self.tops.items():
             self.arcs[s] = top.region == "arc"
@@ -120,6 +124,9 @@ class FullSteadyRun(SteadyRun):
     def measure(self, stats, index: int) -> dict:
         row = {"step": index, "time": math.nan, "m": self.form.m.Get()}
         row.update(gap_measure(self, self.problem.material.K))
+        if self.thermal is not None:     # the heat flows after the solves, not every update
+            row.update(self.thermal.measure(self.problem.rp.axis_x, self.problem.h,
+                                            heat_flows=stats.iterations > 0))
         row.update({"iterations": stats.iterations, "residual": stats.residual,
                     "solver_converged": stats.converged})
         return row
@@ -146,6 +153,8 @@ class FullSteadyRun(SteadyRun):
         s, out = self.s, []
         if self.strain is not None:
             out.append(C.StrainTransport(self.strain, self.form.nonlinear.velocity, s.strain_rtol))
+        if self.thermal is not None:
+            out.append(C.Temperature(self.thermal, s.thermal_rtol))
         out.append(C.FreeSurface(self.update_surface, s.surface_tol * self.problem.h))
         if self.unilateral:
             end = C.ContactEnd(self.move_contact_end,
@@ -169,6 +178,8 @@ class FullSteadyRun(SteadyRun):
         self._set_shape()
         self._kinematic_guess()
         self._update_strain()
+        if self.thermal is not None:     # the entry temperature until the first update (half's)
+            self.thermal.reset(self.problem.temperature)
         for s in SIDES:
             a_f = self.a_f_given[s]
             if a_f is None and self.frictions[s].uses_a_f:
@@ -281,11 +292,12 @@ class FullSteadyRun(SteadyRun):
     def head_x(self) -> float:
         return self.problem.rp.axis_x + self.downstream
 
-    def side_profile(self, side: int, K: float) -> dict:
+    def side_profile(self, side: int, K: float, columns: dict | None = None) -> dict:
         """The contact profile of one roll (``quantities.contact_profile``, in its own frame:
-        y up from the strip's mid-plane towards that roll)."""
+        y up from the strip's mid-plane towards that roll); ``columns``: more vertex fields
+        (the temperature's)."""
         return Q.contact_profile(_SideView(self.form, side, self.rolls[side]), self.tops[side],
-                                 self.d, K)
+                                 self.d, K, columns)
 
 
 def shift_contact_start(shape: StripShape, rp: RollPass, x_c: float, x_up: float) -> None:

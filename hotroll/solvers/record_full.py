@@ -34,9 +34,13 @@ SIDES = (1, -1)
 def solution_record(run, frame_shift: float = 0.0) -> Solution:
     """The ``Solution`` of a solved ``FullSteadyRun`` (``run.state`` with its fields and
     figures); ``frame_shift`` (m): the solver's frame (the roll axes at x = 0) to the case's."""
-    pb = run.problem
+    pb, thermal = run.problem, run.thermal
     K = pb.material.K
-    profiles = {s: run.side_profile(s, K) for s in SIDES}
+    # with a temperature: each contact's and free surface's temperature (K) and the contact's
+    # heat flux to its roll (W/m^2), from the vertex fields (``contact_columns``)
+    columns = thermal.contact_columns() if thermal is not None else None
+    top_columns = {"temperature": columns["temperature"]} if columns else None
+    profiles = {s: run.side_profile(s, K, columns) for s in SIDES}
     starts = [float(p["x"][0]) for p in profiles.values() if len(p["x"])]
     x_start = min(starts) if starts else min(rp.x_touch for rp in run.rolls.values())
     fields = vertex_fields(run)
@@ -48,9 +52,9 @@ def solution_record(run, frame_shift: float = 0.0) -> Solution:
         pass_data=PassData(h=pb.h, K=K, m=pb.material.m, entry_strain=pb.entry_strain,
                            temperature=pb.temperature),
         contacts=tuple(side_contact(run, s, profiles[s]) for s in SIDES),
-        tops=tuple(Q.top_profile(run.form, run.tops[s], run.d) for s in SIDES),
+        tops=tuple(Q.top_profile(run.form, run.tops[s], run.d, top_columns) for s in SIDES),
         fields=replace(fields, contact_edges=edges),
-        thermal_strip=None,
+        thermal_strip=thermal.strip_fields() if thermal is not None else None,
         quantities=gap_means(run.form, pb.rp, x_start, K),
         exit_profile=None, exit_strain=exit_strain(run),
         solve_stats=solve_stats(run), dofs=run.form.fes.ndof, nonlinear="newton",

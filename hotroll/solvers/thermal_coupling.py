@@ -89,21 +89,28 @@ class ThermalCoupling(FlowStressFeedback):
         """m(T) - m_ref at the elements' mean temperature, or None (``FlowStressFeedback``)."""
         return self._offset if self.m_varies else None
 
-    def attach(self, form, disp, top) -> None:
+    def attach(self, form, disp, top, lower=None, rp=None, breaks=()) -> None:
         """The form whose flow heats the strip (built with ``consistency()``), the mechanics'
-        displacement GridFunction and its ``TopBoundary``: builds the strip mesh."""
-        from ngsolve import H1, GridFunction, IfPos, Parameter, x
+        displacement GridFunction and its ``TopBoundary``: builds the strip mesh. The full
+        strip between two rolls (issue 52): ``lower`` its lower surface's ``TopBoundary``
+        (the strip mesh then spans the whole thickness, each surface in contact with its
+        own roll), ``rp`` the roll its reference mesh was built for (default ``form.rp``),
+        ``breaks`` more x (m) for the fine columns (the other roll's contact start)."""
+        from ngsolve import H1, GridFunction, IfPos, Parameter, x, y
 
         self.form, self._disp, self._top = form, disp, top
+        rp = form.rp if rp is None else rp
+        full = lower is not None
         T0 = self.bc.entry_temperature
         alpha = float(self.props.k_values(T0) / self.props.rho_c_values(T0))
-        self.delta = layer_thickness(form.rp, alpha)
-        self.strip = ThermalStrip(form.rp, top.X0[top.verts], form.penalties.h, self.delta,
-                                  self.refine)
+        self.delta = layer_thickness(rp, alpha)
+        self.strip = ThermalStrip(rp, top.X0[top.verts], form.penalties.h, self.delta,
+                                  self.refine, full=full, breaks=breaks)
         # P1 temperature, P1 sources and a velocity constant per triangle: with constant
         # properties every volume term is a polynomial of degree <= 2 (no bonus order needed)
         self.field = TemperatureField(self.strip.mesh, self.props, self.bc,
-                                      inlet="left", top="top", outlet="right",
+                                      inlet="left", top="top|bottom" if full else "top",
+                                      outlet="right",
                                       volume_bonus=0 if self.props.is_constant() else 2)
         self._flow = None            # the strip's element_flow at the current placement
         if self.props.is_constant():
@@ -117,8 +124,12 @@ class ThermalCoupling(FlowStressFeedback):
                                        lambda: (self._strip_tris, *self._element_flow()))
         self._qs = GridFunction(fe_space(H1, self.strip.mesh, order=1))
         self._qfs = GridFunction(fe_space(H1, self.strip.mesh, order=1))
-        self._lo, self._hi = Parameter(0.0), Parameter(0.0)    # the contact's x-range
-        self._chi = IfPos(x - self._lo, IfPos(self._hi - x, 1.0, 0.0), 0.0)
+        # each surface's TopBoundary and its contact's x-range (Parameters), upper first; the
+        # contact indicator: the upper's range above the mid-plane, the lower's below it
+        self._surfaces = [(t, Parameter(0.0), Parameter(0.0))
+                          for t in ((top, lower) if full else (top,))]
+        chis = [IfPos(x - lo, IfPos(hi - x, 1.0, 0.0), 0.0) for _, lo, hi in self._surfaces]
+        self._chi = IfPos(y, chis[0], chis[1]) if full else chis[0]
         self._mech_logical = self.strip.logical(top.X0)   # the mechanics' vertices
         # the strip's vertices and its columns' flux points, found once in the mechanics'
         # reference mesh; the top row's vertices. Every SUBSAMPLES-th row of flux points is
@@ -136,6 +147,9 @@ class ThermalCoupling(FlowStressFeedback):
                                      np.stack([self._col_pts["x"], self._col_pts["y"]], -1))
         self._pts = self._col_pts.reshape(len(self._fine), -1)[::SUBSAMPLES].ravel()
         self._top_row = np.arange(strip.nv - strip.shape[1], strip.nv)
+        # the rows on a roll's surface (the friction heat's): the top, and the bottom in full
+        self._surface_rows = (np.concatenate([np.arange(strip.shape[1]), self._top_row])
+                              if full else self._top_row)
         # the mechanics element of each strip vertex; the elements with none take the
         # temperature at their centroid
         self._owner = np.array(self._pts["nr"], dtype=int)
@@ -220,7 +234,7 @@ class ThermalCoupling(FlowStressFeedback):
 
     def _transfer(self) -> None:
         """Place the strip, and carry the flow, the heat sources and the contact over."""
-        strip, top = self.strip, self._top
+        strip = self.strip
         both = self._column_values()
         # the strip vertices' positions: the rows of column points that are vertex rows
         strip.place(both[::SUBSAMPLES, :, :2].reshape(-1, 2))
@@ -230,17 +244,19 @@ class ThermalCoupling(FlowStressFeedback):
         self._flow = None
         self._qs.vec.FV().NumPy()[:] = self._at(self._plastic_cf, self._pts)[:, 0]
         qf = np.zeros(strip.nv)
-        qf[self._top_row] = self._at(self._friction_cf, self._pts[self._top_row])[:, 0]
+        rows = self._surface_rows
+        qf[rows] = self._at(self._friction_cf, self._pts[rows])[:, 0]
         self._qfs.vec.FV().NumPy()[:] = qf
-        rows = np.nonzero(top.edge_contact)[0]
-        lo = hi = 0.0
-        if len(rows):
-            d = self._disp.vec.FV().NumPy()
-            xs = top.vertex_positions(d, np.concatenate([top.ea[rows], top.eb[rows]]))[:, 0]
-            tol = 1e-9 * max(1.0, float(np.max(np.abs(xs))))
-            lo, hi = float(xs.min()) - tol, float(xs.max()) + tol
-        self._lo.Set(lo)
-        self._hi.Set(hi)
+        d = self._disp.vec.FV().NumPy()
+        for top, lo_p, hi_p in self._surfaces:
+            rows = np.nonzero(top.edge_contact)[0]
+            lo = hi = 0.0
+            if len(rows):
+                xs = top.vertex_positions(d, np.concatenate([top.ea[rows], top.eb[rows]]))[:, 0]
+                tol = 1e-9 * max(1.0, float(np.max(np.abs(xs))))
+                lo, hi = float(xs.min()) - tol, float(xs.max()) + tol
+            lo_p.Set(lo)
+            hi_p.Set(hi)
 
     def _element_flow(self):
         """The strip's ``element_flow`` (barycentric gradients, Jacobians, curl psi per
@@ -366,10 +382,10 @@ class ThermalCoupling(FlowStressFeedback):
         follows it): its load vector is reused."""
         return self.field.balance(*self.strip_sources(), sources_unchanged=True)
 
-    def section_means(self, x0: float, band: float) -> tuple[float, float]:
+    def section_means(self, x0: float, band: float) -> tuple[float, float, float]:
         """(mixing-cup mean int T v_x / int v_x over the strip between x0 and x0 + band, the
-        top's temperature at the contact's end column (the gap, or where the strip leaves the
-        roll before it)): the exit temperatures."""
+        top's temperature at the roll gap's column, the bottom's there (the lower roll's
+        surface in the full strip; the mid-plane's in the half)): the exit temperatures."""
         from ngsolve import IfPos, x
 
         u, T, mesh = self.strip.velocity(), self.field.gf, self.strip.mesh
@@ -378,19 +394,21 @@ class ThermalCoupling(FlowStressFeedback):
         mean = integrate(sel * u[0] * T, mesh) / flux if flux else math.nan
         ny, nx1 = self.strip.shape
         surface = float(self.field.values[(ny - 1) * nx1 + self.strip.i_exit])
-        return mean, surface
+        return mean, surface, float(self.field.values[self.strip.i_exit])
 
     def measure(self, x_exit: float, h: float, heat_flows: bool = True) -> dict:
         """The thermal figures of one state (K, W/m): exit mean (mixing cup over 2 h after the
         roll gap section ``x_exit``) and the surface temperature at the contact's end, the heat flows
         and the balance error (NaN without ``heat_flows``: the fixed point's intermediate
         rows), the extreme temperatures, the strip mesh's size."""
-        mean, surface = self.section_means(x_exit, 2.0 * h)
+        mean, surface, bottom = self.section_means(x_exit, 2.0 * h)
         vals = self.field.values
         out = {"exit_temperature_mean": mean, "exit_temperature_surface": surface,
                "max_temperature": float(np.max(vals)), "min_temperature": float(np.min(vals)),
                "thermal_iterations": self.last.iterations, "thermal_dofs": int(len(vals)),
                "thermal_layer": self.delta}
+        if self.strip.full:         # the lower roll's surface (issue 52)
+            out["exit_temperature_surface_lower"] = bottom
         flows = self.balance() if heat_flows else dict.fromkeys(HEAT_FLOWS, math.nan)
         out.update(flows)
         return out

@@ -115,9 +115,6 @@ def test_the_pass_converged_and_balances(run):
 #: (overrides on asymmetric_plate, the key its refusal names)
 REFUSED = [
     ({"solver.method": "transient", "contact.method": "penalty"}, "solver.method"),
-    ({"thermal": {"htc_contact": 2e4, "roll_temperature": 350.0, "htc_air": 20.0,
-                  "emissivity": 0.8}, "material.density": 7800.0,
-      "material.specific_heat": 650.0, "material.conductivity": 30.0}, "thermal"),
     ({"roll.model": "hitchcock"}, "roll.model"),
     ({"roll.lower": {"model": "elastic"}}, "roll.lower.model"),
     ({"contact.strip_youngs_modulus": 2e11}, "contact.strip_youngs_modulus"),
