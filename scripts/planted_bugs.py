@@ -397,7 +397,7 @@ BUGS: dict[str, tuple[str, str, str, str]] = {
                    "pts = sorted((_num(r.get(x)), _num(r.get(key))) for r in grp)",
                    "pts = sorted((_num(r.get(x)), 1.1 * _num(r.get(key))) for r in grp)",
                    "study.png's curves x 1.1"),
-    "study_range": ("hotroll/config/study.py",
+    "study_range": ("hotroll/config/study_schema.py",
                     "v = np.linspace(self.start, self.stop, self.num)",
                     "v = 1.1 * np.linspace(self.start, self.stop, self.num)",
                     "a [vary] range's values x 1.1"),
