@@ -438,7 +438,7 @@ BUGS: dict[str, tuple[str, str, str, str]] = {
                           "return max(float(np.max(np.abs(self.field.values))), 1e-300)",
                           "return 1e4 * max(float(np.max(np.abs(self.field.values))), 1e-300)",
                           "the heat Newton stops 1e4 x too early"),
-    "summary_unit": ("hotroll/results/summary.py",
+    "summary_unit": ("hotroll/results/summary_keys.py",
                      'roll_torque: float = _f("N m/m"',
                      'roll_torque: float = _f("N m"',
                      "the roll torque's unit in summary.json"),
