@@ -355,7 +355,7 @@ BUGS: dict[str, tuple[str, str, str, str]] = {
                              '            _LOG.warning("hotroll.pyroll: flat pass %r left',
                              '            _LOG.info("hotroll.pyroll: flat pass %r left',
                              "a pass left to PyRolL logged at INFO"),
-    "pyroll_not_a_strip": ("hotroll/pyroll.py",
+    "pyroll_not_a_strip": ("hotroll/pyroll_case.py",
                            "    MIN_RECTANGULARITY: float = 0.9",
                            "    MIN_RECTANGULARITY: float = 0.0",
                            "a bar (hexagon, diamond, round) rolled by hotroll as a flat strip"),
