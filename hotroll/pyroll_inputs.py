@@ -124,12 +124,18 @@ def outlet_means(case, s: dict) -> tuple[float, float]:
     import numpy as np
 
     prof = s["exit_profile"]
-    if prof is None:      # an isothermal pass without strain field (an asymmetric pass)
-        e = s.get("exit_strain")
+    full = prof is not None and prof["eta"][0] < 0.0    # an asymmetric pass's whole thickness
+
+    def profile(values):
+        return (ThicknessProfile.fold(prof["eta"], values) if full
+                else ThicknessProfile(tuple(prof["eta"]), tuple(values)))
+
+    e = s.get("exit_strain")
+    if prof is None or prof["temperature"] is None:    # an isothermal pass
         return case.plate.temperature, s["homogeneous_exit_strain"] if e is None else e
-    T = ThicknessProfile(tuple(prof["eta"]), tuple(prof["temperature"]))
+    T = profile(prof["temperature"])
     T_mean = enthalpy_mean(case.material.thermal_properties(), np.asarray(T.values),
                            T.weights())
-    e = (ThicknessProfile(tuple(prof["eta"]), tuple(prof["strain"])).mean()
+    e = (profile(prof["strain"]).mean()
          if prof.get("strain") is not None else s["homogeneous_exit_strain"])
     return T_mean, e

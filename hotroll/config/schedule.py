@@ -161,9 +161,7 @@ class PassEntry(Section):
         "a table of roll_radius, roll_angular_velocity or roll_surface_speed")
     isothermal: StrictBool = field(
         False, "solve this pass without the temperature field: the strip leaves with the "
-        "temperature profile it enters with, the transport after it still cools (an "
-        "asymmetric pass needs it: the full-thickness strip does not write the exit temperature "
-        "profile the next pass enters with yet)",
+        "temperature profile it enters with, the transport after it still cools",
         "", "true or false")
     transport: TransportConfig | None = Field(None, description="the transport after the pass")
 

@@ -6,8 +6,7 @@ computation and naming ``pass[k]`` and the key, what that strip does not carry y
 (``config/full_strip.asymmetric_refusal``, in the schedule's terms) and what a schedule asks of
 a pass that the full strip cannot give: a tandem's stand speed or tension from the mass flux
 (the full strip takes its rolls' speeds as given, and its flux is the whole thickness's, the
-half model's the half's), the microstructure's streamline histories and the exit temperature
-profile the next pass enters with."""
+half model's the half's) and the microstructure's streamline histories."""
 from __future__ import annotations
 
 from hotroll.config.full_strip import asymmetric_refusal
@@ -45,12 +44,6 @@ def asymmetric_problems(sch, k: int, case) -> list[str]:
         out.append(f"microstructure.kinetics: {what} has no streamline histories at its outlet "
                    f"(the full-thickness strip does not write them yet); omit "
                    f"microstructure.kinetics or make the pass symmetric")
-    if case.thermal is not None:
-        out.append(f"{where}.isothermal: {what}: the full-thickness strip does not write its "
-                   f"exit temperature profile through the thickness yet, which the next pass "
-                   f"enters with; set isothermal = true on this pass (it leaves with the "
-                   f"temperature it enters with, the transport after it still cools), got "
-                   f"false")
     refusal = asymmetric_refusal(case)
     for line in refusal.problems if refusal is not None else []:
         line = _in_schedule(line, where, what, p)

@@ -4,6 +4,10 @@ A schedule carries the temperature and the strain from pass to pass as profiles 
 eta = y / (half thickness) in [0, 1] (0 the centre line, 1 the surface), piecewise linear in
 eta. The steady solver takes them as the inlet's values (``fem/thermal_field.py``,
 ``fem/strain.py``) and measures them at the exit (``results/profiles.py``).
+
+An asymmetric pass's exit profile spans the whole thickness, eta in [-1, 1] (-1 the lower
+surface); ``fold`` makes it a half-thickness profile, the mean of the two halves (its section
+mean unchanged), for a next pass that takes one.
 """
 from __future__ import annotations
 
@@ -71,6 +75,21 @@ class ThicknessProfile:
 
     def scaled(self, factor: float) -> ThicknessProfile:
         return ThicknessProfile(self.eta, tuple(factor * v for v in self.values))
+
+    @classmethod
+    def fold(cls, eta, values) -> ThicknessProfile:
+        """The half-thickness profile of a whole-thickness one (``eta`` increasing from -1 to
+        1, piecewise linear): (f(eta) + f(-eta)) / 2 at every |eta| of either half, so that its
+        mean over [0, 1] is f's over [-1, 1] exactly."""
+        e, v = np.asarray(eta, dtype=float), np.asarray(values, dtype=float)
+        if e.ndim != 1 or e.shape != v.shape or len(e) < 2 or e[0] != -1.0 or e[-1] != 1.0 \
+                or np.any(np.diff(e) <= 0.0):
+            raise ProfileError(f"a whole-thickness profile's eta must increase strictly from -1 "
+                               f"to 1, got {e.tolist()}")
+        nodes = np.unique(np.abs(e))
+        if nodes[0] != 0.0:
+            nodes = np.concatenate([[0.0], nodes])
+        return cls(tuple(nodes), tuple(0.5 * (np.interp(nodes, e, v) + np.interp(-nodes, e, v))))
 
     @property
     def is_uniform(self) -> bool:

@@ -349,7 +349,10 @@ class SummaryKeys:
                                    "temperature; null where nothing depends on it (no "
                                    "`[thermal]`, a flow-stress law without temperature)")
     exit_profile: dict | None = _f(None, "exit profile", "the outlet's temperature and strain "
-                                   "profiles over eta; in a thermal run each streamline's pass "
-                                   "strain and strain-weighted means of ln(edot) and 1/T")
+                                   "profiles over eta (0 the centre line, 1 the surface); in a "
+                                   "thermal run each streamline's pass strain and "
+                                   "strain-weighted means of ln(edot) and 1/T" + _ASYM
+                                   + "eta from -1 (the lower surface) to 1 (the upper), with "
+                                   "the shear strain gamma_xy (`shear_strain`)")
     units: dict = _f(None, "units", "each figure's SI unit")
     exit_code: int = _f(None, "exit code", "see cli.md#exit-codes")

@@ -151,7 +151,7 @@ def exit_profiles(run) -> dict | None:
            "strain": None, "pass_strain": None, "log_rate_mean": None,
            "inverse_temperature_mean": None}
     if strain is not None:
-        out["strain"] = _outlet(run, (strain.gf,), eta)[0].tolist()
+        out["strain"] = outlet_values(run, (strain.gf,), eta)[0].tolist()
     if thermal is not None:
         means = streamline_means(thermal, eta)
         out.update({k: means[k].tolist() for k in ("pass_strain", "log_rate_mean",
@@ -159,9 +159,11 @@ def exit_profiles(run) -> dict | None:
     return out
 
 
-def _outlet(run, fields, eta: np.ndarray) -> list[np.ndarray]:
-    """The fields at eta on the outlet section (searched in the undeformed mesh, as
-    NGSolve's point search ignores the deformation, and evaluated on the deformed one)."""
+def outlet_values(run, fields, eta: np.ndarray) -> list[np.ndarray]:
+    """The fields at eta on the outlet section, eta = y over the reference top's height
+    there (0 to 1 the half strip, -1 to 1 the full strip's whole thickness), searched in the
+    undeformed mesh (NGSolve's point search ignores the deformation) and evaluated on the
+    deformed one."""
     top = run.top
     ref = top.X0[top.verts]
     order = np.argsort(ref[:, 0])

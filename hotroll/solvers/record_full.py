@@ -13,9 +13,11 @@ What it holds, against the half model's record:
   towards the upper roll), ``contact_edges`` the upper's then the lower's;
 - ``quantities``: the means over the deformation zone, from the earlier of the two contact
   starts to the roll gap, over the whole thickness;
-- ``exit_profile``: None (the outlet's profile through the half thickness is the half
-  model's; the full strip's through its whole thickness is not written yet);
-  ``exit_strain``: the exit strip's mean strain over its whole thickness, as the half model's.
+- ``exit_profile``: the outlet's state through the whole thickness, eta = y / half exit
+  thickness from -1 (the lower surface) to 1 (the upper), ``exit_profile``: the temperature
+  (K, or None isothermal), the strain (-, or None without a strain field) and the shear strain
+  gamma_xy (-, ``fem/strain.py: ShearStrainField``); the streamlines' means are the half
+  model's (None); ``exit_strain``: the exit strip's mean strain over its whole thickness.
 """
 from __future__ import annotations
 
@@ -26,7 +28,7 @@ import numpy as np
 from hotroll.fem import quantities as Q
 from hotroll.model.solution import PassData, RollContact, Solution
 from hotroll.solvers.record import exit_strain, solve_stats
-from hotroll.solvers.record_fields import gap_means, vertex_fields, write_vtk
+from hotroll.solvers.record_fields import ISOTHERMAL_ROWS, gap_means, outlet_values, vertex_fields, write_vtk
 
 SIDES = (1, -1)
 
@@ -56,9 +58,32 @@ def solution_record(run, frame_shift: float = 0.0) -> Solution:
         fields=replace(fields, contact_edges=edges),
         thermal_strip=thermal.strip_fields() if thermal is not None else None,
         quantities=gap_means(run.form, pb.rp, x_start, K),
-        exit_profile=None, exit_strain=exit_strain(run),
+        exit_profile=exit_profile(run), exit_strain=exit_strain(run),
         solve_stats=solve_stats(run), dofs=run.form.fes.ndof, nonlinear="newton",
         write_vtk=lambda path, shift=0.0: write_vtk(run, path, shift=shift))
+
+
+def exit_profile(run) -> dict:
+    """The outlet's temperature, strain and shear strain at eta in [-1, 1] (module docstring):
+    eta the thermal strip's rows (thin at both surfaces) or, isothermal, evenly spaced; the
+    fields sampled just inside the outlet face (``record_fields._outlet``)."""
+    from hotroll.solvers.gap_measure import exit_shear
+
+    thermal, strain = run.thermal, run.strain
+    if thermal is not None:
+        strip = thermal.strip
+        eta = np.asarray(strip.eta, dtype=float)
+        temperature = thermal.field.values.reshape(strip.shape)[:, -1].tolist()
+    else:
+        eta, temperature = np.linspace(-1.0, 1.0, 2 * ISOTHERMAL_ROWS - 1), None
+    if getattr(run, "_shear_field", None) is None:
+        exit_shear(run)                 # the shear field transported along the last flow
+    fields = (run._shear_field.gf,) + ((strain.gf,) if strain is not None else ())
+    values = outlet_values(run, fields, eta)
+    return {"eta": eta.tolist(), "temperature": temperature,
+            "strain": values[1].tolist() if strain is not None else None,
+            "shear_strain": values[0].tolist(),
+            "pass_strain": None, "log_rate_mean": None, "inverse_temperature_mean": None}
 
 
 def side_contact(run, side: int, prof: dict) -> RollContact:

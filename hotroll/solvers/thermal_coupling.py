@@ -43,6 +43,7 @@ from hotroll.fem.strip_mesh import ThermalStrip, layer_thickness
 from hotroll.fem.thermal_field import TemperatureField
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 from hotroll.solvers.thermal_feedback import FlowStressFeedback
+from hotroll.solvers.thermal_sampling import strip_samples
 
 SUBSAMPLES = 4   # points per strip row interval for the flux integral along a column
 CHORD_BELOW = 1e-3   # update_steady keeps the heat equation's factors below this change
@@ -150,10 +151,12 @@ class ThermalCoupling(FlowStressFeedback):
         # the rows on a roll's surface (the friction heat's): the top, and the bottom in full
         self._surface_rows = (np.concatenate([np.arange(strip.shape[1]), self._top_row])
                               if full else self._top_row)
-        # the mechanics element of each strip vertex; the elements with none take the
-        # temperature at their centroid
-        self._owner = np.array(self._pts["nr"], dtype=int)
-        self._empty = np.setdiff1d(np.arange(self.mesh.ne), self._owner)
+        # the mechanics element of each strip vertex (the elements with none take the
+        # temperature at their centroid), and where the fields that jump between elements
+        # are sampled from both sides (solvers/thermal_sampling.py)
+        samples = strip_samples(strip, self._find, self.mesh.ne)
+        self._inside, self._owner, self._empty = samples.inside, samples.owner, samples.empty
+        self._mid, self._surface_sides = samples.mid, samples.surface
         centroids = top.X0[mech_tris[self._empty]].mean(axis=1)
         self._empty_logical = self.strip.logical(centroids)
         # where those are in the strip mesh: searched once (its logical coordinates do not
@@ -242,10 +245,15 @@ class ThermalCoupling(FlowStressFeedback):
         flux = self.fine_column_flux(both)[::SUBSAMPLES]
         strip.set_stream_function(flux, total=float(flux[-1, 0]))
         self._flow = None
-        self._qs.vec.FV().NumPy()[:] = self._at(self._plastic_cf, self._pts)[:, 0]
+        qs = self._at(self._plastic_cf, self._inside)[:, 0]
+        if self._mid is not None:
+            rows, above, below = self._mid
+            qs[rows] = 0.5 * (self._at(self._plastic_cf, above)[:, 0]
+                              + self._at(self._plastic_cf, below)[:, 0])
+        self._qs.vec.FV().NumPy()[:] = qs
         qf = np.zeros(strip.nv)
         rows = self._surface_rows
-        qf[rows] = self._at(self._friction_cf, self._pts[rows])[:, 0]
+        qf[rows] = 0.5 * sum(self._at(self._friction_cf, p)[:, 0] for p in self._surface_sides)
         self._qfs.vec.FV().NumPy()[:] = qf
         d = self._disp.vec.FV().NumPy()
         for top, lo_p, hi_p in self._surfaces:
@@ -326,6 +334,13 @@ class ThermalCoupling(FlowStressFeedback):
         make a chilled element softer: K is convex in T); bisection between the smallest and
         the largest T inside. The plain mean for a law without T, or one not monotone there."""
         ne, owner = self.mesh.ne, self._owner
+        if getattr(self, "_mid", None) is not None:   # the mid-plane's: half above, half below
+            rows, above, below = self._mid
+            owner = np.concatenate([owner, np.asarray(below["nr"], dtype=int)])
+            owner[rows] = np.asarray(above["nr"], dtype=int)
+            w = np.concatenate([w, 0.5 * w[rows]])
+            w[rows] *= 0.5
+            vals = np.concatenate([vals, vals[rows]])
         wsum = np.maximum(np.bincount(owner, w, minlength=ne), 1e-300)
         plain = np.bincount(owner, w * vals, minlength=ne) / wsum
         if self.flow is None:

@@ -104,22 +104,34 @@ def exit_state(sch: Schedule, case, summary: dict,
     (a law independent of strain) the homogeneous exit strain, uniform. ``grain``: the grain
     size entering the pass (it changes in the transport after it). ``entry``: the state the
     pass entered with; an isothermal pass (no [thermal] in its case) hands on its temperature
-    profile unchanged, and a pass without an exit profile (an asymmetric pass: the
-    full-thickness strip writes none yet; an isothermal one whose law ignores the strain) its
-    strain profile raised by the pass's mean strain (``asymmetric_exit``)."""
+    profile unchanged, and a pass without a temperature or strain profile (an isothermal one
+    whose law ignores the strain) its strain profile raised by the pass's mean strain
+    (``asymmetric_exit``). An asymmetric pass's profile (the whole thickness) is folded about
+    the middle (``ThicknessProfile.fold``: the mean of the two halves, the next pass's half
+    thickness; its through-thickness shear is not handed on)."""
     prof = summary.get("exit_profile")
-    if prof is None and entry is not None:
+    if prof is not None and prof["eta"][0] < 0.0:
+        prof = {k: (v if v is None or k == "eta" else ThicknessProfile.fold(prof["eta"], v))
+                for k, v in prof.items() if k in ("eta", "temperature", "strain")}
+    if entry is not None and (prof is None or (prof["temperature"] is None
+                                               and prof["strain"] is None)):
         return StripState(exit_thickness(case, summary),
                           *asymmetric_exit(summary, entry.temperature, entry.strain), grain)
-    eta = np.asarray(prof["eta"], dtype=float)
-    T = ThicknessProfile(tuple(eta), tuple(prof["temperature"]))
-    if case.thermal is None and entry is not None:
-        T = entry.temperature
+    T = (entry.temperature if case.thermal is None and entry is not None
+         else _profile(prof["eta"], prof["temperature"]))
     if prof.get("strain") is not None:
-        e = ThicknessProfile(tuple(eta), tuple(np.maximum(prof["strain"], 0.0)))
+        strain = _profile(prof["eta"], prof["strain"])
+        e = ThicknessProfile(strain.eta, tuple(np.maximum(strain.values, 0.0)))
     else:
         e = ThicknessProfile.uniform(summary["homogeneous_exit_strain"])
     return StripState(exit_thickness(case, summary), T, e, grain)
+
+
+def _profile(eta, values) -> ThicknessProfile:
+    """A profile from the summary's lists, or one folded already (``exit_state``)."""
+    if isinstance(values, ThicknessProfile):
+        return values
+    return ThicknessProfile(tuple(eta), tuple(values))
 
 
 def exit_thickness(case, summary) -> float:

@@ -89,6 +89,28 @@ def test_profile_arithmetic():
             ThicknessProfile.from_pairs(bad)
 
 
+def test_folding_a_whole_thickness_profile_by_hand():
+    """[hand] ``fold``: a whole-thickness profile (eta -1..1, an asymmetric pass's) as the
+    mean of its two halves at every |eta| of either: a linear a + b eta folds to the constant
+    a; nodes of one half only (0.3 below, 0.5 above) are both kept; the section mean over
+    [-1, 1] is kept exactly (piecewise linear, by hand: the two trapezoid sums)."""
+    lin = ThicknessProfile.fold([-1.0, 1.0], [1300.0, 1100.0])
+    assert lin.eta == (0.0, 1.0) and lin.values == (1200.0, 1200.0)
+    eta = [-1.0, -0.3, 0.0, 0.5, 1.0]
+    vals = [10.0, 4.0, 2.0, 3.0, 6.0]
+    f = ThicknessProfile.fold(eta, vals)
+    assert f.eta == (0.0, 0.3, 0.5, 1.0)
+    # f(0.3) = (4 + (2 + 0.6 x 1)) / 2; f(0.5) = (3 + (4 + 6 x 0.2 / 0.7)) / 2 ...
+    assert f(0.3)[()] == pytest.approx(0.5 * (4.0 + 2.6))
+    assert f(0.5)[()] == pytest.approx(0.5 * (3.0 + 4.0 + 6.0 * 0.2 / 0.7))
+    whole = sum(0.5 * (a + b) * (e1 - e0) for a, b, e0, e1 in
+                zip(vals[:-1], vals[1:], eta[:-1], eta[1:])) / 2.0
+    assert f.mean() == pytest.approx(whole, rel=1e-14)
+    for bad in ([0.0, 1.0], [-1.0, 0.5], [-1.0, 0.0, 0.0, 1.0]):
+        with pytest.raises(ProfileError):
+            ThicknessProfile.fold(bad, [1.0] * len(bad))
+
+
 @pytest.mark.parametrize("dotted,field", [
     ({"plate.temperature_profile": [[0.0, 1300.0], [1.0, 1200.0]]},
      "plate.temperature_profile: needs a [thermal] section"),

@@ -124,7 +124,6 @@ def _refused(over_pass: dict | None = None, **top) -> list[str]:
 
 
 REFUSED = [
-    ({"isothermal": False}, {}, "pass[1].isothermal: "),
     ({}, {"roll": {"model": "hitchcock"}}, "roll.model: "),
     ({"friction": {"law": "viscoplastic", "a_f": "estimate"}}, {}, "pass[1].friction.a_f: "),
     ({"upper": {"roll_radius": 0.001}}, {}, "pass[1].upper.roll_radius: "),
@@ -174,3 +173,38 @@ def test_a_symmetric_schedule_takes_no_asymmetric_check():
     d["mill"] = {"speeds": "mass_flow"}
     del d["pass"][1]["roll_angular_velocity"]
     schedule_from_dict(d)
+
+
+@pytest.fixture(scope="module")
+def rolled_thermal(tmp_path_factory):
+    """The same two passes with the asymmetric one's temperature solved (``isothermal =
+    false``): (rows, out)."""
+    from hotroll.workflows.schedule import run_schedule
+
+    d = _data()
+    d["pass"][0]["isothermal"] = False
+    out = tmp_path_factory.mktemp("asym_schedule_thermal")
+    return run_schedule(schedule_from_dict(d), out, figure=False), out
+
+
+def test_a_thermal_asymmetric_pass_hands_on_its_folded_profile(rolled_thermal):
+    """[id] the asymmetric pass's temperature solved over the whole thickness (eta -1..1 in
+    its summary's exit_profile, both surfaces chilled by their rolls) is handed on folded
+    about the middle: the schedule's outlet mean is the whole profile's section mean
+    (constant rho c: the enthalpy mean is the temperature's; ``ThicknessProfile.fold`` keeps
+    it exactly), and the next pass enters with the transport's result of it."""
+    import numpy as np
+
+    rows, out = rolled_thermal
+    s = _summary(out, rows[0])
+    prof = s["exit_profile"]
+    eta, T = np.asarray(prof["eta"]), np.asarray(prof["temperature"])
+    assert eta[0] == -1.0 and eta[-1] == 1.0 and len(prof["shear_strain"]) == len(eta)
+    assert max(T[0], T[-1]) < s["exit_temperature_mean"] - 50.0
+    whole = float(np.sum(0.5 * (T[1:] + T[:-1]) * np.diff(eta))) / 2.0
+    assert rows[0]["outlet_temperature_mean"] == pytest.approx(whole, rel=1e-9)
+    # not the entry temperature an isothermal pass hands on (here the plastic heat outweighs
+    # the chill: +0.9 K)
+    assert abs(rows[0]["outlet_temperature_mean"] - 1373.15) > 0.1
+    assert rows[1]["entry_temperature_mean"] == pytest.approx(
+        rows[0]["next_entry_temperature_mean"], rel=1e-9)
