@@ -20,12 +20,6 @@ def asymmetric_refusal(case: Case) -> CaseError | None:
     if case.solver.method != "steady":
         lines.append(f'solver.method: an asymmetric pass needs "steady" (the report\'s scheme '
                      f'has the half model only), got "{case.solver.method}"')
-    for key, model in (("roll.model", case.roll.model),
-                       *((f"roll.{n}.model", getattr(case.roll, n).model)
-                         for n in SIDES.values() if getattr(case.roll, n) is not None)):
-        if model not in (None, "rigid"):
-            lines.append(f'{key}: the full-thickness strip takes rigid rolls only (allowed: '
-                         f'"rigid"), got "{model}"')
     if case.strip_elasticity is not None:
         lines.append('contact.strip_youngs_modulus: the full-thickness strip is rigid-plastic '
                      '(allowed: "off", or "auto" without a grade), got '

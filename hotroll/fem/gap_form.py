@@ -14,6 +14,12 @@ What changes against the half model (../shared/notes/asymmetric-rolling.md 4.3):
 - the inlet and outlet bounds (3.2a,b) use the slower roll's speed on both sides: the entry is
   slower and the exit faster than it whenever that roll has both slip zones (above the
   saturation ratio the exit is slower than the fast roll).
+
+A flattening roll (its ``RollPass`` with a ``shape``) turns its frame by its surface's tilt and
+moves its surface at omega R (1 + e_tt), as the half model's (``RollingForm.roll_frame``): one
+P1 tilt and one hoop strain field carry each roll's values on its side's vertices
+(``set_roll_shape``), in that roll's own frame (the lower's mirrored), where the formulas are
+the half model's.
 """
 from __future__ import annotations
 
@@ -111,10 +117,35 @@ class GapForm(RollingForm):
         self.top_elements = _elements_on(mesh, ARCS) if self.friction.uses_k else None
         self.contact_regions = ARCS
         self.roll_tilt = self.roll_hoop = None
+        if any(r.shape is not None for r in rolls.values()):     # a flattening roll
+            from ngsolve import H1
+
+            P1 = fe_space(H1, mesh, order=1)
+            self.roll_tilt, self.roll_hoop = GridFunction(P1), GridFunction(P1)
+            self.roll_cx_side = {s: Parameter(r.centre[0]) for s, r in rolls.items()}
         self._newton_problem(material.eps0, ARCS, slow.u_roll, primal_dual)
 
     def set_roll_speed(self, rp, v_reg):
         raise NotImplementedError("the full strip's roll speeds are fixed (issue 52 stage 3)")
+
+    def set_roll_shape(self, vertices) -> None:
+        """Each flattening roll's tilt and hoop strain at the mesh vertices on its side
+        (``vertices``: their current positions, m, full frame), in its own frame (y mirrored
+        for the lower roll); a rigid roll's side 0."""
+        import numpy as np
+
+        tilt = self.roll_tilt.vec.FV().NumPy()
+        hoop = self.roll_hoop.vec.FV().NumPy()
+        tilt[:], hoop[:] = 0.0, 0.0
+        pts = np.asarray(vertices, dtype=float)
+        for side, rp in self.rolls.items():
+            if rp.shape is None:
+                continue
+            self.roll_cx_side[side].Set(rp.centre[0])
+            mine = pts[:, 1] * side >= 0.0
+            own = pts[mine] * np.array([1.0, side])
+            tilt[mine] = rp.tilt(own)
+            hoop[mine] = rp.shape.strain(rp.angle(own))
 
     def roll_frame(self):
         """(n, t) of the roll on each side: n into the roll, t along its surface's motion
@@ -123,17 +154,30 @@ class GapForm(RollingForm):
 
         frames = []
         for side in (1, -1):
-            cx, cy = self.rolls[side].centre
+            rp = self.rolls[side]
+            cx, cy = rp.centre
             cy = side * cy                              # the lower roll's centre below
+            if rp.shape is not None:                    # moves with the lowest point
+                cx = self.roll_cx_side[side]
             r = sqrt((x - cx) ** 2 + (y - cy) ** 2)
             n = CF(((cx - x) / r, (cy - y) / r))
             t = CF((-side * (y - cy) / r, side * (x - cx) / r))
             frames.append((n, t))
         (n1, t1), (n2, t2) = frames
-        return by_side(n1, n2), by_side(t1, t2)
+        n, t = by_side(n1, n2), by_side(t1, t2)
+        if self.roll_tilt is None:
+            return n, t
+        # the tilt in each roll's own frame turns (n, t) as the half model's; mirrored into the
+        # full frame the same formula holds for the lower roll (its t keeps +x at the contact)
+        from ngsolve import cos, sin
+
+        b = self.roll_tilt
+        return cos(b) * n - sin(b) * t, sin(b) * n + cos(b) * t
 
     def roll_speed(self):
-        return by_side(self.U_side[1], self.U_side[-1])
+        """|U| of each roll on its side, times (1 + e_tt) on a flattening roll's rim."""
+        speed = by_side(self.U_side[1], self.U_side[-1])
+        return speed if self.roll_hoop is None else speed * (1.0 + self.roll_hoop)
 
     def friction_arguments(self, w, k=None, lam=None) -> dict:
         law = self.friction

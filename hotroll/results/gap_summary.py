@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from hotroll.results.summary import ROLL_ENTRY
+from hotroll.results.summary import ROLL_ENTRY, ROLL_FLATTENING_ENTRY
 
 SIDES = ("upper", "lower")
 #: The one-roll figures of the half model that an asymmetric pass gives as the two rolls' mean.
@@ -109,4 +109,5 @@ def gap_force_balance(last: dict) -> dict:
 
 def roll_units() -> dict[str, str]:
     """summary.json's ``units`` lines of the ``rolls`` entries: ``rolls.<key>`` -> SI unit."""
-    return {f"rolls.{k}": unit for k, (unit, _) in ROLL_ENTRY.items() if unit}
+    return {f"rolls.{k}": unit for k, (unit, _) in (*ROLL_ENTRY.items(),
+                                                     *ROLL_FLATTENING_ENTRY.items()) if unit}

@@ -136,8 +136,10 @@ def write_results(case: Case, sol: Solution, out: Path, wall: float,
         summary = summarise(case, replace(sol, history=[
             legacy_row(r, upper_a_f(case)) for r in hist]), prof, wall) | (extra or {})
         last = hist[-1]
-        summary.update(gap_figures(window_rows(sol), sol.contacts, case.roll_gap().speed_ratio,
-                                   shift))
+        gap = case.roll_gap()
+        summary.update(gap_figures(window_rows(sol), sol.contacts, gap.speed_ratio, shift))
+        for entry, c, side in zip(summary["rolls"], sol.contacts, (gap.upper, gap.lower)):
+            entry.update(roll_figures(case, c, c.profile, side.model))
         summary.update(force_balance=gap_force_balance(last),
                        balance_error=last["vertical_balance_error"],
                        symmetry_stress_force_y=None, free_top_force_share=None,
@@ -238,11 +240,12 @@ def entry_pressure(prof: dict) -> float | None:
     return float(np.trapezoid(np.interp(t, s, p), t) / L)
 
 
-def roll_figures(case: Case, contact: RollContact, prof: dict) -> dict:
+def roll_figures(case: Case, contact: RollContact, prof: dict, model: str | None = None) -> dict:
     """A flattening roll's figures (m): the flattening (how far the flattened surface lies
     below the rigid roll through the same gap, largest over the contact: at its entry) and the
     radius of the circle fitted to the surface over the contact, with its updates, last move
-    and shape error (the solver's: ``solvers/record.shape_error``); {} for a rigid roll."""
+    and shape error (the solver's: ``solvers/record.shape_error``); {} for a rigid roll.
+    ``model``: the roll's model (default: the upper roll's, ``[roll]`` or its table)."""
     if not contact.flattening:
         return {}
     rp = contact.rp
@@ -252,7 +255,7 @@ def roll_figures(case: Case, contact: RollContact, prof: dict) -> dict:
     r = rp.surface_radius(t)
     X, Y = -r * np.sin(t), -r * np.cos(t)
     c = np.linalg.lstsq(np.c_[X, Y, np.ones_like(X)], X**2 + Y**2, rcond=None)[0]
-    return {"roll_model": case.roll.model,
+    return {"roll_model": model or case.roll_gap().upper.model,
             "roll_flattening": flattening(rp, float(np.min(X)) + rp.centre[0]),
             "roll_equivalent_radius": float(np.sqrt(c[2] + (c[0] / 2) ** 2 + (c[1] / 2) ** 2)),
             "roll_updates": contact.roll_updates, "roll_last_move": contact.roll_last_move,

@@ -18,6 +18,7 @@ from hotroll.results.summary_keys import (  # noqa: F401 (re-exported)
     ABSENT,
     GROUPS,
     ROLL_ENTRY,
+    ROLL_FLATTENING_ENTRY,
     SummaryKeys,
     _f,
 )
@@ -118,4 +119,6 @@ def summary_keys_markdown() -> str:
     lines += ["", "Each entry of `rolls` (an asymmetric pass):", "",
               "| key | unit | meaning |", "|---|---|---|"]
     lines += [f"| `{k}` | {u or ''} | {m} |" for k, (u, m) in ROLL_ENTRY.items()]
+    lines += [f"| `{k}` | {u or ''} | a flattening roll's only: {m} |"
+              for k, (u, m) in ROLL_FLATTENING_ENTRY.items()]
     return "\n".join(lines) + "\n"

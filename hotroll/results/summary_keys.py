@@ -41,6 +41,19 @@ ROLL_ENTRY: dict[str, tuple[str | None, str]] = {
     "contact_end": ("m", "x where it leaves this roll"),
     "min_contact_pressure": ("Pa", "the lowest contact pressure on this roll"),
 }
+#: ... and a flattening roll's (``[roll] model`` or its side's table: hitchcock or elastic),
+#: from its contact at the end of the solve (the half model's top-level ``roll_*`` keys).
+ROLL_FLATTENING_ENTRY: dict[str, tuple[str | None, str]] = {
+    "roll_model": (None, "`hitchcock` or `elastic`"),
+    "roll_flattening": ("m", "how far its flattened surface lies below the rigid roll through "
+                        "the same gap, largest over its contact"),
+    "roll_equivalent_radius": ("m", "the radius of the circle that fits its flattened surface "
+                               "over its contact"),
+    "roll_updates": ("-", "its surface's updates in the fixed point"),
+    "roll_last_move": ("m", "the largest move of its arc in the last update"),
+    "roll_shape_error": ("-", "how far its surface lies from the one its final tractions "
+                         "give, over the largest flattening"),
+}
 _ASYM = "; an asymmetric pass: "
 _WHOLE = _ASYM + "the whole strip"
 

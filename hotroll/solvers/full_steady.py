@@ -5,8 +5,11 @@ strip (``fem/full_strip.py``) with the form of two contacts (``fem/gap_form.py``
 side of the strip has what the half model's top has (its ``TopBoundary`` read in the roll's own
 frame, its ``StripShape``, its traced free surfaces and its contact end): the couplings move
 both sides in one update; a strain-dependent flow stress carries its strain field over the
-whole strip. Not yet here: the temperature field, flattening rolls, the strip's elasticity, a
-tandem speed, warm starts (refused by ``check_supported``).
+whole strip; the temperature lives on one strip mesh over the whole thickness
+(``solvers/thermal_coupling.py``); a flattening roll (``roll_models``) is the half model's
+``FlatteningRoll`` on its own side, updated from its own contact's tractions in its own frame.
+Not yet here: the strip's elasticity, a tandem speed, warm starts (refused by
+``check_supported``).
 """
 from __future__ import annotations
 
@@ -24,8 +27,9 @@ from hotroll.fem.top_boundary import TopBoundary
 from hotroll.model.friction import FrictionLaw
 from hotroll.model.geometry import RollPass
 from hotroll.model.material import NortonHoff
+from hotroll.model.roll_elastic import FlatteningRoll
 from hotroll.solvers import couplings as C
-from hotroll.solvers.gap_measure import gap_measure
+from hotroll.solvers.gap_measure import gap_measure, strip_force
 from hotroll.solvers.problem import Problem
 from hotroll.solvers.steady import SteadyRun, top_parts
 from hotroll.solvers.steady_settings import SteadySettings, mesh_key
@@ -52,7 +56,8 @@ def reference_roll(rolls: dict[int, RollPass]) -> RollPass:
 def check_supported(problem: Problem, settings: SteadySettings) -> None:
     """Refuse what the full strip does not carry yet, naming it."""
     missing = [name for name, on in (
-        ("a flattening roll ([roll] model)", problem.roll is not None),
+        ("the half model's flattening roll (Problem.roll: the full strip takes each roll's "
+         "model in roll_models)", problem.roll is not None),
         ("the strip's elasticity", problem.strip_elasticity is not None),
         ("the constrained free surface (plate.free_surface)", settings.free_surface != "traced"),
         ("the penalty contact (contact.method)", settings.contact != "multiplier"),
@@ -65,15 +70,24 @@ def check_supported(problem: Problem, settings: SteadySettings) -> None:
 class FullSteadyRun(SteadyRun):
     """The steady full strip between the rolls ``rolls`` {+1: upper, -1: lower} (each a
     ``RollPass`` in its own frame, the same axis_x and half_exit), with ``frictions`` (reduced
-    laws) and a_f per roll (``a_f``: a number or None for a law without it)."""
+    laws) and a_f per roll (``a_f``: a number or None for a law without it); ``roll_models``
+    {side: (kind, RollElasticity, relaxation, tie m)} of the flattening rolls
+    (``GapRolls.roll_models``)."""
 
     def __init__(self, problem: Problem, settings: SteadySettings, plate_length: float,
                  rolls: dict[int, RollPass], frictions: dict[int, FrictionLaw],
-                 a_f: dict[int, float | None] | None = None):
+                 a_f: dict[int, float | None] | None = None, roll_models: dict | None = None):
         import ngsolve
 
         t0 = time.perf_counter()
         check_supported(problem, settings)
+        rolls, self.flattening = dict(rolls), {}
+        for s, (kind, elasticity, relaxation, tie) in (roll_models or {}).items():
+            rolls[s], self.flattening[s] = FlatteningRoll.start(rolls[s], kind, elasticity,
+                                                                relaxation, tie=tie)
+        # each flattening roll's start (the rigid circle), which a cold start returns to
+        self._flat_start = {s: (r.shape.theta.copy(), r.shape.w.copy(), r.shape.hoop.copy())
+                            for s, r in self.flattening.items()}
         self.rolls, self.frictions = rolls, frictions
         self.a_f_given = a_f or {s: None for s in SIDES}
         ref = reference_roll(rolls)
@@ -156,6 +170,13 @@ class FullSteadyRun(SteadyRun):
         if self.thermal is not None:
             out.append(C.Temperature(self.thermal, s.thermal_rtol))
         out.append(C.FreeSurface(self.update_surface, s.surface_tol * self.problem.h))
+        for side, roll in self.flattening.items():
+            flat = C.RollFlattening(roll, lambda side=side: self._roll_loads(side),
+                                    self._set_shape, s.roll_tol * self.rolls[side].half_exit)
+            flat.name = f"roll_{'upper' if side > 0 else 'lower'}"
+            # the two rolls move in the same rounds: neither waits for the other
+            flat.waits_not_on = (*C.RollFlattening.waits_not_on, "roll_upper", "roll_lower")
+            out.append(flat)
         if self.unilateral:
             end = C.ContactEnd(self.move_contact_end,
                                C.ContactEnd.TOLERANCE * s.surface_tol * self.problem.h)
@@ -171,7 +192,25 @@ class FullSteadyRun(SteadyRun):
     def _fresh_searches(self) -> None:
         self.end_searches = {s: ContactEndSearch() for s in SIDES}
 
+    def _roll_loads(self, side: int) -> tuple:
+        """The contact tractions on the roll on ``side`` (its own frame: angles increasing,
+        pressure and shear in Pa) and its roll force per unit width (N/m; Hitchcock's circle
+        takes it), as the half model's ``SteadyRun._roll_loads``."""
+        K = self.problem.material.K
+        prof = self.side_profile(side, K)
+        order = np.argsort(prof["angle"])
+        force = None
+        if self.flattening[side].kind == "hitchcock":
+            force = -side * strip_force(self, side, K)[1]
+        return (prof["angle"][order], -prof["normal_stress"][order],
+                prof["shear_stress"][order], force)
+
     def _cold_start(self) -> None:
+        for s, roll in self.flattening.items():     # each flattening roll back to its start
+            roll.shape.set(*self._flat_start[s])
+        for c in getattr(self, "couplings", ()):    # ... and it waits again (cold)
+            if isinstance(c, C.RollFlattening):
+                c.after_others = C.RollFlattening.after_others
         self.shapes = {s: StripShape.flat(self.rolls[s]) for s in SIDES}
         self.end_searches = {s: ContactEndSearch() for s in SIDES}
         self._tilt = None
@@ -202,6 +241,9 @@ class FullSteadyRun(SteadyRun):
         self.d[:] = self.map.displacement(self.shapes)
         self._set_contact()
         self.mesh.SetDeformation(self.disp)
+        if self.form.roll_tilt is not None:       # a flattened roll's frame at the new nodes
+            self.form.set_roll_shape(self.tops[1].vertex_positions(self.d,
+                                                                   np.arange(self.mesh.nv)))
 
     def update_surface(self) -> float:
         """Both sides' free surfaces traced along the flow (``SteadyRun.update_surface``, each

@@ -23,6 +23,21 @@ from hotroll.model.material import edot_squared
 NAMES = {1: "upper", -1: "lower"}
 
 
+def strip_force(run, side: int, K: float) -> list[float]:
+    """(x, y) of the force (N/m) the roll on ``side`` exerts on the strip: the pressure's -p n
+    and the friction's shear over its contact."""
+    from ngsolve import BND, CF, IfPos, y
+
+    form, mesh = run.form, run.mesh
+    u = form.nonlinear.velocity
+    n, t = form.roll_frame()
+    on = IfPos(side * y, 1.0, 0.0)
+    kf_s_t = form.friction_coefficient(u) * form.slip(u) * t
+    return [-K * integrate(CF(on * form.pressure(u) * n[i]).Compile(), mesh, BND,
+                           definedon=mesh.Boundaries(ARCS))
+            - K * form.integrate_friction(on * form.chi * kf_s_t[i]) for i in range(2)]
+
+
 def gap_measure(run, K: float) -> dict:
     """One history row of ``FullSteadyRun`` (SI; stresses times K)."""
     from ngsolve import BND, CF, VOL, IfPos, InnerProduct, specialcf, sqrt, x, y
@@ -51,12 +66,18 @@ def gap_measure(run, K: float) -> dict:
                    - K * form.integrate_friction(on * chi * kf * s * t[i]) for i in range(2)]
         prof = run.side_profile(side, K)
         (xn, _), angle = neutral_point(prof, rp)
+        # the shear's power at the rim's speed and the torque that supplies it, power / omega
+        # (the half model's, quantities.measure): r = R on the circle, R (1 + e_tt) on a
+        # flattening roll's rim
+        speed, arm = form.U_side[side], r
+        if form.roll_hoop is not None:
+            speed = form.roll_speed()
+            arm = speed / rp.omega
         out.update({
             f"{name}_roll_force": -side * f_strip[1],
             f"{name}_horizontal_force": f_strip[0],
-            f"{name}_roll_torque": K * form.integrate_friction(on * chi * (-kf * s) * r),
-            f"{name}_roll_power": K * form.integrate_friction(
-                on * chi * (-kf * s) * form.U_side[side]),
+            f"{name}_roll_torque": K * form.integrate_friction(on * chi * (-kf * s) * arm),
+            f"{name}_roll_power": K * form.integrate_friction(on * chi * (-kf * s) * speed),
             f"{name}_contact_length": bnd(on * chi, ARCS),
             f"{name}_neutral_angle": angle,
             f"{name}_neutral_x": xn,

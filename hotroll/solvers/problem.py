@@ -4,7 +4,7 @@ implement, and the ``Solution`` their ``run`` returns (``model/solution.py``, re
 ``solution_record`` fills in its fields for the results: docs/architecture.md)."""
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Callable, Protocol
 
 from hotroll.fem.mesh import MeshSpec
@@ -24,12 +24,15 @@ class GapRolls:
     roll's ``RollPass`` in its own frame (``RollGap.arc``: y mirrored for the lower), the same
     axis_x and half_exit; ``frictions`` each roll's law in reduced units (stresses over K, v_reg
     from that roll's surface speed); ``a_f`` each roll's a_f (m^-m; None for a law without
-    it); ``speed_ratio`` the upper over the lower surface speed (-)."""
+    it); ``speed_ratio`` the upper over the lower surface speed (-); ``roll_models`` each
+    flattening roll's (kind, ``RollElasticity``, relaxation, tie in m), none for a rigid one
+    (the full strip builds its ``FlatteningRoll`` on the roll as it places it)."""
 
     rolls: dict
     frictions: dict
     a_f: dict
     speed_ratio: float
+    roll_models: dict = field(default_factory=dict)
 
     def at_axis(self, axis_x: float) -> GapRolls:
         """The same rolls with their axes at x = ``axis_x`` (m)."""

@@ -27,7 +27,7 @@ import numpy as np
 
 from hotroll.fem import quantities as Q
 from hotroll.model.solution import PassData, RollContact, Solution
-from hotroll.solvers.record import exit_strain, solve_stats
+from hotroll.solvers.record import exit_strain, shape_error, solve_stats
 from hotroll.solvers.record_fields import ISOTHERMAL_ROWS, gap_means, outlet_values, vertex_fields, write_vtk
 
 SIDES = (1, -1)
@@ -94,10 +94,15 @@ def side_contact(run, side: int, prof: dict) -> RollContact:
     rp, form = run.rolls[side], run.form
     unilateral = bool(run.unilateral)
     u_ref = min(r.u_roll for r in run.rolls.values())
+    roll = run.flattening.get(side)          # a flattening roll (its own frame, as prof)
     return RollContact(
         rp=rp, profile=prof, method=form.contact, exact=bool(form.exact),
         unilateral=unilateral,
         end_x=float(run.shapes[side].end(rp)) if unilateral else None,
         end_bounds=tuple(float(b) for b in run.map.end_bounds(side)) if unilateral else None,
         pressure_last_update=(run.result.stats[-1].multiplier_update * u_ref * form.lam_scale
-                              * run.problem.material.K) if form.exact else None)
+                              * run.problem.material.K) if form.exact else None,
+        flattening=roll is not None,
+        roll_updates=roll.updates if roll is not None else None,
+        roll_last_move=roll.last_move if roll is not None else None,
+        roll_shape_error=shape_error(roll, prof) if roll is not None else None)

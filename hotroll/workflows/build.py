@@ -39,15 +39,21 @@ def reference_material(case: Case):
 def gap_rolls(case: Case, m: float) -> GapRolls:
     """The two rolls of an asymmetric pass for the full strip (``Problem.gap``): each roll's
     arc (``RollGap.arc``), its friction law (its section's, v_reg from its own surface speed;
-    reduced units, rate exponent ``m``) and a_f (given; None for a law without it)."""
+    reduced units, rate exponent ``m``), a_f (given; None for a law without it) and, for a
+    flattening roll, its model ([roll] or its side's table; [roll]'s elasticity and
+    relaxation)."""
     gap = case.roll_gap()
-    rolls, frictions, a_f = {}, {}, {}
+    rolls, frictions, a_f, models = {}, {}, {}, {}
+    elasticity = RollElasticity(case.roll.youngs_modulus, case.roll.poissons_ratio)
     for side, (_, section) in zip(SIDES, friction_sections(case)):
         rp = gap.arc(side)
         rolls[side] = rp
         frictions[side] = section.law_object(rp.u_roll, m)
         a_f[side] = section.a_f_rule if section.uses_a_f else None
-    return GapRolls(rolls, frictions, a_f, gap.speed_ratio)
+        kind = (gap.upper if side > 0 else gap.lower).model
+        if kind not in (None, "rigid"):
+            models[side] = (kind, elasticity, case.roll.relaxation, EXIT_TIE * rp.half_exit)
+    return GapRolls(rolls, frictions, a_f, gap.speed_ratio, models)
 
 
 def build_model(case: Case):
@@ -83,7 +89,7 @@ def build_model(case: Case):
                          strip_elasticity=case.strip_elasticity)
     if not case.roll_gap().symmetric:
         model = replace(model, gap=gap_rolls(case, material.m))
-    if case.roll.model != "rigid":
+    elif case.roll.model != "rigid":
         shaped, roll = FlatteningRoll.start(
             rp, case.roll.model, RollElasticity(case.roll.youngs_modulus, case.roll.poissons_ratio),
             case.roll.relaxation, tie=EXIT_TIE * rp.half_exit)

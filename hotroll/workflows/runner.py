@@ -96,7 +96,7 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
                 # in its own frame, their axes at x = 0); no warm start from a sweep yet
                 gap = model.gap.at_axis(0.0)
                 run = FullSteadyRun(model, steady_settings(case), case.plate.length,
-                                    gap.rolls, gap.frictions, gap.a_f)
+                                    gap.rolls, gap.frictions, gap.a_f, gap.roll_models)
             elif sweep is None:
                 run = SteadyRun(model, steady_settings(case), case.plate.length)
             else:

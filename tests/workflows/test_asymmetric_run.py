@@ -115,8 +115,6 @@ def test_the_pass_converged_and_balances(run):
 #: (overrides on asymmetric_plate, the key its refusal names)
 REFUSED = [
     ({"solver.method": "transient", "contact.method": "penalty"}, "solver.method"),
-    ({"roll.model": "hitchcock"}, "roll.model"),
-    ({"roll.lower": {"model": "elastic"}}, "roll.lower.model"),
     ({"contact.strip_youngs_modulus": 2e11}, "contact.strip_youngs_modulus"),
     ({"plate.free_surface": "constrained"}, "plate.free_surface"),
     ({"contact.method": "penalty"}, "contact.method"),
@@ -214,3 +212,29 @@ def test_the_bundled_reground_roll_pass_is_two_radii_on_one_drive():
     dh, R1, R2 = 0.005, 0.4, 0.36
     assert gap.pass_line == pytest.approx(dh * (R2 - R1) / (2 * (R1 + R2 - dh)), rel=1e-12)
     assert gap.arc(1).x_touch == pytest.approx(gap.arc(-1).x_touch, abs=1e-12)
+
+
+def test_one_flattening_roll_has_its_figures_in_its_entry(tmp_path):
+    """[plumb] [roll.lower] model = "hitchcock" (the upper rigid), on a coarse mesh: the
+    model reaches the full strip (GapRolls.roll_models), the lower roll's `rolls` entry
+    carries its flattening figures with their units, the upper's none; [hand] its equivalent
+    radius is Hitchcock's R (1 + C F'/dh) of its own force (C = 16 (1 - nu^2)/(pi E), dh 5 mm)
+    to the fit's accuracy over the contact (measured 7e-8)."""
+    import math
+
+    from hotroll.workflows.runner import run_case
+
+    case = load_case(example_path(NAME), {"roll.lower": {"model": "hitchcock"},
+                                          "mesh.h_contact": 0.0025, "output.figures": False})
+    problem, _ = build_model(case)
+    assert set(problem.gap.roll_models) == {-1} and problem.roll is None
+    s = run_case(case, tmp_path / "out")
+    assert s["exit_code"] == 0
+    upper, lower = s["rolls"]
+    assert "roll_model" not in upper and lower["roll_model"] == "hitchcock"
+    assert lower["roll_updates"] >= 1 and lower["roll_flattening"] > 0.0
+    C = 16.0 * (1.0 - 0.3**2) / (math.pi * 2.1e11)
+    assert lower["roll_equivalent_radius"] == pytest.approx(
+        0.4 * (1.0 + C * lower["roll_force"] / 0.005), rel=1e-5)
+    assert s["units"]["rolls.roll_flattening"] == "m"
+    assert s["units"]["rolls.roll_equivalent_radius"] == "m"

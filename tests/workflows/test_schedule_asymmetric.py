@@ -124,7 +124,6 @@ def _refused(over_pass: dict | None = None, **top) -> list[str]:
 
 
 REFUSED = [
-    ({}, {"roll": {"model": "hitchcock"}}, "roll.model: "),
     ({"friction": {"law": "viscoplastic", "a_f": "estimate"}}, {}, "pass[1].friction.a_f: "),
     ({"upper": {"roll_radius": 0.001}}, {}, "pass[1].upper.roll_radius: "),
     ({"lower": {"roll_surface_speed": 1.5}}, {}, "pass[1].speed_ratio: conflicts"),
