@@ -8,9 +8,12 @@ full-thickness strip between two rolls (``FullSteadyRun``: ``fem/full_strip.py``
 ``fem/gap_form.py``, one ``TopBoundary`` per roll's side). A third (a 3D strip with spread)
 implements them with its own mesh, spaces and form and inherits the solve unchanged.
 
-Not yet cut: the full strip still subclasses the half strip for a few shared helpers; a strip
-object passed to the solve (composition rather than a mixin) is the next step
-(docs/notes/issue52-plan.md, stage 4).
+A second discretisation that is no rolling strip at all, a power-law channel flow with a flux
+coupling of its own, is driven by the loop in tests/solvers/test_second_discretisation.py (a
+page of code: its mesh, spaces, form, coupling and history rows): the loop settles it at the
+analytic pressure gradient. Not yet cut: the full strip still subclasses the half strip for a
+few shared helpers; a strip object passed to the solve (composition rather than a mixin) is the
+next step (docs/notes/issue52-plan.md, stage 4).
 """
 from __future__ import annotations
 
