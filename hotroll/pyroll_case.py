@@ -56,8 +56,8 @@ def pass_case(rp) -> tuple[Case, dict]:
     asymmetric pass (``upper_roll`` and ``lower_roll``, ``hotroll/pyroll_asymmetric.py``)
     takes each roll's radius and speed from that roll (the roll temperature and contact heat
     transfer the upper roll's: one [thermal] for both), a roll's own elastic modulus as that
-    roll's model, and its strip rigid-plastic (the full strip has no elasticity yet); what the
-    full strip does not carry is refused naming what PyRolL described (``ValueError``)."""
+    roll's model, and its strip's elasticity as a symmetric pass's; what the full strip does
+    not carry is refused naming what PyRolL described (``ValueError``)."""
     from hotroll import pyroll_microstructure as _micro  # hotroll.pyroll imports it after its hooks
 
     ip = rp.in_profile
@@ -106,7 +106,6 @@ def pass_case(rp) -> tuple[Case, dict]:
     if not two:
         return case_from_dict(d), fit
     d["pass"].update(_asym.pass_rolls(rp))
-    d["contact"]["strip_youngs_modulus"] = "off"
     lower = _in.roll_table(rp.lower_roll, Config.ROLL)
     if lower != d["roll"]:
         d["roll"]["lower"] = {"model": lower.get("model", "rigid")}

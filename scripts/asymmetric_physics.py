@@ -3,6 +3,10 @@ and isothermal as bundled, with a temperature field, with Hitchcock's and with t
 disc's flattening rolls; and the symmetric pass (no speed ratio) of each for comparison.
 
     python scripts/asymmetric_physics.py [--out DIR]
+    python scripts/asymmetric_physics.py --case thin_strip --ratios 1.0001,1.05
+
+With ``--case``: that bundled case as it is (its own roll model and strip elasticity) as the
+half model and at each speed ratio on the full strip.
 
 Each variant through ``run_case`` (figures off); prints a markdown table: status, wall s,
 each roll's force and torque, the exit curvature, the exit temperatures, the rolls' flattened
@@ -31,18 +35,24 @@ VARIANTS = {"rigid, isothermal (bundled)": {}, "with [thermal]": THERMAL,
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", type=Path, default=None)
+    ap.add_argument("--case", default=None, help="a bundled case, run as it is")
+    ap.add_argument("--ratios", default="1.15", help="speed ratios (upper/lower), comma-separated")
     a = ap.parse_args()
     out = a.out or Path(tempfile.mkdtemp())
+    name = a.case or "asymmetric_plate"
+    variants = VARIANTS if a.case is None else {f"{name} as bundled": {}}
+    ratios = [float(r) for r in a.ratios.split(",")]
     print("| variant | speed ratio | status | wall s | force upper / lower MN/m | torque upper "
           "/ lower kN m/m | curvature 1/m | exit T mean / upper / lower K | R' upper / "
           "lower mm |")
     print("|---|---|---|---|---|---|---|---|---|")
-    for name, over in VARIANTS.items():
-        for ratio in (1.15, None):
-            case = load_case(example_path("asymmetric_plate"),
-                             {**over, "pass.speed_ratio": ratio, "output.figures": False})
+    for label, over in variants.items():
+        for ratio in (*ratios, None):
+            extra = {"pass.mill_modulus": None} if name == "thin_strip" else {}
+            case = load_case(example_path(name), {**over, **extra, "pass.speed_ratio": ratio,
+                                                  "output.figures": False})
             t = time.perf_counter()
-            s = run_case(case, out / f"{len(over)}_{ratio}_{name[:5]}", resume=False)
+            s = run_case(case, out / f"{name}_{len(over)}_{ratio}_{label[:5]}", resume=False)
             wall = time.perf_counter() - t
             if "rolls" in s:
                 up, lo = s["rolls"]
@@ -61,7 +71,7 @@ def main() -> None:
             temps = ("-" if "exit_temperature_mean" not in s else
                      f"{s['exit_temperature_mean']:.1f} / {s['exit_temperature_surface']:.1f} / "
                      f"{lower_T:.1f}")
-            print(f"| {name} | {ratio or 1.0:g} | {s['status']} | {wall:.1f} | {force} | "
+            print(f"| {label} | {ratio or 1.0:g} | {s['status']} | {wall:.1f} | {force} | "
                   f"{torque} | {curv} | {temps} | {radii} |", flush=True)
 
 

@@ -20,10 +20,6 @@ def asymmetric_refusal(case: Case) -> CaseError | None:
     if case.solver.method != "steady":
         lines.append(f'solver.method: an asymmetric pass needs "steady" (the report\'s scheme '
                      f'has the half model only), got "{case.solver.method}"')
-    if case.strip_elasticity is not None:
-        lines.append('contact.strip_youngs_modulus: the full-thickness strip is rigid-plastic '
-                     '(allowed: "off", or "auto" without a grade), got '
-                     f'{case.contact.strip_youngs_modulus!r}')
     if case.plate.free_surface != "traced":
         lines.append('plate.free_surface: the full-thickness strip traces both free surfaces '
                      f'(allowed: "traced"), got "{case.plate.free_surface}"')

@@ -83,14 +83,17 @@ class GapForm(RollingForm):
 
     def __init__(self, mesh, rolls: dict[int, RollPass], material: NortonHoff,
                  frictions: dict[int, FrictionLaw], h: float, tensions: tuple = (0.0, 0.0),
-                 consistency=1.0, primal_dual: bool = True, rate_offset=None):
+                 consistency=1.0, primal_dual: bool = True, rate_offset=None,
+                 strip_compliance: float | None = None, strip_depth: float | None = None):
         from ngsolve import FacetFESpace, GridFunction, Parameter
 
         self.mesh, self.rolls = mesh, rolls
         slow = min(rolls.values(), key=lambda r: r.u_roll)
         self.rp = slow                      # the scale of the penalties and the multiplier
         self.free_surface, self.contact = "traced", "multiplier"
-        self.compliance = self.strip_depth = None
+        #: the strip's elastic compliance and its layer's largest depth (``RollingForm``'s),
+        #: or None: rigid-plastic
+        self.compliance, self.strip_depth = strip_compliance, strip_depth
         self._mu = Parameter(reference_viscosity(material, slow))
         self.penalties = ScaledPenalties(h, self._mu)
         self._lam = Parameter(self.mu_ref / slow.contact_length)
@@ -188,13 +191,34 @@ class GapForm(RollingForm):
                     k=k if law.uses_k else None)
 
     def constraint(self, u, v, lam, xi, regularise: float = 0.0, u_w=None, lam_w=None):
-        """s (lambda~ v.n + xi u.n) on both arcs (``RollingForm.constraint``, rigid strip)."""
+        """s (lambda~ v.n + xi u.n) on both arcs (``RollingForm.constraint``); with the strip's
+        compliance each surface sits c_e p below its plastic flow's, c_e = compliance
+        min(|y|, strip_depth): |y| the surface's distance from the exit mid-plane, the half
+        thickness where the strip is centred between the rolls (the pass line puts it there;
+        unequal radii shift the bite's middle by dh (R2 - R1) / (2 (R1 + R2)), 1 % of the
+        half thickness at 360/400 mm and 25 -> 20 mm)."""
         from ngsolve import ds
 
-        n, _ = self.roll_frame()
+        n, t = self.roll_frame()
         term = self._lam * (lam * (v * n) + xi * (u * n))
         if regularise:
             term = term - regularise * self._lam * lam * xi
+        if self.compliance:
+            from ngsolve import IfPos, specialcf, y
+
+            half = IfPos(y, y, -y)
+            depth = half if self.strip_depth is None else IfPos(half - self.strip_depth,
+                                                                 self.strip_depth, half)
+            c = self.compliance * depth * self._lam
+            w = xi + 0.5 * specialcf.mesh_size * (xi.Trace().Deriv() * t)
+            ds_lam = lam.Trace().Deriv() * t
+            if u_w is None:
+                rate = (u * t) * ds_lam
+            else:
+                from ngsolve import grad
+
+                rate = (u * t) * (grad(lam_w) * t) + (u_w * t) * ds_lam
+            term = term - self._lam * c * rate * w
         return term * ds(ARCS, bonus_intorder=2)
 
     def boundary(self, u, w, v, friction: bool = True, lam=None):

@@ -12,6 +12,25 @@ import numpy as np
 PAST_GAP = 0.25
 
 
+def winkler_end(rp, form, x_ref: float, p_ref: float) -> float:
+    """An elastic strip's contact end on the roll ``rp`` seen from a point of its elastic exit
+    zone (x_ref, m; reduced pressure p_ref): where the roll has risen by the strip's elastic
+    recovery there, y_roll(x) = y_roll(x_ref) + c_e p_ref (a Winkler layer on the roll's shape,
+    docs/theory.md 1e; c_e the ``form``'s ``layer_compliance``); the first such x within a
+    contact length."""
+    y0 = float(rp.height(x_ref))
+    rise = form.layer_compliance(y0) * p_ref
+    xs = np.linspace(x_ref, x_ref + rp.contact_length, 257)
+    g = rp.height(xs) - y0 - rise
+    up = np.flatnonzero(g >= 0.0)
+    if not len(up):
+        return float(xs[-1])
+    i = int(up[0])
+    if i == 0:
+        return x_ref
+    return float(xs[i - 1] - g[i - 1] * (xs[i] - xs[i - 1]) / (g[i] - g[i - 1]))
+
+
 class ContactEndMixin:
     """The contact's end x_e of ``SteadyRun``."""
 
@@ -58,22 +77,8 @@ class ContactEndMixin:
         self._set_shape()
 
     def _winkler(self, x_ref: float, p_ref: float) -> float:
-        """An elastic strip's contact end seen from a point of its elastic exit zone (x_ref, m;
-        reduced pressure p_ref): where the roll has risen by the strip's elastic recovery there,
-        y_roll(x) = y_roll(x_ref) + c_e p_ref (a Winkler layer on the roll's shape, docs/theory.md
-        1e); the first such x within a contact length."""
-        rp = self.problem.rp
-        y0 = float(rp.height(x_ref))
-        rise = self.form.layer_compliance(y0) * p_ref
-        xs = np.linspace(x_ref, x_ref + rp.contact_length, 257)
-        g = rp.height(xs) - y0 - rise
-        up = np.flatnonzero(g >= 0.0)
-        if not len(up):
-            return float(xs[-1])
-        i = int(up[0])
-        if i == 0:
-            return x_ref
-        return float(xs[i - 1] - g[i - 1] * (xs[i] - xs[i - 1]) / (g[i] - g[i - 1]))
+        """``winkler_end`` on the pass's roll."""
+        return winkler_end(self.problem.rp, self.form, x_ref, p_ref)
 
     def _carry_multiplier(self, verts, x_old, p_old, order) -> None:
         """After the contact's end moved, the arc's vertices slid along it: the multiplier

@@ -8,7 +8,8 @@ both sides in one update; a strain-dependent flow stress carries its strain fiel
 whole strip; the temperature lives on one strip mesh over the whole thickness
 (``solvers/thermal_coupling.py``); a flattening roll (``roll_models``) is the half model's
 ``FlatteningRoll`` on its own side, updated from its own contact's tractions in its own frame.
-Not yet here: the strip's elasticity, a tandem speed, warm starts (refused by
+The strip's elasticity (a Winkler layer in each contact) and each contact's end past its gap
+are the half model's, per side. Not yet here: a tandem speed, warm starts (refused by
 ``check_supported``).
 """
 from __future__ import annotations
@@ -29,6 +30,7 @@ from hotroll.model.geometry import RollPass
 from hotroll.model.material import NortonHoff
 from hotroll.model.roll_elastic import FlatteningRoll
 from hotroll.solvers import couplings as C
+from hotroll.solvers.contact_end import PAST_GAP, winkler_end
 from hotroll.solvers.gap_measure import gap_measure, strip_force
 from hotroll.solvers.problem import Problem
 from hotroll.solvers.steady import SteadyRun, top_parts
@@ -58,7 +60,6 @@ def check_supported(problem: Problem, settings: SteadySettings) -> None:
     missing = [name for name, on in (
         ("the half model's flattening roll (Problem.roll: the full strip takes each roll's "
          "model in roll_models)", problem.roll is not None),
-        ("the strip's elasticity", problem.strip_elasticity is not None),
         ("the constrained free surface (plate.free_surface)", settings.free_surface != "traced"),
         ("the penalty contact (contact.method)", settings.contact != "multiplier"),
     ) if on]
@@ -102,7 +103,9 @@ class FullSteadyRun(SteadyRun):
                             problem.h, tensions=problem.reduced_tensions,
                             consistency=consistency,
                             rate_offset=self.thermal.rate_offset()
-                            if self.thermal is not None else None)
+                            if self.thermal is not None else None,
+                            strip_compliance=problem.strip_compliance,
+                            strip_depth=problem.strip_layer_depth)
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.d = self.disp.vec.FV().NumPy()
@@ -178,8 +181,9 @@ class FullSteadyRun(SteadyRun):
             flat.waits_not_on = (*C.RollFlattening.waits_not_on, "roll_upper", "roll_lower")
             out.append(flat)
         if self.unilateral:
-            end = C.ContactEnd(self.move_contact_end,
-                               C.ContactEnd.TOLERANCE * s.surface_tol * self.problem.h)
+            tol = (C.ContactEnd.TOLERANCE_ELASTIC if self.form.compliance
+                   else C.ContactEnd.TOLERANCE)
+            end = C.ContactEnd(self.move_contact_end, tol * s.surface_tol * self.problem.h)
             # every round, not after the others have come within 10 tolerances (which guards
             # against a_f (3.15)'s swings, not estimated here): asymmetric_plate's fast roll
             # leaves 6.4 mm before the gap, and its end moved every other round (50 Newton
@@ -215,6 +219,7 @@ class FullSteadyRun(SteadyRun):
         self.end_searches = {s: ContactEndSearch() for s in SIDES}
         self._tilt = None
         self._set_shape()
+        self._predict_ends()
         self._kinematic_guess()
         self._update_strain()
         if self.thermal is not None:     # the entry temperature until the first update (half's)
@@ -283,8 +288,35 @@ class FullSteadyRun(SteadyRun):
         for s in SIDES:
             shift_contact_start(self.shapes[s], self.rolls[s], mean + s * a, self.x_in)
 
+    def side_end_bounds(self, side: int) -> tuple[float, float]:
+        """The contact end's range on ``side`` (``ContactEndMixin.end_bounds``: past the gap
+        for an elastic strip)."""
+        return self.map.end_bounds(side, PAST_GAP if self.form.compliance else 0.0)
+
+    def _predict_ends(self) -> None:
+        """An elastic strip's contact ends to start from, each where its Winkler layer at 2k
+        meets its roll (``ContactEndMixin._predict_end``)."""
+        if not (self.unilateral and self.form.compliance):
+            return
+        pb = self.problem
+        for s, rp in self.rolls.items():
+            lo, hi = self.side_end_bounds(s)
+            self._set_side_end(s, float(np.clip(
+                winkler_end(rp, self.form, rp.axis_x, pb.mean_two_k / pb.material.K), lo, hi)))
+
+    def _set_side_end(self, side: int, new: float) -> None:
+        """The contact's end on ``side`` at ``new``; its exit top moves with it."""
+        rp, sh = self.rolls[side], self.shapes[side]
+        old = sh.end(rp)
+        sh.exit_x = sh.exit_x + (new - old)
+        sh.exit_y = sh.exit_y + float(rp.height(new) - rp.height(old))
+        sh.x_e = new
+        self._set_shape()
+
     def move_contact_end(self) -> float:
-        """Each side's contact end by its own search (``ContactEndMixin.move_contact_end``)."""
+        """Each side's contact end by its own search (``ContactEndMixin.move_contact_end``:
+        with the strip's elasticity past the gap, seen through its Winkler layer, the
+        multiplier carried with the end's moves)."""
         out = 0.0
         f = self.form
         for s, top in self.tops.items():
@@ -294,17 +326,22 @@ class FullSteadyRun(SteadyRun):
             p = f.vertex_pressure()[verts]
             rp, sh = self.rolls[s], self.shapes[s]
             old = sh.end(rp)
+            winkler = ((lambda x_ref, p_ref, rp=rp: winkler_end(rp, f, x_ref, p_ref))
+                       if f.compliance else None)
             new, residual = self.end_searches[s].step(x[order], p[order],
-                                                      self.map.end_bounds(s))
-            sh.exit_x = sh.exit_x + (new - old)
-            sh.exit_y = sh.exit_y + float(rp.height(new) - rp.height(old))
-            sh.x_e = new
-            self._set_shape()
+                                                      self.side_end_bounds(s), winkler)
+            self._set_side_end(s, new)
             x_new = top.vertex_positions(self.d, verts)[:, 0]
+            xs, ps = x[order], p[order]
+            p_new = np.interp(x_new, xs, ps)
+            ahead = x_new > xs[-1]
+            if np.any(ahead) and f.compliance:       # the Winkler layer's pressure past it
+                y = rp.height(x_new[ahead])
+                p_new[ahead] = np.maximum(
+                    ps[-1] - (y - float(rp.height(xs[-1]))) / f.layer_compliance(y), 0.0)
             mv, dofs = f.multiplier_vertices()
             vec = f.multiplier.vec.FV().NumPy()
-            vec[dofs[np.searchsorted(mv, verts)]] = np.interp(x_new, x[order],
-                                                              p[order]) / f.lam_scale
+            vec[dofs[np.searchsorted(mv, verts)]] = p_new / f.lam_scale
             out = max(out, residual, abs(new - old))
         return out
 

@@ -99,7 +99,7 @@ def side_contact(run, side: int, prof: dict) -> RollContact:
         rp=rp, profile=prof, method=form.contact, exact=bool(form.exact),
         unilateral=unilateral,
         end_x=float(run.shapes[side].end(rp)) if unilateral else None,
-        end_bounds=tuple(float(b) for b in run.map.end_bounds(side)) if unilateral else None,
+        end_bounds=tuple(float(b) for b in run.side_end_bounds(side)) if unilateral else None,
         pressure_last_update=(run.result.stats[-1].multiplier_update * u_ref * form.lam_scale
                               * run.problem.material.K) if form.exact else None,
         flattening=roll is not None,

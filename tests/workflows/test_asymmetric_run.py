@@ -115,7 +115,6 @@ def test_the_pass_converged_and_balances(run):
 #: (overrides on asymmetric_plate, the key its refusal names)
 REFUSED = [
     ({"solver.method": "transient", "contact.method": "penalty"}, "solver.method"),
-    ({"contact.strip_youngs_modulus": 2e11}, "contact.strip_youngs_modulus"),
     ({"plate.free_surface": "constrained"}, "plate.free_surface"),
     ({"contact.method": "penalty"}, "contact.method"),
     ({"pass.roll_gap": 0.018, "pass.mill_modulus": 5e9, "pass.width": 2.0}, "pass.roll_gap"),

@@ -84,7 +84,7 @@ def _pass(upper: dict, lower: dict, label="A1"):
 
 def test_an_asymmetric_pass_becomes_an_asymmetric_case():
     """[hand] each roll's radius and surface speed from its own Roll (rotational frequency
-    f: U = 2 pi f R; working_velocity as given); with its temperature, rigid-plastic strip."""
+    f: U = 2 pi f R; working_velocity as given); with its temperature."""
     rp = _pass({"R": 0.4, "rotational_frequency": 0.8}, {"R": 0.38, "working_velocity": 1.7})
     assert ha.is_asymmetric(rp) and hp.is_flat(rp) and hp.handles(rp)
     case, _ = hp.pass_case(rp)
@@ -94,7 +94,6 @@ def test_an_asymmetric_pass_becomes_an_asymmetric_case():
     assert gap.upper.surface_speed == pytest.approx(2 * math.pi * 0.8 * 0.4, rel=1e-9)
     assert gap.lower.surface_speed == pytest.approx(1.7, rel=1e-12)
     assert case.thermal is not None and case.pass_.exit_thickness == 0.02
-    assert case.contact.strip_youngs_modulus == "off"
 
 
 def test_a_symmetric_pass_is_no_asymmetric_one():
@@ -115,24 +114,24 @@ def test_an_elastic_lower_roll_is_that_rolls_model():
 
 
 def test_what_the_full_strip_cannot_carry_is_refused_naming_both_sides(monkeypatch):
-    """[refusal] the strip's elasticity (the full strip has none yet), forced on: the message
-    names the pass, both rolls as PyRolL described them and the key hotroll needs."""
+    """[refusal] the constrained free surface (the full strip traces both), forced on: the
+    message names the pass, both rolls as PyRolL described them and the key hotroll needs."""
     from hotroll import pyroll_case
 
     real = pyroll_case.case_from_dict
 
-    def elastic_strip(d):
-        d["contact"]["strip_youngs_modulus"] = 1.5e11
+    def constrained(d):
+        d["plate"]["free_surface"] = "constrained"
         return real(d)
 
-    monkeypatch.setattr(pyroll_case, "case_from_dict", elastic_strip)
+    monkeypatch.setattr(pyroll_case, "case_from_dict", constrained)
     rp = _pass({"R": 0.4, "rotational_frequency": 0.8}, {"R": 0.4, "working_velocity": 1.7})
     with pytest.raises(ValueError) as e:
         hp.pass_case(rp)
     msg = str(e.value)
     assert "pass 'A1'" in msg and "asymmetric two-roll pass" in msg
     assert "lower roll R = 400 mm, U = 1.7 m/s" in msg
-    assert "contact.strip_youngs_modulus" in msg
+    assert "plate.free_surface" in msg
 
 
 def test_a_roll_without_its_own_speed_is_left_with_the_reason(caplog):
