@@ -1,5 +1,6 @@
 """The temperature figure of a coupled run (thermal.npz, or fields.npz's vertex values),
-the surface temperature and the heat flux to the roll along the top."""
+the surface temperature and the heat flux to the roll along the top; an asymmetric pass's
+lower surface and its roll's heat flux beside them (top_lower.csv, contact_lower.csv)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -65,9 +66,17 @@ def _surface_panel(ax, run: RunFiles) -> None:
         not_available(ax, "top.csv has no temperature")
         return
     s = run.summary
-    ax.plot(x, T, "-", color="tab:red", lw=1.2, label="surface temperature (top.csv)")
+    lower = run.dir_table("top_lower.csv")
+    two = lower is not None and column(lower, "temperature") is not None
+    ax.plot(x, T, "-", color="tab:red", lw=1.2,
+            label="upper surface (top.csv)" if two else "surface temperature (top.csv)")
+    if two:
+        ax.plot(column(lower, "x"), column(lower, "temperature"), "-", color="tab:purple",
+                lw=1.2, label="lower surface (top_lower.csv)")
     for key, label, style in (("exit_temperature_mean", "exit mean (mixing cup)", "--"),
-                              ("exit_temperature_surface", "exit surface", ":")):
+                              ("exit_temperature_surface",
+                               "exit upper surface" if two else "exit surface", ":"),
+                              ("exit_temperature_surface_lower", "exit lower surface", "-.")):
         if s.get(key) is not None:
             ax.axhline(s[key], color="0.3", ls=style, lw=1.0, label=f"{label} {s[key]:.1f} K")
     rng = run.contact_range()
@@ -77,12 +86,19 @@ def _surface_panel(ax, run: RunFiles) -> None:
     ax.set_xlabel("x [m]")
     ax.set_ylabel("T [K]")
     ax.grid(alpha=0.3)
-    xc, q = column(run.contact, "x"), column(run.contact, "heat_flux_to_roll")
-    if xc is not None and q is not None and len(xc):
-        ax2 = ax.twinx()
-        ax2.plot(xc, q / 1e6, ".", ms=3, color="tab:blue", label="heat flux to the roll")
+    ax2 = None
+    for table, label, color in ((run.contact, "heat flux to the upper roll" if two
+                                 else "heat flux to the roll", "tab:blue"),
+                                (run.dir_table("contact_lower.csv") if two else None,
+                                 "heat flux to the lower roll", "tab:cyan")):
+        xc, q = column(table, "x"), column(table, "heat_flux_to_roll")
+        if xc is not None and q is not None and len(xc):
+            ax2 = ax2 or ax.twinx()
+            ax2.plot(xc, q / 1e6, ".", ms=3, color=color, label=label)
+    if ax2 is not None:
         ax2.set_ylabel("heat flux to the roll [MW/m$^2$]", color="tab:blue")
         ax2.legend(fontsize=8, loc="lower right")
     ax.legend(fontsize=8, loc="lower left")
-    ax.set_title("along the top surface: temperature [K] and heat flux to the roll [MW/m$^2$]")
+    ax.set_title("along the " + ("upper and lower surfaces" if two else "top surface")
+                 + ": temperature [K] and heat flux to the roll [MW/m$^2$]")
 
