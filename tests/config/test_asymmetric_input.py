@@ -170,11 +170,12 @@ def test_each_refusal_names_its_field(tables, field):
 
 
 def test_build_model_refuses_an_asymmetric_pass_the_full_strip_cannot_take_by_name():
-    """hot_strip_finishing is a Coulomb pass of an S355 grade: its strip is elastic by default
-    (contact.strip_youngs_modulus = "auto"), which the full-thickness strip does not carry."""
-    case = case_from_dict(with_(**{"pass": {"speed_ratio": 1.2}}))
-    with pytest.raises(CaseError, match=r"contact.strip_youngs_modulus: the full-thickness "
-                       r"strip is rigid-plastic") as info:
+    """hot_strip_finishing with a speed ratio and the constrained free surface (flat tops held
+    by a penalty), which the full-thickness strip does not carry (it traces both surfaces)."""
+    case = case_from_dict(with_(**{"pass": {"speed_ratio": 1.2},
+                                   "plate": {"free_surface": "constrained"}}))
+    with pytest.raises(CaseError, match=r"plate.free_surface: the full-thickness strip traces "
+                       r"both free surfaces") as info:
         build_model(case)
     assert "differ in omega" in str(info.value) and "speed ratio 1.2)" in str(info.value)
 
@@ -182,7 +183,8 @@ def test_build_model_refuses_an_asymmetric_pass_the_full_strip_cannot_take_by_na
 def test_the_command_line_refuses_an_asymmetric_run_it_cannot_take_before_writing(tmp_path):
     """`hotroll run`: exit code 2 with the refusal naming its key, nothing written; `hotroll
     validate` takes the same file (it is a valid case)."""
-    text = example_path("hot_strip_finishing").read_text() + "\n[pass.lower]\nroll_radius = " \
+    text = example_path("hot_strip_finishing").read_text().replace(
+        "[plate]", "[plate]\nfree_surface = \"constrained\"") + "\n[pass.lower]\nroll_radius = " \
         "\"225 mm\"\n"
     path = tmp_path / "asym.toml"
     path.write_text(text)
@@ -190,7 +192,7 @@ def test_the_command_line_refuses_an_asymmetric_run_it_cannot_take_before_writin
     runner = CliRunner()
     result = runner.invoke(app, ["run", str(path), "--out", str(out)])
     assert result.exit_code == 2, result.output
-    assert "contact.strip_youngs_modulus: the full-thickness strip" in result.output
+    assert "plate.free_surface: the full-thickness strip" in result.output
     assert not out.exists()
     assert runner.invoke(app, ["validate", str(path)]).exit_code == 0
 
