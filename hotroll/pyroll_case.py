@@ -107,10 +107,26 @@ def pass_case(rp) -> tuple[Case, dict]:
         return case_from_dict(d), fit
     d["pass"].update(_asym.pass_rolls(rp))
     lower = _in.roll_table(rp.lower_roll, Config.ROLL)
-    if lower != d["roll"]:
+    # one [roll] elasticity for both rolls: the lower roll's where only it gives one; two
+    # different ones refused (below) rather than one dropped
+    problems = []
+    for key in ("youngs_modulus", "poissons_ratio"):
+        if key in lower and key not in d["roll"]:
+            d["roll"][key] = lower[key]
+        elif key in lower and lower[key] != d["roll"][key]:
+            problems.append(f"roll.{key}: one value for both rolls (the upper roll's "
+                            f"{d['roll'][key]:g}), the lower roll gives {lower[key]:g}")
+    if lower.get("model", "rigid") != d["roll"].get("model", "rigid"):
         d["roll"]["lower"] = {"model": lower.get("model", "rigid")}
     case = case_from_dict(d)
     refused = asymmetric_refusal(case)
-    if refused is not None:
-        raise ValueError(_asym.refusal(rp, refused.problems))
+    problems += [] if refused is None else list(refused.problems)
+    for attr, key in (("temperature", "roll_temperature"),
+                      ("contact_heat_transfer_coefficient", "htc_contact")):
+        own = _value(rp.lower_roll, attr, None)
+        if own is not None and float(own) != thermal[key]:
+            problems.append(f"thermal.{key}: one value for both rolls (the upper roll's "
+                            f"{thermal[key]:g}), the lower roll gives {float(own):g}")
+    if problems:
+        raise ValueError(_asym.refusal(rp, problems))
     return case, fit

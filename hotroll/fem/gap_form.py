@@ -84,15 +84,16 @@ class GapForm(RollingForm):
     def __init__(self, mesh, rolls: dict[int, RollPass], material: NortonHoff,
                  frictions: dict[int, FrictionLaw], h: float, tensions: tuple = (0.0, 0.0),
                  consistency=1.0, primal_dual: bool = True, rate_offset=None,
-                 strip_compliance: float | None = None, strip_depth: float | None = None):
+                 strip_compliance: float | None = None, strip_depth: dict | None = None):
         from ngsolve import FacetFESpace, GridFunction, Parameter
 
         self.mesh, self.rolls = mesh, rolls
         slow = min(rolls.values(), key=lambda r: r.u_roll)
         self.rp = slow                      # the scale of the penalties and the multiplier
         self.free_surface, self.contact = "traced", "multiplier"
-        #: the strip's elastic compliance and its layer's largest depth (``RollingForm``'s),
-        #: or None: rigid-plastic
+        #: the strip's elastic compliance (``RollingForm``'s), or None: rigid-plastic; its
+        #: layer's largest depth in each roll's contact ({side: m}: ``Problem.
+        #: strip_layer_depth`` of that roll), or None
         self.compliance, self.strip_depth = strip_compliance, strip_depth
         self._mu = Parameter(reference_viscosity(material, slow))
         self.penalties = ScaledPenalties(h, self._mu)
@@ -127,6 +128,14 @@ class GapForm(RollingForm):
             self.roll_tilt, self.roll_hoop = GridFunction(P1), GridFunction(P1)
             self.roll_cx_side = {s: Parameter(r.centre[0]) for s, r in rolls.items()}
         self._newton_problem(material.eps0, ARCS, slow.u_roll, primal_dual)
+
+    def layer_compliance(self, y, side: int = 1):
+        """c_e per unit reduced pressure at half thicknesses ``y`` (m, numbers) in the contact
+        of the roll on ``side``: compliance min(y, that roll's strip_depth)."""
+        import numpy as np
+
+        depth = y if self.strip_depth is None else np.minimum(y, self.strip_depth[side])
+        return self.compliance * depth
 
     def set_roll_speed(self, rp, v_reg):
         raise NotImplementedError("the full strip's roll speeds are fixed (issue 52 stage 3)")
@@ -193,7 +202,7 @@ class GapForm(RollingForm):
     def constraint(self, u, v, lam, xi, regularise: float = 0.0, u_w=None, lam_w=None):
         """s (lambda~ v.n + xi u.n) on both arcs (``RollingForm.constraint``); with the strip's
         compliance each surface sits c_e p below its plastic flow's, c_e = compliance
-        min(|y|, strip_depth): |y| the surface's distance from the exit mid-plane, the half
+        min(|y|, strip_depth of that roll): |y| the surface's distance from the exit mid-plane, the half
         thickness where the strip is centred between the rolls (the pass line puts it there;
         unequal radii shift the bite's middle by dh (R2 - R1) / (2 (R1 + R2)), 1 % of the
         half thickness at 360/400 mm and 25 -> 20 mm)."""
@@ -207,8 +216,11 @@ class GapForm(RollingForm):
             from ngsolve import IfPos, specialcf, y
 
             half = IfPos(y, y, -y)
-            depth = half if self.strip_depth is None else IfPos(half - self.strip_depth,
-                                                                 self.strip_depth, half)
+            if self.strip_depth is None:
+                depth = half
+            else:
+                cap = by_side(self.strip_depth[1], self.strip_depth[-1])
+                depth = IfPos(half - cap, cap, half)
             c = self.compliance * depth * self._lam
             w = xi + 0.5 * specialcf.mesh_size * (xi.Trace().Deriv() * t)
             ds_lam = lam.Trace().Deriv() * t

@@ -276,7 +276,8 @@ class TemperatureField:
             if self.order != 1:
                 raise ValueError("an entry temperature profile needs the P1 temperature")
             y = np.asarray(self.mesh.ngmesh.Coordinates())[: self.mesh.nv, 1]
-            y_in = y[self._fixed[: self.mesh.nv]]
+            # |y|: the full strip's inlet spans both halves (the profile mirrored about y = 0)
+            y_in = np.abs(y[self._fixed[: self.mesh.nv]])
             return np.asarray(profile(y_in / np.max(y_in)), dtype=float)
         inlet = GridFunction(self.space)
         inlet.Set(self.bc.entry_temperature, BND, definedon=self.mesh.Boundaries(self.inlet))

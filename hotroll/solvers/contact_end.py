@@ -12,14 +12,14 @@ import numpy as np
 PAST_GAP = 0.25
 
 
-def winkler_end(rp, form, x_ref: float, p_ref: float) -> float:
+def winkler_end(rp, layer_compliance, x_ref: float, p_ref: float) -> float:
     """An elastic strip's contact end on the roll ``rp`` seen from a point of its elastic exit
     zone (x_ref, m; reduced pressure p_ref): where the roll has risen by the strip's elastic
     recovery there, y_roll(x) = y_roll(x_ref) + c_e p_ref (a Winkler layer on the roll's shape,
-    docs/theory.md 1e; c_e the ``form``'s ``layer_compliance``); the first such x within a
+    docs/theory.md 1e; c_e = ``layer_compliance(y)``, the form's); the first such x within a
     contact length."""
     y0 = float(rp.height(x_ref))
-    rise = form.layer_compliance(y0) * p_ref
+    rise = layer_compliance(y0) * p_ref
     xs = np.linspace(x_ref, x_ref + rp.contact_length, 257)
     g = rp.height(xs) - y0 - rise
     up = np.flatnonzero(g >= 0.0)
@@ -29,6 +29,21 @@ def winkler_end(rp, form, x_ref: float, p_ref: float) -> float:
     if i == 0:
         return x_ref
     return float(xs[i - 1] - g[i - 1] * (xs[i] - xs[i - 1]) / (g[i] - g[i - 1]))
+
+
+def carried_pressure(x_new, xs, ps, rp, layer_compliance=None) -> np.ndarray:
+    """The contact pressure (reduced) at the arc's vertices' new x ``x_new`` after the contact's
+    end moved: the old profile (``xs`` increasing, ``ps``) interpolated at the new positions;
+    past the old end an elastic strip's (``layer_compliance``: its c_e(y)) continued by its
+    Winkler layer, p = p_end - (y_roll - y_roll(x_end)) / c_e (docs/theory.md 1e), a
+    rigid-plastic one's held at its end value."""
+    p_new = np.interp(x_new, xs, ps)
+    ahead = x_new > xs[-1]
+    if np.any(ahead) and layer_compliance is not None:
+        y = rp.height(x_new[ahead])
+        p_new[ahead] = np.maximum(ps[-1] - (y - float(rp.height(xs[-1]))) / layer_compliance(y),
+                                  0.0)
+    return p_new
 
 
 class ContactEndMixin:
@@ -78,7 +93,7 @@ class ContactEndMixin:
 
     def _winkler(self, x_ref: float, p_ref: float) -> float:
         """``winkler_end`` on the pass's roll."""
-        return winkler_end(self.problem.rp, self.form, x_ref, p_ref)
+        return winkler_end(self.problem.rp, self.form.layer_compliance, x_ref, p_ref)
 
     def _carry_multiplier(self, verts, x_old, p_old, order) -> None:
         """After the contact's end moved, the arc's vertices slid along it: the multiplier
@@ -88,13 +103,8 @@ class ContactEndMixin:
         held at its end value."""
         f, rp = self.form, self.problem.rp
         x_new = self.top.vertex_positions(self.d, verts)[:, 0]
-        xs, ps = x_old[order], p_old[order]
-        p_new = np.interp(x_new, xs, ps)
-        ahead = x_new > xs[-1]
-        if np.any(ahead) and f.compliance:
-            y = rp.height(x_new[ahead])
-            c = f.layer_compliance(y)
-            p_new[ahead] = np.maximum(ps[-1] - (y - float(rp.height(xs[-1]))) / c, 0.0)
+        p_new = carried_pressure(x_new, x_old[order], p_old[order], rp,
+                                 f.layer_compliance if f.compliance else None)
         mv, dofs = f.multiplier_vertices()           # sorted vertex numbers and their DOFs
         vec = f.multiplier.vec.FV().NumPy()
         vec[dofs[np.searchsorted(mv, verts)]] = p_new / f.lam_scale

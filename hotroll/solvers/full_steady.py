@@ -30,7 +30,7 @@ from hotroll.model.geometry import RollPass
 from hotroll.model.material import NortonHoff
 from hotroll.model.roll_elastic import FlatteningRoll
 from hotroll.solvers import couplings as C
-from hotroll.solvers.contact_end import PAST_GAP, winkler_end
+from hotroll.solvers.full_contact_end import FullContactEndMixin
 from hotroll.solvers.gap_measure import gap_measure, strip_force
 from hotroll.solvers.problem import Problem
 from hotroll.solvers.steady import SteadyRun, top_parts
@@ -68,7 +68,7 @@ def check_supported(problem: Problem, settings: SteadySettings) -> None:
                          + "; ".join(missing))
 
 
-class FullSteadyRun(SteadyRun):
+class FullSteadyRun(FullContactEndMixin, SteadyRun):
     """The steady full strip between the rolls ``rolls`` {+1: upper, -1: lower} (each a
     ``RollPass`` in its own frame, the same axis_x and half_exit), with ``frictions`` (reduced
     laws) and a_f per roll (``a_f``: a number or None for a law without it); ``roll_models``
@@ -105,7 +105,9 @@ class FullSteadyRun(SteadyRun):
                             rate_offset=self.thermal.rate_offset()
                             if self.thermal is not None else None,
                             strip_compliance=problem.strip_compliance,
-                            strip_depth=problem.strip_layer_depth)
+                            strip_depth=None if problem.strip_elasticity is None else
+                            {s: replace(problem, rp=r).strip_layer_depth
+                             for s, r in rolls.items()})
         V = self.form.fes.components[0]
         self.disp = ngsolve.GridFunction(V)
         self.d = self.disp.vec.FV().NumPy()
@@ -114,7 +116,8 @@ class FullSteadyRun(SteadyRun):
         self.top = self.tops[1]
         if self.thermal is not None:     # one strip mesh over the whole thickness
             self.thermal.attach(self.form, self.disp, self.tops[1], lower=self.tops[-1],
-                                rp=ref, breaks=[r.x_touch for r in rolls.values()])
+                                rp=ref, breaks=[r.x_touch for r in rolls.values()],
+                                rolls=list(rolls.values()))
         self.arcs = {}
         for s, top in self.tops.items():
             self.arcs[s] = top.region == "arc"
@@ -287,63 +290,6 @@ class FullSteadyRun(SteadyRun):
         mean = 0.5 * (self.shapes[1].x_c + self.shapes[-1].x_c)
         for s in SIDES:
             shift_contact_start(self.shapes[s], self.rolls[s], mean + s * a, self.x_in)
-
-    def side_end_bounds(self, side: int) -> tuple[float, float]:
-        """The contact end's range on ``side`` (``ContactEndMixin.end_bounds``: past the gap
-        for an elastic strip)."""
-        return self.map.end_bounds(side, PAST_GAP if self.form.compliance else 0.0)
-
-    def _predict_ends(self) -> None:
-        """An elastic strip's contact ends to start from, each where its Winkler layer at 2k
-        meets its roll (``ContactEndMixin._predict_end``)."""
-        if not (self.unilateral and self.form.compliance):
-            return
-        pb = self.problem
-        for s, rp in self.rolls.items():
-            lo, hi = self.side_end_bounds(s)
-            self._set_side_end(s, float(np.clip(
-                winkler_end(rp, self.form, rp.axis_x, pb.mean_two_k / pb.material.K), lo, hi)))
-
-    def _set_side_end(self, side: int, new: float) -> None:
-        """The contact's end on ``side`` at ``new``; its exit top moves with it."""
-        rp, sh = self.rolls[side], self.shapes[side]
-        old = sh.end(rp)
-        sh.exit_x = sh.exit_x + (new - old)
-        sh.exit_y = sh.exit_y + float(rp.height(new) - rp.height(old))
-        sh.x_e = new
-        self._set_shape()
-
-    def move_contact_end(self) -> float:
-        """Each side's contact end by its own search (``ContactEndMixin.move_contact_end``:
-        with the strip's elasticity past the gap, seen through its Winkler layer, the
-        multiplier carried with the end's moves)."""
-        out = 0.0
-        f = self.form
-        for s, top in self.tops.items():
-            verts = top.verts[top.vertex_contact]
-            x = top.vertex_positions(self.d, verts)[:, 0]
-            order = np.argsort(x)
-            p = f.vertex_pressure()[verts]
-            rp, sh = self.rolls[s], self.shapes[s]
-            old = sh.end(rp)
-            winkler = ((lambda x_ref, p_ref, rp=rp: winkler_end(rp, f, x_ref, p_ref))
-                       if f.compliance else None)
-            new, residual = self.end_searches[s].step(x[order], p[order],
-                                                      self.side_end_bounds(s), winkler)
-            self._set_side_end(s, new)
-            x_new = top.vertex_positions(self.d, verts)[:, 0]
-            xs, ps = x[order], p[order]
-            p_new = np.interp(x_new, xs, ps)
-            ahead = x_new > xs[-1]
-            if np.any(ahead) and f.compliance:       # the Winkler layer's pressure past it
-                y = rp.height(x_new[ahead])
-                p_new[ahead] = np.maximum(
-                    ps[-1] - (y - float(rp.height(xs[-1]))) / f.layer_compliance(y), 0.0)
-            mv, dofs = f.multiplier_vertices()
-            vec = f.multiplier.vec.FV().NumPy()
-            vec[dofs[np.searchsorted(mv, verts)]] = p_new / f.lam_scale
-            out = max(out, residual, abs(new - old))
-        return out
 
     def _kinematic_guess(self) -> None:
         """Divergence-free flow between the two surfaces: stream function q zeta, zeta =

@@ -61,16 +61,14 @@ def gap_measure(run, K: float) -> dict:
         cx, cy = rp.centre
         cy = side * cy
         r = sqrt((x - cx) ** 2 + (y - cy) ** 2)
-        # the roll's force on the strip: the pressure's -p n and the friction's shear
-        f_strip = [-K * bnd(on * form.pressure(u) * n[i], ARCS)
-                   - K * form.integrate_friction(on * chi * kf * s * t[i]) for i in range(2)]
+        f_strip = strip_force(run, side, K)
         prof = run.side_profile(side, K)
         (xn, _), angle = neutral_point(prof, rp)
         # the shear's power at the rim's speed and the torque that supplies it, power / omega
         # (the half model's, quantities.measure): r = R on the circle, R (1 + e_tt) on a
         # flattening roll's rim
         speed, arm = form.U_side[side], r
-        if form.roll_hoop is not None:
+        if rp.shape is not None:
             speed = form.roll_speed()
             arm = speed / rp.omega
         out.update({

@@ -66,7 +66,7 @@ def solution_record(run, frame_shift: float = 0.0) -> Solution:
 def exit_profile(run) -> dict:
     """The outlet's temperature, strain and shear strain at eta in [-1, 1] (module docstring):
     eta the thermal strip's rows (thin at both surfaces) or, isothermal, evenly spaced; the
-    fields sampled just inside the outlet face (``record_fields._outlet``)."""
+    fields sampled just inside the outlet face (``record_fields.outlet_values``)."""
     from hotroll.solvers.gap_measure import exit_shear
 
     thermal, strain = run.thermal, run.strain

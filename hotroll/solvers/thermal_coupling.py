@@ -43,7 +43,7 @@ from hotroll.fem.strip_mesh import ThermalStrip, layer_thickness
 from hotroll.fem.thermal_field import TemperatureField
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 from hotroll.solvers.thermal_feedback import FlowStressFeedback
-from hotroll.solvers.thermal_sampling import strip_samples
+from hotroll.solvers.thermal_sampling import k_means, strip_samples
 
 SUBSAMPLES = 4   # points per strip row interval for the flux integral along a column
 CHORD_BELOW = 1e-3   # update_steady keeps the heat equation's factors below this change
@@ -90,21 +90,23 @@ class ThermalCoupling(FlowStressFeedback):
         """m(T) - m_ref at the elements' mean temperature, or None (``FlowStressFeedback``)."""
         return self._offset if self.m_varies else None
 
-    def attach(self, form, disp, top, lower=None, rp=None, breaks=()) -> None:
+    def attach(self, form, disp, top, lower=None, rp=None, breaks=(), rolls=()) -> None:
         """The form whose flow heats the strip (built with ``consistency()``), the mechanics'
         displacement GridFunction and its ``TopBoundary``: builds the strip mesh. The full
         strip between two rolls (issue 52): ``lower`` its lower surface's ``TopBoundary``
         (the strip mesh then spans the whole thickness, each surface in contact with its
         own roll), ``rp`` the roll its reference mesh was built for (default ``form.rp``),
-        ``breaks`` more x (m) for the fine columns (the other roll's contact start)."""
+        ``breaks`` more x (m) for the fine columns (the other roll's contact start), ``rolls``
+        the rolls whose chill layers the rows resolve (the thinnest: a faster roll's
+        shorter contact chills a thinner layer)."""
         from ngsolve import H1, GridFunction, IfPos, Parameter, x, y
 
-        self.form, self._disp, self._top = form, disp, top
+        self.form, self._disp = form, disp
         rp = form.rp if rp is None else rp
         full = lower is not None
         T0 = self.bc.entry_temperature
         alpha = float(self.props.k_values(T0) / self.props.rho_c_values(T0))
-        self.delta = layer_thickness(rp, alpha)
+        self.delta = min(layer_thickness(r, alpha) for r in (rp, *rolls))
         self.strip = ThermalStrip(rp, top.X0[top.verts], form.penalties.h, self.delta,
                                   self.refine, full=full, breaks=breaks)
         # P1 temperature, P1 sources and a velocity constant per triangle: with constant
@@ -146,7 +148,6 @@ class ThermalCoupling(FlowStressFeedback):
         self._col_p2 = P2PointValues(form.nonlinear.p2_nodes, mech_tris,
                                      self._col_pts["nr"],
                                      np.stack([self._col_pts["x"], self._col_pts["y"]], -1))
-        self._pts = self._col_pts.reshape(len(self._fine), -1)[::SUBSAMPLES].ravel()
         self._top_row = np.arange(strip.nv - strip.shape[1], strip.nv)
         # the rows on a roll's surface (the friction heat's): the top, and the bottom in full
         self._surface_rows = (np.concatenate([np.arange(strip.shape[1]), self._top_row])
@@ -329,48 +330,18 @@ class ThermalCoupling(FlowStressFeedback):
 
     def _element_means(self, vals: np.ndarray, w: np.ndarray) -> np.ndarray:
         """Each mechanics element's temperature from the strip vertices inside it (weights
-        ``w``): the one whose consistency K(eps_entry, T) is their weighted mean of K, so that
-        the element is as hard as the material in it on average (the plain mean of T would
-        make a chilled element softer: K is convex in T); bisection between the smallest and
-        the largest T inside. The plain mean for a law without T, or one not monotone there."""
+        ``w``; the full strip's mid-plane vertices half above, half below): their K-mean at
+        the entry strain (``thermal_sampling.k_means``)."""
         ne, owner = self.mesh.ne, self._owner
         if getattr(self, "_mid", None) is not None:   # the mid-plane's: half above, half below
-            rows, above, below = self._mid
+            rows, _, below = self._mid                  # (``_owner`` holds the above's)
             owner = np.concatenate([owner, np.asarray(below["nr"], dtype=int)])
-            owner[rows] = np.asarray(above["nr"], dtype=int)
             w = np.concatenate([w, 0.5 * w[rows]])
             w[rows] *= 0.5
             vals = np.concatenate([vals, vals[rows]])
-        wsum = np.maximum(np.bincount(owner, w, minlength=ne), 1e-300)
-        plain = np.bincount(owner, w * vals, minlength=ne) / wsum
-        if self.flow is None:
-            return plain
-
-        def K(T):
-            return np.asarray(self.flow.consistency(self.entry_strain, T), dtype=float)
-
-        target = np.bincount(owner, w * K(vals), minlength=ne) / wsum
-        lo = np.full(ne, np.inf)
-        hi = np.full(ne, -np.inf)
-        np.minimum.at(lo, owner, vals)
-        np.maximum.at(hi, owner, vals)
-        lo, hi = np.where(np.isfinite(lo), lo, plain), np.where(np.isfinite(hi), hi, plain)
-        k_lo, k_hi = K(lo), K(hi)
-        # K the same at both ends (a law without T, or one element's uniform temperature):
-        # any T between would do, and the bisection would follow the rounding: the plain mean
-        flat = np.abs(k_lo - k_hi) <= 1e-12 * np.abs(k_hi)
-        if np.all(flat):
-            return plain
-        falling = k_lo >= k_hi
-        if not np.all(falling | flat):
-            return plain
-        for _ in range(60):                   # to 1e-9 of the temperature (~30 halvings)
-            if np.max(hi - lo) <= 1e-9 * np.max(np.abs(hi)):
-                break
-            mid = 0.5 * (lo + hi)
-            above = K(mid) > target           # still too hard: go hotter
-            lo, hi = np.where(above, mid, lo), np.where(above, hi, mid)
-        return np.where(flat, plain, 0.5 * (lo + hi))
+        consistency = (None if self.flow is None else
+                       (lambda T: self.flow.consistency(self.entry_strain, T)))
+        return k_means(owner, ne, vals, w, consistency)
 
     # --- figures ---------------------------------------------------------------------------
     def vertex_temperature(self) -> np.ndarray:
@@ -413,9 +384,10 @@ class ThermalCoupling(FlowStressFeedback):
 
     def measure(self, x_exit: float, h: float, heat_flows: bool = True) -> dict:
         """The thermal figures of one state (K, W/m): exit mean (mixing cup over 2 h after the
-        roll gap section ``x_exit``) and the surface temperature at the contact's end, the heat flows
-        and the balance error (NaN without ``heat_flows``: the fixed point's intermediate
-        rows), the extreme temperatures, the strip mesh's size."""
+        roll gap section ``x_exit``) and the surface temperature at the gap's column (the full
+        strip's both surfaces), the heat flows and the balance error (NaN without
+        ``heat_flows``: the fixed point's intermediate rows), the extreme temperatures, the
+        strip mesh's size."""
         mean, surface, bottom = self.section_means(x_exit, 2.0 * h)
         vals = self.field.values
         out = {"exit_temperature_mean": mean, "exit_temperature_surface": surface,

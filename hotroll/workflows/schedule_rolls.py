@@ -1,7 +1,8 @@
-"""A schedule's asymmetric passes (issue 52; ``workflows/schedule.py`` rolls them): the state an
-asymmetric pass hands on (``asymmetric_exit``: the full-thickness strip writes no exit profile
-yet) and the table's columns of every pass's curl and an asymmetric pass's rolls
-(``curl_columns``)."""
+"""A schedule's asymmetric passes (issue 52; ``workflows/schedule.py`` rolls them): the state a
+pass without a temperature or strain profile hands on (``asymmetric_exit``: an isothermal pass
+whose law ignores the strain; an asymmetric pass's whole-thickness profile is folded by
+``schedule.exit_state``) and the table's columns of every pass's curl and an asymmetric pass's
+rolls (``curl_columns``)."""
 from __future__ import annotations
 
 import numpy as np
@@ -11,8 +12,8 @@ from hotroll.model.profile import ThicknessProfile
 
 def asymmetric_exit(summary: dict, temperature: ThicknessProfile,
                     strain: ThicknessProfile) -> tuple[ThicknessProfile, ThicknessProfile]:
-    """(temperature, strain) profiles leaving a pass without an exit profile (an asymmetric
-    pass; an isothermal one whose law ignores the strain) that entered with these: the entry
+    """(temperature, strain) profiles leaving a pass without a temperature or strain profile
+    (an isothermal one whose law ignores the strain) that entered with these: the entry
     temperature profile (the pass is isothermal) and the entry strain profile moved by a
     constant to the pass's mean exit strain (``exit_strain`` where the solve carries the
     strain, else the homogeneous ``entry + 2/sqrt3 ln(h0/h1)``; an asymmetric pass's

@@ -266,7 +266,7 @@ def test_equal_rolls_give_the_half_model_on_a_bundled_pass_with_tensions(elastic
         assert half_end > rp.axis_x + 0.1e-3
     for s in (1, -1):
         assert run.shapes[s].end(run.rolls[s]) == pytest.approx(half_end,
-                                                                abs=1e-3 * rp.contact_length)
+                                                                abs=2e-4 * rp.contact_length)
 
 
 def test_the_through_thickness_shear_mirrors_and_vanishes_on_average_for_equal_rolls(runs):
@@ -313,3 +313,24 @@ def test_the_cross_shear_zone_lies_between_the_two_neutral_points(runs):
         assert row["cross_shear_length"] == pytest.approx(by_hand, rel=1e-6)
     assert runs["equal"][1]["cross_shear_length"] < 1e-9
     assert runs["r102"][1]["cross_shear_length"] > 0.03 * math.sqrt(R * 0.002)
+
+
+def test_each_contact_has_its_own_rolls_elastic_layer():
+    """[plumb] the strip's elastic layer's largest depth (Problem.strip_layer_depth: 2 R
+    (1 - nu^2) 2k / E, by the roll's radius and the pass's mean strain rate under it) is each
+    roll's own in its contact: the bundled reground-roll pass (360 against 400 mm) with an
+    elastic strip, built, not solved (found in review: both contacts took the [pass] roll's)."""
+    from hotroll.examples import example_path
+
+    case = load_case(example_path("asymmetric_radii"), {"contact.strip_youngs_modulus": 1.5e11})
+    model, _ = build_model(case)
+    gap = model.gap.at_axis(0.0)
+    model = replace(model, rp=replace(model.rp, axis_x=0.0))
+    run = FullSteadyRun(model, steady_settings(case), case.plate.length, gap.rolls,
+                        gap.frictions, gap.a_f, gap.roll_models)
+    depths = run.form.strip_depth
+    for s, rp in run.rolls.items():
+        assert depths[s] == replace(model, rp=rp).strip_layer_depth
+    assert depths[1] != pytest.approx(depths[-1], rel=0.05)
+    y = 0.5 * (depths[1] + depths[-1])
+    assert run.form.layer_compliance(y, 1) != run.form.layer_compliance(y, -1)

@@ -81,7 +81,7 @@ def test_equal_flattening_rolls_give_the_half_model(runs, kind):
     theta = 0.9 * hrun.problem.rp.bite_angle
     w_half = float(hrun.problem.roll.shape.offset(theta))
     for roll in frun.flattening.values():
-        assert float(roll.shape.offset(theta)) == pytest.approx(w_half, rel=1e-3)
+        assert float(roll.shape.offset(theta)) == pytest.approx(w_half, rel=2e-4)
     assert abs(w_half) > 1e-6                    # it did flatten
 
 
@@ -103,8 +103,7 @@ def test_each_roll_is_hitchcocks_circle_of_its_own_force(runs):
     16 (1 - nu^2)/(pi E), with its own roll force F' (per unit width) and dh twice its own
     arc's draft (the pass's 5 mm here: equal radii), to the coupling's tolerance (the roll is
     updated from the force of the flow before the last Newton steps: measured 3e-7 and 2e-6
-    in w at 0.8 of the bite angle; R'/R = 1.032). The faster roll (r = 1.15) takes the
-    smaller force here (7.29 against 7.30 MN/m), and flattens less."""
+    in w at 0.8 of the bite angle; R'/R = 1.032)."""
     run, _, row = runs["r115_h"]
     E, nu = 2.1e11, 0.3                  # the case's [roll] defaults
     C = 16.0 * (1.0 - nu**2) / (math.pi * E)
@@ -119,4 +118,3 @@ def test_each_roll_is_hitchcocks_circle_of_its_own_force(runs):
         w = -D * math.cos(theta) + math.sqrt((R + D) ** 2 - (D * math.sin(theta)) ** 2) - R
         assert float(run.flattening[side].shape.offset(theta)) == pytest.approx(w, rel=1e-4), \
             name
-    assert row["upper_roll_force"] < row["lower_roll_force"]

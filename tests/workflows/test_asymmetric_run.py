@@ -234,6 +234,6 @@ def test_one_flattening_roll_has_its_figures_in_its_entry(tmp_path):
     assert lower["roll_updates"] >= 1 and lower["roll_flattening"] > 0.0
     C = 16.0 * (1.0 - 0.3**2) / (math.pi * 2.1e11)
     assert lower["roll_equivalent_radius"] == pytest.approx(
-        0.4 * (1.0 + C * lower["roll_force"] / 0.005), rel=1e-5)
+        0.4 * (1.0 + C * lower["roll_force"] / 0.005), rel=1e-6)
     assert s["units"]["rolls.roll_flattening"] == "m"
     assert s["units"]["rolls.roll_equivalent_radius"] == "m"

@@ -113,6 +113,20 @@ def test_an_elastic_lower_roll_is_that_rolls_model():
     assert gap.lower.model == "elastic" and gap.upper.model == "rigid"
 
 
+def test_the_lower_rolls_own_elasticity_or_contact_is_refused_not_dropped():
+    """[refusal] one [roll] elasticity and one [thermal] roll contact serve both rolls: a lower
+    roll with another elastic modulus, or another temperature, than the upper's is refused
+    naming the key (found in review: the lower roll's values were silently dropped)."""
+    rp = _pass({"R": 0.4, "rotational_frequency": 0.8, "elastic_modulus": 2.1e11},
+               {"R": 0.4, "working_velocity": 1.7, "elastic_modulus": 1.0e11})
+    with pytest.raises(ValueError, match="roll.youngs_modulus: one value for both rolls"):
+        hp.pass_case(rp)
+    rp = _pass({"R": 0.4, "rotational_frequency": 0.8},
+               {"R": 0.4, "working_velocity": 1.7, "temperature": 400.0})
+    with pytest.raises(ValueError, match="thermal.roll_temperature: one value for both rolls"):
+        hp.pass_case(rp)
+
+
 def test_what_the_full_strip_cannot_carry_is_refused_naming_both_sides(monkeypatch):
     """[refusal] the constrained free surface (the full strip traces both), forced on: the
     message names the pass, both rolls as PyRolL described them and the key hotroll needs."""

@@ -1,0 +1,73 @@
+"""The contact ends of the full strip between two rolls (issue 52): each side's end searched
+by its own ``ContactEndSearch`` on its own roll, with the strip's elasticity past its gap
+through that roll's Winkler layer (docs/theory.md 1e), the multiplier carried with each end's
+moves; the half model's ``ContactEndMixin`` (solvers/contact_end.py) per side. A mixin of
+``FullSteadyRun`` (solvers/full_steady.py), which holds the rolls, shapes, tops, map and
+form these methods use."""
+from __future__ import annotations
+
+import numpy as np
+
+from hotroll.solvers.contact_end import PAST_GAP, carried_pressure, winkler_end
+
+
+class FullContactEndMixin:
+    """The two contact ends of ``FullSteadyRun``."""
+
+    def side_end_bounds(self, side: int) -> tuple[float, float]:
+        """The contact end's range on ``side`` (``ContactEndMixin.end_bounds``: past the gap
+        for an elastic strip)."""
+        return self.map.end_bounds(side, PAST_GAP if self.form.compliance else 0.0)
+
+    def _predict_ends(self) -> None:
+        """An elastic strip's contact ends to start from, each where its Winkler layer at 2k
+        meets its roll (``ContactEndMixin._predict_end``)."""
+        if not (self.unilateral and self.form.compliance):
+            return
+        pb = self.problem
+        for s, rp in self.rolls.items():
+            lo, hi = self.side_end_bounds(s)
+            layer = self._layer(s)
+            self._set_side_end(s, float(np.clip(
+                winkler_end(rp, layer, rp.axis_x, pb.mean_two_k / pb.material.K), lo, hi)))
+
+    def _layer(self, side: int):
+        """The elastic layer's c_e(y) in the contact of the roll on ``side``."""
+        return lambda y: self.form.layer_compliance(y, side)
+
+    def _set_side_end(self, side: int, new: float) -> None:
+        """The contact's end on ``side`` at ``new``; its exit top moves with it."""
+        rp, sh = self.rolls[side], self.shapes[side]
+        old = sh.end(rp)
+        sh.exit_x = sh.exit_x + (new - old)
+        sh.exit_y = sh.exit_y + float(rp.height(new) - rp.height(old))
+        sh.x_e = new
+        self._set_shape()
+
+    def move_contact_end(self) -> float:
+        """Each side's contact end by its own search (``ContactEndMixin.move_contact_end``:
+        with the strip's elasticity past the gap, seen through its Winkler layer, the
+        multiplier carried with the end's moves)."""
+        out = 0.0
+        f = self.form
+        for s, top in self.tops.items():
+            verts = top.verts[top.vertex_contact]
+            x = top.vertex_positions(self.d, verts)[:, 0]
+            order = np.argsort(x)
+            p = f.vertex_pressure()[verts]
+            rp, sh = self.rolls[s], self.shapes[s]
+            old = sh.end(rp)
+            winkler = ((lambda x_ref, p_ref, rp=rp, s=s: winkler_end(rp, self._layer(s), x_ref,
+                                                                     p_ref))
+                       if f.compliance else None)
+            new, residual = self.end_searches[s].step(x[order], p[order],
+                                                      self.side_end_bounds(s), winkler)
+            self._set_side_end(s, new)
+            x_new = top.vertex_positions(self.d, verts)[:, 0]
+            p_new = carried_pressure(x_new, x[order], p[order], rp,
+                                     self._layer(s) if f.compliance else None)
+            mv, dofs = f.multiplier_vertices()
+            vec = f.multiplier.vec.FV().NumPy()
+            vec[dofs[np.searchsorted(mv, verts)]] = p_new / f.lam_scale
+            out = max(out, residual, abs(new - old))
+        return out
