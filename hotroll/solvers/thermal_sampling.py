@@ -19,8 +19,9 @@ upper and lower halves by 3e-4 in the exit shear strain and 5e-7 in force, and c
   the friction flux's mean just before and just after it (the shear flow stress k jumps
   there): each surface vertex the mean of the points 1e-3 of a column spacing either side.
 
-With these, equal rolls' halves agree to 1.5e-6 in the exit shear and 8e-8 in force, and curl
-by 8e-7 1/m. ``k_means``: an element's temperature from the vertices it owns.
+With these the full strip of two equal rolls is its own mirror image to round-off (its exit
+shear, forces and curvature 1e-14 apart: thermal_pass). ``k_means``: an element's temperature
+from the vertices it owns.
 """
 from __future__ import annotations
 
