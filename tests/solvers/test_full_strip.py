@@ -334,3 +334,37 @@ def test_each_contact_has_its_own_rolls_elastic_layer():
     assert depths[1] != pytest.approx(depths[-1], rel=0.05)
     y = 0.5 * (depths[1] + depths[-1])
     assert run.form.layer_compliance(y, 1) != run.form.layer_compliance(y, -1)
+
+
+def test_equal_rolls_give_the_half_model_on_an_elastic_thin_strip():
+    """The bundled thin_strip made thinner (1.2 -> 1.0 mm, its grade's E) on rigid rolls, where
+    the elastic layer is the whole half thickness (its cap 2 R (1 - nu^2) 2k / E lies deeper,
+    0.9 mm against 0.5-0.6): two equal
+    rolls give the half model's force, slip and contact end past the gap, to the coupling
+    tolerance (measured: force 1.0e-5, slip 6e-7, end 2.9e-5 l_c, 0.91 mm past the gap). A
+    layer of another depth in one contact (planted: the lower's 1.1 x) moves them apart (caught
+    here; on tension_pass the cap holds both layers)."""
+    from hotroll.examples import example_path
+
+    case = load_case(example_path("thin_strip"), {"roll.model": "rigid",
+                                                   "pass.mill_modulus": None,
+                                                   "pass.entry_thickness": 0.0012,
+                                                   "pass.exit_thickness": 0.0010})
+    problem, _ = build_model(case)
+    assert problem.strip_layer_depth > problem.rp.half_entry     # the cap does not bind
+    st = steady_settings(case)
+    half_run = SteadyRun(problem, st, case.plate.length)
+    half = half_run.run().history[-1]
+    run = FullSteadyRun(problem, st, case.plate.length, {1: problem.rp, -1: problem.rp},
+                        {1: problem.friction, -1: problem.friction})
+    sol = run.run()
+    full = sol.history[-1]
+    assert sol.status == "steady"
+    rp = problem.rp
+    half_end = half_run.shape.end(rp)
+    assert half_end > rp.axis_x
+    for s, name in ((1, "upper"), (-1, "lower")):
+        assert full[f"{name}_roll_force"] == pytest.approx(half["roll_force"], rel=3e-5)
+        assert full[f"{name}_forward_slip"] == pytest.approx(half["forward_slip"], abs=1e-5)
+        assert run.shapes[s].end(run.rolls[s]) == pytest.approx(half_end,
+                                                                abs=2e-4 * rp.contact_length)
