@@ -177,7 +177,9 @@ def write_results(case: Case, sol: Solution, out: Path, wall: float,
 
     summary["units"] = {k: u for k, u in UNITS.items() if k in summary}
     if two:
-        summary["units"].update(roll_units())
+        present = {k for entry in summary["rolls"] for k in entry}
+        summary["units"].update({k: u for k, u in roll_units().items()
+                                 if k.split(".", 1)[1] in present})
 
     summary["exit_code"] = exit_code(summary)
     typed = Summary.from_dict(summary)      # every key declared once, with its unit
