@@ -213,7 +213,7 @@ class GapForm(RollingForm):
         if regularise:
             term = term - regularise * self._lam * lam * xi
         if self.compliance:
-            from ngsolve import IfPos, specialcf, y
+            from ngsolve import IfPos, y
 
             half = IfPos(y, y, -y)
             if self.strip_depth is None:
@@ -221,16 +221,7 @@ class GapForm(RollingForm):
             else:
                 cap = by_side(self.strip_depth[1], self.strip_depth[-1])
                 depth = IfPos(half - cap, cap, half)
-            c = self.compliance * depth * self._lam
-            w = xi + 0.5 * specialcf.mesh_size * (xi.Trace().Deriv() * t)
-            ds_lam = lam.Trace().Deriv() * t
-            if u_w is None:
-                rate = (u * t) * ds_lam
-            else:
-                from ngsolve import grad
-
-                rate = (u * t) * (grad(lam_w) * t) + (u_w * t) * ds_lam
-            term = term - self._lam * c * rate * w
+            term = term - self.elastic_rate(u, lam, xi, t, depth, u_w, lam_w)
         return term * ds(ARCS, bonus_intorder=2)
 
     def boundary(self, u, w, v, friction: bool = True, lam=None):

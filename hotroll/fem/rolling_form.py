@@ -438,19 +438,27 @@ class RollingForm:
         if regularise:
             term = term - regularise * self._lam * lam * xi
         if self.compliance:
-            from ngsolve import IfPos, grad, specialcf, y
+            from ngsolve import IfPos, y
 
             depth = y if self.strip_depth is None else IfPos(y - self.strip_depth,
                                                                self.strip_depth, y)
-            c = self.compliance * depth * self._lam       # c_e K s: per unit lambda~
-            w = xi + 0.5 * specialcf.mesh_size * (xi.Trace().Deriv() * t)
-            ds_lam = lam.Trace().Deriv() * t
-            if u_w is None:
-                rate = (u * t) * ds_lam
-            else:
-                rate = (u * t) * (grad(lam_w) * t) + (u_w * t) * ds_lam
-            term = term - self._lam * c * rate * w
+            term = term - self.elastic_rate(u, lam, xi, t, depth, u_w, lam_w)
         return term * ds("arc", bonus_intorder=2)
+
+    def elastic_rate(self, u, lam, xi, t, depth, u_w=None, lam_w=None):
+        """The strip's elastic surface rate in the constraint, s c_e (u.t) dp/ds w (``depth``:
+        c_e's half thickness, a CF; w the test function upwinded along t; ``u_w``, ``lam_w``:
+        the Jacobian at that iterate along (u, lam))."""
+        from ngsolve import grad, specialcf
+
+        c = self.compliance * depth * self._lam       # c_e K s: per unit lambda~
+        w = xi + 0.5 * specialcf.mesh_size * (xi.Trace().Deriv() * t)
+        ds_lam = lam.Trace().Deriv() * t
+        if u_w is None:
+            rate = (u * t) * ds_lam
+        else:
+            rate = (u * t) * (grad(lam_w) * t) + (u_w * t) * ds_lam
+        return self._lam * c * rate * w
 
     def jacobian(self, w, u, p, v, q, lam=None, xi=None, lam_w=None):
         """Newton's Jacobian of (3.6) at w: the Norton-Hoff tangent and the friction tangent
