@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 
 from hotroll.model.interpass import enthalpy_mean
-from hotroll.model.profile import ThicknessProfile
+from hotroll.model.profile import ThicknessProfile, folded
 from hotroll.model.thermal_properties import ThermalProperties
 
 
@@ -123,12 +123,10 @@ def outlet_means(case, s: dict) -> tuple[float, float]:
     by its heat content)."""
     import numpy as np
 
-    prof = s["exit_profile"]
-    full = prof is not None and prof["eta"][0] < 0.0    # an asymmetric pass's whole thickness
+    prof = folded(s["exit_profile"])        # an asymmetric pass's: folded about the middle
 
     def profile(values):
-        return (ThicknessProfile.fold(prof["eta"], values) if full
-                else ThicknessProfile(tuple(prof["eta"]), tuple(values)))
+        return ThicknessProfile(tuple(prof["eta"]), tuple(values))
 
     e = s.get("exit_strain")
     if prof is None or prof["temperature"] is None:    # an isothermal pass

@@ -57,7 +57,7 @@ from hotroll.model.interpass import cool
 from hotroll.model.microstructure import get_set
 from hotroll.model.microstructure.base import RecrystallisationSet
 from hotroll.model.microstructure.softening import PassState, Softened, pass_state, soften
-from hotroll.model.profile import ThicknessProfile
+from hotroll.model.profile import ThicknessProfile, folded
 from hotroll.workflows import microstructure as MS
 
 _LOG = logging.getLogger("hotroll.pyroll")
@@ -171,7 +171,7 @@ def deformed(rp) -> PassState | None:
     key = (kin.name, s["case_toml"], grain.pairs().__repr__())
     cache = rp.__dict__.setdefault("_hotroll_pass_state", {})
     if key not in cache:
-        prof = s.get("exit_profile") or {}
+        prof = folded(s.get("exit_profile")) or {}     # an asymmetric pass's: folded
         if prof.get("pass_strain") is None:
             raise RuntimeError(f"hotroll.pyroll: pass {rp.label!r}: its exit profile has no "
                                f"streamline histories (pass_strain, log_rate_mean, "
@@ -206,7 +206,7 @@ def cooling_history(rp, chain) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     through the transports ``chain`` one after the other (``interpass.cool``, record=True,
     each with its own duration and air data, as
     ``hotroll.pyroll_out_profile.transport_temperature``)."""
-    prof = _P.solve(rp)["exit_profile"]
+    prof = folded(_P.solve(rp)["exit_profile"])
     y, T = np.asarray(prof["eta"], float), np.asarray(prof["temperature"], float)
     half = 0.5 * float(rp.out_profile.height)
     th = _P.Config.THERMAL
@@ -278,7 +278,7 @@ def pass_values(rp) -> dict | None:
     ps = deformed(rp)
     if ps is None:
         return None
-    prof = _P.solve(rp)["exit_profile"]
+    prof = folded(_P.solve(rp)["exit_profile"])
     eta = np.asarray(prof["eta"], dtype=float)
     exit_strain = (np.maximum(np.asarray(prof["strain"], float), 0.0)
                    if prof.get("strain") is not None else ps.strain)

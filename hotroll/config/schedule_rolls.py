@@ -6,7 +6,8 @@ computation and naming ``pass[k]`` and the key, what that strip does not carry y
 (``config/full_strip.asymmetric_refusal``, in the schedule's terms) and what a schedule asks of
 a pass that the full strip cannot give: a tandem's stand speed or tension from the mass flux
 (the full strip takes its rolls' speeds as given, and its flux is the whole thickness's, the
-half model's the half's) and the microstructure's streamline histories."""
+half model's the half's) and an isothermal pass's streamline histories for the
+microstructure."""
 from __future__ import annotations
 
 from hotroll.config.full_strip import asymmetric_refusal
@@ -40,10 +41,10 @@ def asymmetric_problems(sch, k: int, case) -> list[str]:
         out.append(f'mill.tensions: "from_speeds" cannot take {what}: the full-thickness '
                    f'strip\'s flux is not comparable with its neighbours\' and no tension is '
                    f'searched for it; allowed with an asymmetric pass: "given"')
-    if sch.microstructure.kinetics is not None:
-        out.append(f"microstructure.kinetics: {what} has no streamline histories at its outlet "
-                   f"(the full-thickness strip does not write them yet); omit "
-                   f"microstructure.kinetics or make the pass symmetric")
+    if sch.microstructure.kinetics is not None and case.thermal is None:
+        out.append(f"{where}.isothermal: {what} with microstructure.kinetics needs its "
+                   f"streamlines' histories, which only a pass with its temperature writes; "
+                   f"set isothermal = false, got true")
     refusal = asymmetric_refusal(case)
     for line in refusal.problems if refusal is not None else []:
         line = _in_schedule(line, where, what, p)

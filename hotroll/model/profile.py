@@ -94,3 +94,23 @@ class ThicknessProfile:
     @property
     def is_uniform(self) -> bool:
         return max(self.values) == min(self.values)
+
+
+def folded(prof: dict | None) -> dict | None:
+    """A summary's exit profile over the half thickness: a whole-thickness one (eta from -1, an
+    asymmetric pass's) with each of its lists folded about the middle (``ThicknessProfile.
+    fold``: the mean of the two halves; the shear strain, odd about the middle, left out), a
+    half-thickness one (or None) as it is."""
+    if prof is None or prof["eta"][0] >= 0.0:
+        return prof
+    out, eta = {}, None
+    for key, values in prof.items():
+        if key in ("eta", "shear_strain"):
+            continue
+        if values is None:
+            out[key] = None
+            continue
+        f = ThicknessProfile.fold(prof["eta"], values)
+        out[key], eta = list(f.values), list(f.eta)
+    out["eta"] = eta if eta is not None else [0.0, 1.0]
+    return out

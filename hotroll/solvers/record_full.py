@@ -16,8 +16,10 @@ What it holds, against the half model's record:
 - ``exit_profile``: the outlet's state through the whole thickness, eta = y / half exit
   thickness from -1 (the lower surface) to 1 (the upper), ``exit_profile``: the temperature
   (K, or None isothermal), the strain (-, or None without a strain field) and the shear strain
-  gamma_xy (-, ``fem/strain.py: ShearStrainField``); the streamlines' means are the half
-  model's (None); ``exit_strain``: the exit strip's mean strain over its whole thickness.
+  gamma_xy (-, ``fem/strain.py: ShearStrainField``) and, with a temperature, the
+  streamlines' histories (``solvers/streamlines.py``: pass strain, means of ln edot and 1/T,
+  the microstructure's kinetics); ``exit_strain``: the exit strip's mean strain over its whole
+  thickness.
 """
 from __future__ import annotations
 
@@ -29,6 +31,7 @@ from hotroll.fem import quantities as Q
 from hotroll.model.solution import PassData, RollContact, Solution
 from hotroll.solvers.record import exit_strain, shape_error, solve_stats
 from hotroll.solvers.record_fields import ISOTHERMAL_ROWS, gap_means, outlet_values, vertex_fields, write_vtk
+from hotroll.solvers.streamlines import streamline_means
 
 SIDES = (1, -1)
 
@@ -80,10 +83,15 @@ def exit_profile(run) -> dict:
         exit_shear(run)                 # the shear field transported along the last flow
     fields = (run._shear_field.gf,) + ((strain.gf,) if strain is not None else ())
     values = outlet_values(run, fields, eta)
-    return {"eta": eta.tolist(), "temperature": temperature,
-            "strain": values[1].tolist() if strain is not None else None,
-            "shear_strain": values[0].tolist(),
-            "pass_strain": None, "log_rate_mean": None, "inverse_temperature_mean": None}
+    out = {"eta": eta.tolist(), "temperature": temperature,
+           "strain": values[1].tolist() if strain is not None else None,
+           "shear_strain": values[0].tolist(),
+           "pass_strain": None, "log_rate_mean": None, "inverse_temperature_mean": None}
+    if thermal is not None:     # the streamlines' histories (the microstructure's kinetics)
+        means = streamline_means(thermal, eta)
+        out.update({k: means[k].tolist() for k in ("pass_strain", "log_rate_mean",
+                                                   "inverse_temperature_mean")})
+    return out
 
 
 def side_contact(run, side: int, prof: dict) -> RollContact:

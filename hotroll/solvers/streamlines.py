@@ -8,7 +8,10 @@ height follows from the column's flux profile (``ThermalCoupling.fine_column_flu
 stream function's own data), and at the outlet, where the strip moves rigidly, phi = eta.
 Along it, with the points' current positions x_i and speeds |v_i|, dt_i = |x_{i+1} - x_i| /
 mean |v| and every integral is a trapezoid sum. The temperature is the strip mesh's own, not
-the coarser mechanics mesh's. Streamline means from a transported field (SUPG) were tried
+the coarser mechanics mesh's. The full strip between two rolls (issue 52): eta from -1 (the
+lower surface) to 1, phi the flux fraction from the lower surface, and at the outlet (whose
+rigid motion may rotate with the curl) the outlet column's own phi(eta). Streamline means
+from a transported field (SUPG) were tried
 first and not kept: the Galerkin solution is not monotone, and on finishing_mill's first
 pass the centre's mean temperature came out 4 K below the entry temperature (the centre only
 heats).
@@ -36,9 +39,10 @@ def streamline_means(thermal, eta: np.ndarray) -> dict[str, np.ndarray]:
     frac = flux / flux[-1]
     fine = thermal._fine
     ncol = len(strip.X)
+    phi = np.interp(eta, fine, frac[:, -1]) if strip.full else eta
     path = np.empty((len(eta), ncol))
     for i in range(ncol):
-        path[:, i] = np.interp(eta, frac[:, i], fine)
+        path[:, i] = np.interp(phi, frac[:, i], fine)
     # SUB points per column interval, straight between the columns in (X, eta): the rate is
     # a P2 velocity's gradient, discontinuous between elements; sampling it only on the
     # columns made the means depend on which side of an element edge a column fell (2 % in
@@ -50,8 +54,13 @@ def streamline_means(thermal, eta: np.ndarray) -> dict[str, np.ndarray]:
                             w[None, None, :] * path[:, 1:, None]).reshape(len(eta), -1),
                            path[:, -1:]], axis=1)
     X = np.broadcast_to(Xs, path.shape)
+    # inside the strip: a surface streamline's points 1e-3 of the thinnest row in from the
+    # surface (on it, a point on a mechanics vertex is in two elements, where the rate jumps,
+    # and the search's pick is not the mirror image's: the full strip's two surface
+    # streamlines differed by 0.7 % in pass strain)
+    inward = 1e-3 * float(np.min(np.diff(strip.eta)))
+    path = np.clip(path, strip.eta[0] + inward, 1.0 - inward)
     ref = np.stack([X.ravel(), path.ravel() * strip.top_height(X.ravel())], -1)
-    ref[:, 1] *= 1.0 - 1e-9                      # inside the top
     u = thermal.form.nonlinear.velocity
     rate = sqrt(edot_squared(strain_rate(u)) + 1e-300)
     vals = thermal._at(CF((x, y, u[0], u[1], rate)), thermal._find(ref))
@@ -59,7 +68,7 @@ def streamline_means(thermal, eta: np.ndarray) -> dict[str, np.ndarray]:
     # T on the strip's structured logical grid, linear in each cell (its P1 triangles up to
     # the cell's diagonal: O(h^2)); a point search on the strip mesh cost 4x this whole call
     T = bilinear(strip.eta, strip.X, thermal.field.values.reshape(strip.shape),
-                 np.clip(path.ravel(), 0.0, 1.0), X.ravel()).reshape(path.shape)
+                 np.clip(path.ravel(), strip.eta[0], 1.0), X.ravel()).reshape(path.shape)
     pos, speed = vals[..., :2], np.hypot(vals[..., 2], vals[..., 3])
     edot = np.maximum(vals[..., 4], 1e-300)
     dt = np.hypot(*np.moveaxis(np.diff(pos, axis=1), -1, 0)) / (0.5 * (speed[:, 1:] +

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from hotroll.model.microstructure.softening import PassState, Softened, pass_state, soften
-from hotroll.model.profile import ThicknessProfile
+from hotroll.model.profile import ThicknessProfile, folded
 from hotroll.results.output import write_csv
 
 
@@ -21,8 +21,9 @@ class MicrostructureError(RuntimeError):
 def deformed(sch, entry_strain: ThicknessProfile, grain: ThicknessProfile,
              summary: dict, k: int) -> PassState:
     """The k-th pass's exit state on its exit profile's eta (``softening.pass_state``): the
-    strain = the entry's at that eta + the streamline's pass strain."""
-    prof = summary.get("exit_profile") or {}
+    strain = the entry's at that eta + the streamline's pass strain; an asymmetric pass's
+    whole-thickness profile folded about the middle (``profile.folded``)."""
+    prof = folded(summary.get("exit_profile")) or {}
     if prof.get("pass_strain") is None:
         raise MicrostructureError(f"pass {k + 1}: its exit profile has no streamline "
                                   f"histories (a thermal steady run writes them)")

@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from hotroll.config.schedule import Schedule
-from hotroll.model.profile import ThicknessProfile
+from hotroll.model.profile import ThicknessProfile, folded
 from hotroll.workflows.schedule_rolls import asymmetric_exit
 
 
@@ -51,10 +51,7 @@ def exit_state(sch: Schedule, case, summary: dict,
     (``asymmetric_exit``). An asymmetric pass's profile (the whole thickness) is folded about
     the middle (``ThicknessProfile.fold``: the mean of the two halves, the next pass's half
     thickness; its through-thickness shear is not handed on)."""
-    prof = summary.get("exit_profile")
-    if prof is not None and prof["eta"][0] < 0.0:
-        prof = {k: (v if v is None or k == "eta" else ThicknessProfile.fold(prof["eta"], v))
-                for k, v in prof.items() if k in ("eta", "temperature", "strain")}
+    prof = folded(summary.get("exit_profile"))
     if entry is not None and (prof is None or (prof["temperature"] is None
                                                and prof["strain"] is None)):
         return StripState(exit_thickness(case, summary),
@@ -70,9 +67,7 @@ def exit_state(sch: Schedule, case, summary: dict,
 
 
 def _profile(eta, values) -> ThicknessProfile:
-    """A profile from the summary's lists, or one folded already (``exit_state``)."""
-    if isinstance(values, ThicknessProfile):
-        return values
+    """A profile from the summary's lists."""
     return ThicknessProfile(tuple(eta), tuple(values))
 
 

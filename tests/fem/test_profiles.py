@@ -111,6 +111,21 @@ def test_folding_a_whole_thickness_profile_by_hand():
             ThicknessProfile.fold(bad, [1.0] * len(bad))
 
 
+def test_a_whole_thickness_exit_profile_is_folded_by_hand():
+    """[hand] ``folded``: an asymmetric pass's exit profile (eta -1..1) as the half thickness's,
+    each list the mean of its two halves (the shear strain, odd about the middle, left out;
+    None kept); a half-thickness profile is returned as it is."""
+    from hotroll.model.profile import folded
+
+    full = {"eta": [-1.0, 0.0, 1.0], "temperature": [1000.0, 1300.0, 1100.0],
+            "strain": None, "shear_strain": [0.1, 0.0, -0.1], "pass_strain": [0.4, 0.2, 0.6]}
+    half = folded(full)
+    assert half["eta"] == [0.0, 1.0] and half["strain"] is None and "shear_strain" not in half
+    assert half["temperature"] == [1300.0, 1050.0] and half["pass_strain"] == [0.2, 0.5]
+    own = {"eta": [0.0, 1.0], "temperature": [1.0, 2.0]}
+    assert folded(own) is own and folded(None) is None
+
+
 @pytest.mark.parametrize("dotted,field", [
     ({"plate.temperature_profile": [[0.0, 1300.0], [1.0, 1200.0]]},
      "plate.temperature_profile: needs a [thermal] section"),

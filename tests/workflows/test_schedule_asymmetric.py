@@ -124,6 +124,8 @@ def _refused(over_pass: dict | None = None, **top) -> list[str]:
 
 
 REFUSED = [
+    ({}, {"microstructure": {"model": "hodgson_gibbs_cmn", "grain_size": 100e-6}},
+     "pass[1].isothermal: "),
     ({"friction": {"law": "viscoplastic", "a_f": "estimate"}}, {}, "pass[1].friction.a_f: "),
     ({"upper": {"roll_radius": 0.001}}, {}, "pass[1].upper.roll_radius: "),
     ({"lower": {"roll_surface_speed": 1.5}}, {}, "pass[1].speed_ratio: conflicts"),
