@@ -256,6 +256,7 @@ FIGURE_CAPTIONS = {
     "fig_temperature.png": "Temperature over the strip and at the roll bite",
     "fig_rolls.png": "Both rolls' contact pressure and shear against their angles "
                      "(an asymmetric pass)",
+    "fig_exit_profile.png": "The outlet through the thickness: temperature, strain, shear",
     "compare.png": "FE and slab theory: contact pressure and shear",
     "schedule.png": "The schedule pass by pass",
 }

@@ -176,3 +176,31 @@ def test_plot_compare_tolerates_missing_files(tmp_path):
     b.mkdir()
     out = plot_compare({"full": a, "empty": b}, tmp_path / "cmp.png")
     _assert_png(out)
+
+
+def test_the_exit_profile_figure_draws_the_files_columns(tmp_path, monkeypatch):
+    """fig_exit_profile by its data: a panel per column exit_profile.csv holds (temperature,
+    strain, pass strain, shear strain; a column of NaN left out), each the column against
+    eta; an asymmetric pass's eta from -1 named on the axis; None without the file."""
+    import matplotlib.axes
+
+    from hotroll.results.figures.exit_profile import fig_exit_profile
+    from hotroll.results.figures.run_files import RunFiles
+
+    run = make_run(tmp_path / "run")
+    assert fig_exit_profile(RunFiles(run), run / "fig_exit_profile.png") is None
+    eta = np.linspace(-1.0, 1.0, 5)
+    T, gamma = 1300.0 - 50.0 * eta**2, 0.1 * eta + 0.05
+    _write_csv(run / "exit_profile.csv", ["eta", "temperature", "strain", "shear_strain"],
+               np.column_stack([eta, T, np.full(5, np.nan), gamma]))
+    drawn = []
+    real = matplotlib.axes.Axes.plot
+    monkeypatch.setattr(matplotlib.axes.Axes, "plot",
+                        lambda ax, *a, **k: (drawn.append((ax, a)), real(ax, *a, **k))[1])
+    path = fig_exit_profile(RunFiles(run), run / "fig_exit_profile.png")
+    _assert_png(path, 2000)
+    assert len(drawn) == 2                       # the NaN strain has no panel
+    np.testing.assert_allclose(drawn[0][1][0], T)
+    np.testing.assert_allclose(drawn[1][1][0], gamma)
+    np.testing.assert_allclose(drawn[0][1][1], eta)
+    assert "-1 lower" in drawn[0][0].get_ylabel()

@@ -28,6 +28,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from hotroll.files import DiskFullError  # noqa: E402
 from hotroll.results.figures.compare import plot_compare  # noqa: E402
+from hotroll.results.figures.exit_profile import fig_exit_profile  # noqa: E402
 from hotroll.results.figures.fields import fig_mesh, fig_sigma_ef, fig_velocity  # noqa: E402
 from hotroll.results.figures.history import fig_history  # noqa: E402
 from hotroll.results.figures.profiles import fig_contact, fig_contact_angle, fig_top  # noqa: E402
@@ -50,6 +51,7 @@ FIGURES: tuple[tuple[str, Callable[[RunFiles, Path], Path | None]], ...] = (
     ("fig_temperature.png", fig_temperature),   # a coupled run's (None without [thermal])
     ("fig_roll.png", fig_roll),                 # a flattening roll's (None for a rigid one)
     ("fig_rolls.png", fig_rolls),               # an asymmetric pass's two rolls (else None)
+    ("fig_exit_profile.png", fig_exit_profile),  # the outlet through the thickness (a profile)
 )
 
 
