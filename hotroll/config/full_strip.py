@@ -30,9 +30,10 @@ def asymmetric_refusal(case: Case) -> CaseError | None:
         lines.append("pass.roll_gap: the gap's search (gaugemeter) runs the half model only; "
                      "give pass.exit_thickness")
     for name, section in friction_sections(case):
-        if section.uses_a_f and section.a_f_rule is None:
-            lines.append(f'{name}.a_f: the full-thickness strip needs each roll\'s a_f given '
-                         f'(m^-m, > 0), not "estimate" ((3.15) is the half model\'s)')
+        line = (f'{name}.a_f: the full-thickness strip needs each roll\'s a_f given '
+                f'(m^-m, > 0), not "estimate" ((3.15) is the half model\'s)')
+        if section.uses_a_f and section.a_f_rule is None and line not in lines:
+            lines.append(line)     # once for a [friction] both rolls share
     if not lines:
         return None
     u, lo = gap.upper, gap.lower

@@ -134,6 +134,7 @@ def test_each_refusal_names_its_key_before_any_computation(over, key, monkeypatc
     refusal = asymmetric_refusal(case)
     assert refusal is not None and any(p.startswith(f"{key}: ") for p in refusal.problems), \
         refusal
+    assert len(refusal.problems) == len(set(refusal.problems))     # each line once
     monkeypatch.setattr(build, "reference_material", lambda c: pytest.fail("computed"))
     with pytest.raises(CaseError, match=key.replace(".", r"\.")):
         build_model(case)
