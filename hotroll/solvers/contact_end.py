@@ -31,6 +31,15 @@ def winkler_end(rp, layer_compliance, x_ref: float, p_ref: float) -> float:
     return float(xs[i - 1] - g[i - 1] * (xs[i] - xs[i - 1]) / (g[i] - g[i - 1]))
 
 
+def move_end(shape, rp, new: float) -> None:
+    """The contact's end of ``shape`` on the roll ``rp`` at ``new`` (m): the exit top moves
+    with its start, which stays on the roll."""
+    old = shape.end(rp)
+    shape.exit_x = shape.exit_x + (new - old)
+    shape.exit_y = shape.exit_y + float(rp.height(new) - rp.height(old))
+    shape.x_e = new
+
+
 def carried_pressure(x_new, xs, ps, rp, layer_compliance=None) -> np.ndarray:
     """The contact pressure (reduced) at the arc's vertices' new x ``x_new`` after the contact's
     end moved: the old profile (``xs`` increasing, ``ps``) interpolated at the new positions;
@@ -82,13 +91,8 @@ class ContactEndMixin:
                                                       pb.mean_two_k / pb.material.K), lo, hi)))
 
     def _set_end(self, new: float) -> None:
-        """The contact's end at ``new``; the exit top moves with its start, which stays on the
-        roll."""
-        rp, sh = self.problem.rp, self.shape
-        old = sh.end(rp)
-        sh.exit_x = sh.exit_x + (new - old)
-        sh.exit_y = sh.exit_y + float(rp.height(new) - rp.height(old))
-        sh.x_e = new
+        """The contact's end at ``new`` (``move_end``), the mesh mapped onto it."""
+        move_end(self.shape, self.problem.rp, new)
         self._set_shape()
 
     def _winkler(self, x_ref: float, p_ref: float) -> float:

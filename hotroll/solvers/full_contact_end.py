@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from hotroll.solvers.contact_end import PAST_GAP, carried_pressure, winkler_end
+from hotroll.solvers.contact_end import PAST_GAP, carried_pressure, move_end, winkler_end
 
 
 class FullContactEndMixin:
@@ -36,12 +36,8 @@ class FullContactEndMixin:
         return lambda y: self.form.layer_compliance(y, side)
 
     def _set_side_end(self, side: int, new: float) -> None:
-        """The contact's end on ``side`` at ``new``; its exit top moves with it."""
-        rp, sh = self.rolls[side], self.shapes[side]
-        old = sh.end(rp)
-        sh.exit_x = sh.exit_x + (new - old)
-        sh.exit_y = sh.exit_y + float(rp.height(new) - rp.height(old))
-        sh.x_e = new
+        """The contact's end on ``side`` at ``new`` (``move_end``), the mesh mapped onto it."""
+        move_end(self.shapes[side], self.rolls[side], new)
         self._set_shape()
 
     def move_contact_end(self) -> float:

@@ -57,18 +57,14 @@ def exit_state(sch: Schedule, case, summary: dict,
         return StripState(exit_thickness(case, summary),
                           *asymmetric_exit(summary, entry.temperature, entry.strain), grain)
     T = (entry.temperature if case.thermal is None and entry is not None
-         else _profile(prof["eta"], prof["temperature"]))
+         else ThicknessProfile(tuple(prof["eta"]), tuple(prof["temperature"])))
     if prof.get("strain") is not None:
-        strain = _profile(prof["eta"], prof["strain"])
+        strain = ThicknessProfile(tuple(prof["eta"]), tuple(prof["strain"]))
         e = ThicknessProfile(strain.eta, tuple(np.maximum(strain.values, 0.0)))
     else:
         e = ThicknessProfile.uniform(summary["homogeneous_exit_strain"])
     return StripState(exit_thickness(case, summary), T, e, grain)
 
-
-def _profile(eta, values) -> ThicknessProfile:
-    """A profile from the summary's lists."""
-    return ThicknessProfile(tuple(eta), tuple(values))
 
 
 def exit_thickness(case, summary) -> float:
