@@ -204,3 +204,51 @@ def test_the_exit_profile_figure_draws_the_files_columns(tmp_path, monkeypatch):
     np.testing.assert_allclose(drawn[1][1][0], gamma)
     np.testing.assert_allclose(drawn[0][1][1], eta)
     assert "-1 lower" in drawn[0][0].get_ylabel()
+
+
+def test_the_temperature_figure_draws_both_surfaces_of_an_asymmetric_pass(tmp_path, monkeypatch):
+    """fig_temperature of an asymmetric pass by its data: the upper surface from top.csv, the
+    lower from top_lower.csv, each roll's heat flux (MW/m^2) from its own contact file, the
+    exit lines of both surfaces' temperatures (values written here, no solve)."""
+    import matplotlib.axes
+
+    from hotroll.results.figures.run_files import RunFiles
+    from hotroll.results.figures.thermal import fig_temperature
+
+    run = make_run(tmp_path / "run")
+    summary = json.loads((run / "summary.json").read_text())
+    summary.update(thermal=True, exit_temperature_mean=1370.0, exit_temperature_surface=1200.0,
+                   exit_temperature_surface_lower=1190.0)
+    (run / "summary.json").write_text(json.dumps(summary))
+    f = dict(np.load(run / "fields.npz"))
+    f["temperature"] = 1300.0 + 10.0 * f["points"][:, 1]
+    np.savez(run / "fields.npz", **f)
+    x = np.linspace(-1.5, 1.2, 7)
+    T_up, T_lo = 1300.0 - 20.0 * x, 1290.0 - 30.0 * x
+    q_up, q_lo = np.array([1.0e7, 2.0e7, 3.0e7]), np.array([1.5e7, 2.5e7, 3.5e7])
+    xc = np.array([-0.5, -0.3, -0.1])
+    _write_csv(run / "top.csv", ["x", "y", "v1", "v2", "temperature"],
+               np.column_stack([x, np.ones(7), np.ones(7), np.zeros(7), T_up]))
+    _write_csv(run / "top_lower.csv", ["x", "y", "v1", "v2", "temperature"],
+               np.column_stack([x, np.ones(7), np.ones(7), np.zeros(7), T_lo]))
+    for name, q in (("contact.csv", q_up), ("contact_lower.csv", q_lo)):
+        _write_csv(run / name, ["x", "y", "angle", "normal_stress", "shear_stress",
+                                "heat_flux_to_roll"],
+                   np.column_stack([xc, np.ones(3), np.zeros(3), -np.ones(3), np.zeros(3), q]))
+    lines, hlines = [], []
+    real_plot, real_axh = matplotlib.axes.Axes.plot, matplotlib.axes.Axes.axhline
+    monkeypatch.setattr(matplotlib.axes.Axes, "plot",
+                        lambda ax, *a, **k: (lines.append((k.get("label"), a)),
+                                             real_plot(ax, *a, **k))[1])
+    monkeypatch.setattr(matplotlib.axes.Axes, "axhline",
+                        lambda ax, y=0, *a, **k: (hlines.append((k.get("label"), y)),
+                                                  real_axh(ax, y, *a, **k))[1])
+    path = fig_temperature(RunFiles(run), run / "fig_temperature.png")
+    _assert_png(path, 5000)
+    drawn = {label: a for label, a in lines}
+    np.testing.assert_allclose(drawn["upper surface (top.csv)"][1], T_up)
+    np.testing.assert_allclose(drawn["lower surface (top_lower.csv)"][1], T_lo)
+    np.testing.assert_allclose(drawn["heat flux to the upper roll"][1], q_up / 1e6)
+    np.testing.assert_allclose(drawn["heat flux to the lower roll"][1], q_lo / 1e6)
+    assert ("exit lower surface 1190.0 K", 1190.0) in hlines
+    assert ("exit upper surface 1200.0 K", 1200.0) in hlines
