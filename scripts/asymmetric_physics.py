@@ -36,13 +36,13 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", type=Path, default=None)
     ap.add_argument("--case", default=None, help="a bundled case, run as it is")
-    ap.add_argument("--ratios", default="1.15", help="speed ratios (upper/lower), comma-separated")
+    ap.add_argument("--ratios", default="1.1", help="speed ratios (upper/lower), comma-separated")
     a = ap.parse_args()
     out = a.out or Path(tempfile.mkdtemp())
     name = a.case or "asymmetric_plate"
     variants = VARIANTS if a.case is None else {f"{name} as bundled": {}}
     ratios = [float(r) for r in a.ratios.split(",")]
-    print("| variant | speed ratio | status | wall s | force upper / lower MN/m | torque upper "
+    print("| variant | speed ratio | status (exit code) | wall s | force upper / lower MN/m | torque upper "
           "/ lower kN m/m | curvature 1/m | exit T mean / upper / lower K | R' upper / "
           "lower mm |")
     print("|---|---|---|---|---|---|---|---|---|")
@@ -71,7 +71,7 @@ def main() -> None:
             temps = ("-" if "exit_temperature_mean" not in s else
                      f"{s['exit_temperature_mean']:.1f} / {s['exit_temperature_surface']:.1f} / "
                      f"{lower_T:.1f}")
-            print(f"| {label} | {ratio or 1.0:g} | {s['status']} | {wall:.1f} | {force} | "
+            print(f"| {label} | {ratio or 1.0:g} | {s['status']} ({s['exit_code']}) | {wall:.1f} | {force} | "
                   f"{torque} | {curv} | {temps} | {radii} |", flush=True)
 
 

@@ -254,7 +254,13 @@ class ContactEndSearch:
         trust = h if self.trust is None else self.trust
         if last is not None:
             xo, po = last
-            if 0.0 < abs(x_e - xo) <= h and (p_e - po) / (x_e - xo) < 0.0:
+            slope = (p_e - po) / (x_e - xo) if x_e != xo else 0.0
+            # the secant only where it falls at least a quarter as steeply as the pressure's
+            # line: flatter, it is the flow's noise on two nearly equal p_end (two ends 2 um
+            # apart with a wrapping strip's p_end 3.36e-3 and 3.35e-3 K sent the end a
+            # trust's 0.6 mm on, and it never settled)
+            if (0.0 < abs(x_e - xo) <= h and slope < 0.0
+                    and -slope >= 0.25 * max(p[-2] - p_e, 0.0) / h):
                 new = x_e - p_e * (x_e - xo) / (p_e - po)
             if (po < 0.0) != (p_e < 0.0):
                 trust *= 0.5

@@ -49,7 +49,10 @@ class RollContact:
     ``pressure_last_update`` (Pa): what the pressure moved in the last Newton step (exact
     contact, steady; else None). A flattening roll (``flattening``): its updates, its last
     update's largest move (m) and its shape error (-: max |w - w(p, q)| over max |w(p, q)|
-    on the contact); None for a rigid roll."""
+    on the contact); None for a rigid roll. ``overlap`` (m): how deep the free surface after
+    the contact's end lies inside the roll at its deepest (0 outside it; the steady solver's,
+    else None); ``wraps``: the strip curls onto the roll and its contact goes on past the gap
+    (a rigid-plastic strip, the full strip between two rolls)."""
 
     rp: RollPass
     profile: Mapping[str, np.ndarray]
@@ -63,6 +66,8 @@ class RollContact:
     roll_updates: int | None = None
     roll_last_move: float | None = None
     roll_shape_error: float | None = None
+    overlap: float | None = None
+    wraps: bool = False
 
 
 #: ``VertexFields``'s arrays in the order fields.npz has them (then the rolls' edges and arcs)

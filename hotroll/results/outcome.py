@@ -7,7 +7,8 @@ import math
 #: to Python for an unexpected error, 2 is bad input (refused before any computation).
 EXIT_CODES = {0: "converged", 2: "bad input", 3: "failed", 4: "diverged", 5: "not settled",
               6: "skids", 7: "not conserved", 8: "too large (memory estimate over the limit, "
-              "workflows/estimate.py; refused before meshing)", 9: "disk full"}
+              "workflows/estimate.py; refused before meshing)", 9: "disk full",
+              10: "contact not resolved"}
 
 
 def exit_code(summary: dict) -> int:
@@ -20,11 +21,15 @@ def exit_code(summary: dict) -> int:
     5: not settled, the end time, step or wall-time limit came first, or the steady solver's
     free-surface/a_f fixed point did not settle; 7: not conserved, a run that converged but
     whose mass flux or power balance is off by more than its tolerance (``not_conserved``,
-    the reason in ``failure``; ``CONSERVATION_TOL`` below)."""
+    the reason in ``failure``; ``CONSERVATION_TOL`` below); 10: contact not resolved, a run
+    that converged with its strip inside a roll past a contact's end or a contact's end held
+    at the end of its range (``contact_unresolved``, ``contact_problem`` below)."""
     if summary.get("converged"):
         return 0
     if summary.get("not_conserved"):
         return 7
+    if summary.get("contact_unresolved"):
+        return 10
     status = summary.get("status")
     if status == "failed" and summary.get("failure"):
         return 3
@@ -88,3 +93,37 @@ def conservation_problem(summary: dict) -> str | None:
         why = ("exact contact holds the roll; the flux crosses the traced free tops (their "
                "discretisation): a finer mesh.h_contact tightens it")
     return "not conserved: " + ", ".join(bad) + "; " + why
+
+
+#: How deep the strip's free surface may lie inside a roll past a contact's end, in contact
+#: elements (``roll_overlap`` over ``h_contact``): the traced surfaces settle to 1e-3 h and the
+#: full strip's contact end follows a strip that curls onto its roll once it lies 1e-2 h
+#: inside (solvers/full_contact_end.py). Seen before that (issue 52): the bundled
+#: asymmetric_plate's strip 0.26 mm (0.13 h) inside its slower roll past the gap, exit code 0.
+OVERLAP_LIMIT_H = 0.02
+
+
+def contact_problem(summary: dict) -> str | None:
+    """Why a converged run's contact is not an answer (exit code 10), or None: the strip's
+    free surface inside a roll past a contact's end (``roll_overlap`` over
+    ``OVERLAP_LIMIT_H`` elements), or a contact's end held at the end of its allowed range
+    (``contact_end_kind`` ``bound``: where the strip leaves the roll is not resolved)."""
+    why = []
+    over, h = summary.get("roll_overlap"), summary.get("h_contact")
+    if over is not None and h and over > OVERLAP_LIMIT_H * h:
+        why.append(f"the strip's free surface lies {over * 1e6:.3g} um ({over / h:.3g} "
+                   f"elements) inside a roll past its contact's end (limit "
+                   f"{OVERLAP_LIMIT_H:g} elements)")
+    rolls = summary.get("rolls") or [{"side": "the", "contact_end_kind":
+                                      summary.get("contact_end_kind")}]
+    for r in rolls:
+        if r.get("contact_end_kind") == "bound":
+            why.append(f"the {r['side']} roll's contact end is held at the end of its allowed "
+                       f"range (half a contact length before the gap, or past it: a quarter "
+                       f"for an elastic strip, half for one that curls onto the roll) with the "
+                       f"strip still pressing on the roll")
+    if not why:
+        return None
+    return ("contact not resolved: " + "; ".join(why) + "; the strip would follow the roll "
+            "further than the model does (asymmetric: a smaller speed or radius ratio, or less "
+            "friction, curls it less)")

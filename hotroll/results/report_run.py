@@ -139,9 +139,13 @@ def contact_end_text(s: dict) -> str | None:
     if kind == "recovery":
         return ("the strip follows the rising roll past the gap while it recovers elastically; "
                 "the contact ends where its pressure falls to zero")
+    if kind == "wrap":
+        return ("the strip curls onto the roll and presses on it past the gap; the contact "
+                "ends where its pressure falls to zero")
     if kind == "bound":
         return ("the contact's end reached the end of its allowed range (half a contact length "
-                "before the gap, or a quarter after it): where the strip leaves the roll is not "
+                "before the gap, or a quarter after it, half for a strip that curls onto it): where the "
+                "strip leaves the roll is not "
                 "resolved")
     if kind == "gap" and finite(p):
         return f"the contact reaches the roll gap; the pressure there is {p / 1e6:.4g} MPa"

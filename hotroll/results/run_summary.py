@@ -28,7 +28,7 @@ from hotroll.results.gap_summary import (
     upper_a_f,
 )
 from hotroll.results.neutral import decide
-from hotroll.results.outcome import conservation_problem, exit_code, leak_to_slip
+from hotroll.results.outcome import conservation_problem, contact_problem, exit_code, leak_to_slip
 from hotroll.results.output import write_csv, write_json, write_npz
 from hotroll.results.roll_figures import roll_figures
 from hotroll.results.summary import Summary
@@ -57,7 +57,8 @@ def contact_end_kind(contact: RollContact, h: float, prof) -> str | None:
     ``GAP_RESOLUTION`` elements), ``"separation"`` (the strip leaves the roll before the gap
     where the pressure falls to zero; unilateral), ``"recovery"`` (after the gap: an elastic
     strip follows the rising roll while its pressure falls, ``[contact] strip_youngs_modulus``),
-    ``"bound"`` (the end reached its allowed range's end) or ``"held"`` (bilateral contact:
+    ``"wrap"`` (after the gap: the strip curls onto the roll and presses on it there; the full
+    strip between two rolls), ``"bound"`` (the end reached its allowed range's end) or ``"held"`` (bilateral contact:
     held to the gap whatever the pressure); ``h`` the contact mesh size (m)."""
     if not len(prof["x"]):
         return None
@@ -69,7 +70,9 @@ def contact_end_kind(contact: RollContact, h: float, prof) -> str | None:
         return "gap"
     if x_e <= lo + 1e-9 * R or (x_e > gap and x_e >= hi - 1e-9 * R):
         return "bound"
-    return "separation" if x_e < gap else "recovery"
+    if x_e < gap:
+        return "separation"
+    return "wrap" if contact.wraps else "recovery"
 
 
 def separation_angle(rp, prof) -> float:
@@ -141,6 +144,8 @@ def write_results(case: Case, sol: Solution, out: Path, wall: float,
         summary.update(gap_figures(window_rows(sol), sol.contacts, gap.speed_ratio, shift))
         for entry, c, side in zip(summary["rolls"], sol.contacts, (gap.upper, gap.lower)):
             entry.update(roll_figures(case, c, c.profile, side.model))
+            entry["contact_end_kind"] = (contact_end_kind(c, sol.pass_data.h, c.profile)
+                                         if c.exact else None)
         summary.update(force_balance=gap_force_balance(last),
                        balance_error=last["vertical_balance_error"],
                        symmetry_stress_force_y=None, free_top_force_share=None,
@@ -149,10 +154,16 @@ def write_results(case: Case, sol: Solution, out: Path, wall: float,
         summary = summarise(case, sol, prof, wall) | (extra or {})
     shift_positions(summary, shift)
     summary["leak_to_slip"] = leak_to_slip(summary)
+    overlaps = [c.overlap for c in sol.contacts if c.overlap is not None]
+    summary["roll_overlap"] = max(overlaps) if overlaps else None
     problem = conservation_problem(summary) if summary["converged"] else None
     summary["not_conserved"] = problem is not None
     if problem:
         summary["converged"], summary["failure"] = False, problem
+    unresolved = contact_problem(summary) if summary["converged"] else None
+    summary["contact_unresolved"] = unresolved is not None
+    if unresolved:
+        summary["converged"], summary["failure"] = False, unresolved
     if not case.friction.uses_a_f:
         summary["a_f"] = None            # the law has no a_f
 

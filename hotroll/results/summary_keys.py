@@ -40,6 +40,9 @@ ROLL_ENTRY: dict[str, tuple[str | None, str]] = {
     "contact_start": ("m", "x where the strip first touches this roll"),
     "contact_end": ("m", "x where it leaves this roll"),
     "min_contact_pressure": ("Pa", "the lowest contact pressure on this roll"),
+    "contact_end_kind": (None, "how its contact ends: `gap`, `separation`, `recovery`, `wrap`, "
+                         "`bound` (as the top-level key)"),
+    "roll_overlap": ("m", "how deep the free surface after its contact's end lies inside it"),
 }
 #: ... and a flattening roll's (``[roll] model`` or its side's table: hitchcock or elastic),
 #: from its contact at the end of the solve (the half model's top-level ``roll_*`` keys).
@@ -266,7 +269,11 @@ class SummaryKeys:
                           "or is held to it up to the gap (false: bilateral)")
     contact_end_kind: str | None = _f(None, "contact end", "`gap`, `separation` (the strip "
                                       "leaves the roll before the gap), `recovery` (an elastic "
-                                      "strip past it), `bound` or `held` (bilateral)")
+                                      "strip past it), `wrap` (a strip that curls onto the roll, "
+                                      "past the gap), `bound` or `held` (bilateral)")
+    roll_overlap: float | None = _f("m", "roll overlap", "how deep the free surface after a "
+                                    "contact's end lies inside its roll (0: outside; over "
+                                    "0.02 contact elements: exit code 10)")
     separation_angle: float | None = _f("rad", "separation angle", "where the strip leaves "
                                         "the roll before the gap (angle from the gap)",
                                         group="Pass")
@@ -357,6 +364,9 @@ class SummaryKeys:
     leak_to_slip: float = _f("-", "leak to slip", "the leak through the roll over the forward "
                              "slip")
     not_conserved: bool = _f(None, "not conserved", "a conservation check failed")
+    contact_unresolved: bool = _f(None, "contact not resolved", "the strip lies inside a roll "
+                                  "past a contact's end, or a contact's end is held at the end "
+                                  "of its range (exit code 10)")
     width: float | None = _f("m", "width", "`[pass] width`")
     temperature: float | None = _f("K", "plate temperature", "the plate's uniform (or entry) "
                                    "temperature; null where nothing depends on it (no "

@@ -31,6 +31,32 @@ def winkler_end(rp, layer_compliance, x_ref: float, p_ref: float) -> float:
     return float(xs[i - 1] - g[i - 1] * (xs[i] - xs[i - 1]) / (g[i] - g[i - 1]))
 
 
+def overlap_after(xy: np.ndarray, rp, x_e: float, tol: float) -> tuple[float, float | None]:
+    """The free surface after a contact's end inside its roll (docs/theory.md 1e): from the
+    surface's points ``xy`` (its own frame, y towards the roll ``rp``), (the deepest point
+    inside the roll after ``x_e``, m; where the stretch inside by more than ``tol`` that starts
+    at the end leaves the roll, m, or None when the surface leaves at the end). A strip that
+    curls towards a roll follows it past the end found from the pressure (asymmetric_radii's
+    lower roll, rigid-plastic: 51 um inside over 15 mm past the gap)."""
+    xy = xy[np.argsort(xy[:, 0], kind="stable")]
+    x, y = xy[:, 0], xy[:, 1]
+    after = x > x_e
+    if not np.any(after):
+        return 0.0, None
+    x, inside = x[after], y[after] - rp.height(x[after])
+    depth = max(float(inside.max()), 0.0)
+    deep = np.flatnonzero(inside > tol)
+    # a stretch inside the roll that starts at the end: the surface does not leave the roll
+    # (by more than tol) before it goes in
+    if not len(deep) or np.any(inside[:deep[0]] < -tol):
+        return depth, None
+    out = np.flatnonzero(inside[deep[0]:] <= 0.0)
+    if not len(out):
+        return depth, float(x[-1])
+    i = int(deep[0] + out[0])
+    return depth, float(x[i - 1] + inside[i - 1] * (x[i] - x[i - 1]) / (inside[i - 1] - inside[i]))
+
+
 def move_end(shape, rp, new: float) -> None:
     """The contact's end of ``shape`` on the roll ``rp`` at ``new`` (m): the exit top moves
     with its start, which stays on the roll."""

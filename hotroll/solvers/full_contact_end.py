@@ -8,7 +8,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from hotroll.solvers.contact_end import PAST_GAP, carried_pressure, move_end, winkler_end
+from hotroll.solvers.contact_end import PAST_GAP, carried_pressure, move_end, overlap_after, winkler_end
+
+#: the traced free surface after a contact's end may lie inside its roll by this many of the
+#: traced tops' tolerance (surface_tol h) before the end moves on to where it leaves the roll
+OVERLAP_TOL = 10.0
+#: how far past its gap a strip that curls onto a roll may follow it, in contact lengths: the
+#: mesh's exit zone is at least one contact length, and the strip must leave the roll well
+#: before the outlet (docs/theory.md 1e, "wrap")
+PAST_GAP_WRAP = 0.5
 
 
 class FullContactEndMixin:
@@ -17,7 +25,16 @@ class FullContactEndMixin:
     def side_end_bounds(self, side: int) -> tuple[float, float]:
         """The contact end's range on ``side`` (``ContactEndMixin.end_bounds``: past the gap
         for an elastic strip)."""
-        return self.map.end_bounds(side, PAST_GAP if self.form.compliance else 0.0)
+        past = (PAST_GAP_WRAP if side in self.wraps else
+                PAST_GAP if self.form.compliance else 0.0)
+        return self.map.end_bounds(side, past)
+
+    def side_overlap(self, side: int) -> tuple[float, float | None]:
+        """``overlap_after`` of the free surface after the contact's end on ``side``."""
+        top, rp = self.tops[side], self.rolls[side]
+        xy = np.vstack([top.vertex_positions(self.d), top.midpoint_positions(self.d)])
+        return overlap_after(xy, rp, self.shapes[side].end(rp),
+                             OVERLAP_TOL * self.s.surface_tol * self.problem.h)
 
     def _predict_ends(self) -> None:
         """An elastic strip's contact ends to start from, each where its Winkler layer at 2k
@@ -58,6 +75,13 @@ class FullContactEndMixin:
                        if f.compliance else None)
             new, residual = self.end_searches[s].step(x[order], p[order],
                                                       self.side_end_bounds(s), winkler)
+            _, leaves = self.side_overlap(s)
+            if leaves is not None and p[order][-1] >= 0.0 and leaves > new:
+                # the strip curls onto the roll past its end, still pressing on it there: the
+                # contact goes on to where the traced surface leaves the roll (past the gap
+                # by PAST_GAP_WRAP at most; asymmetric_radii's slower roll: 9.2 mm)
+                self.wraps.add(s)
+                new = float(np.clip(leaves, *self.side_end_bounds(s)))
             self._set_side_end(s, new)
             x_new = top.vertex_positions(self.d, verts)[:, 0]
             p_new = carried_pressure(x_new, x[order], p[order], rp,

@@ -128,6 +128,7 @@ class FullSteadyRun(FullContactEndMixin, SteadyRun):
         self.map = FullStripMap(ref, rolls, self.mesh, n, self.d_ref, self.x_in)
         self.unilateral = settings.unilateral
         self.end_searches = {s: ContactEndSearch() for s in SIDES}
+        self.wraps: set[int] = set()
         self.shapes = {s: StripShape.flat(rolls[s]) for s in SIDES}
         self._set_shape()
         self.mesh_key = mesh_key(self.mesh)
@@ -184,9 +185,12 @@ class FullSteadyRun(FullContactEndMixin, SteadyRun):
             flat.waits_not_on = (*C.RollFlattening.waits_not_on, "roll_upper", "roll_lower")
             out.append(flat)
         if self.unilateral:
-            tol = (C.ContactEnd.TOLERANCE_ELASTIC if self.form.compliance
-                   else C.ContactEnd.TOLERANCE)
-            end = C.ContactEnd(self.move_contact_end, tol * s.surface_tol * self.problem.h)
+            def tol() -> float:      # an end that falls smoothly to zero: the elastic strip's
+                smooth = self.form.compliance or self.wraps
+                return ((C.ContactEnd.TOLERANCE_ELASTIC if smooth else C.ContactEnd.TOLERANCE)
+                        * s.surface_tol * self.problem.h)
+
+            end = C.ContactEnd(self.move_contact_end, tol)
             # every round, not after the others have come within 10 tolerances (which guards
             # against a_f (3.15)'s swings, not estimated here): asymmetric_plate's fast roll
             # leaves 6.4 mm before the gap, and its end moved every other round (50 Newton
@@ -220,6 +224,7 @@ class FullSteadyRun(FullContactEndMixin, SteadyRun):
                 c.after_others = C.RollFlattening.after_others
         self.shapes = {s: StripShape.flat(self.rolls[s]) for s in SIDES}
         self.end_searches = {s: ContactEndSearch() for s in SIDES}
+        self.wraps = set()           # the sides whose contact follows its roll past the gap
         self._tilt = None
         self._set_shape()
         self._predict_ends()

@@ -113,4 +113,5 @@ def side_contact(run, side: int, prof: dict) -> RollContact:
         flattening=roll is not None,
         roll_updates=roll.updates if roll is not None else None,
         roll_last_move=roll.last_move if roll is not None else None,
-        roll_shape_error=shape_error(roll, prof) if roll is not None else None)
+        roll_shape_error=shape_error(roll, prof) if roll is not None else None,
+        overlap=run.side_overlap(side)[0], wraps=side in run.wraps)

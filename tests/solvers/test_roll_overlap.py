@@ -1,0 +1,102 @@
+"""The free surface after a contact's end against its roll (issue 52 session 3:
+``solvers/contact_end.overlap_after``), the outcome it leads to (``results/outcome.py:
+contact_problem``, exit code 10) and the end search's guard on a noise-flat secant
+(``fem/free_surface.ContactEndSearch``).
+
+Labels: [hand] closed forms of a straight line leaving a circle; [plumb] what the summary's
+keys make of the exit code."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from hotroll.fem.free_surface import ContactEndSearch
+from hotroll.model.geometry import RollPass
+from hotroll.results.outcome import EXIT_CODES, OVERLAP_LIMIT_H, contact_problem, exit_code
+from hotroll.solvers.contact_end import overlap_after
+
+R, H1 = 0.36, 0.01
+
+
+def _line(beta: float, x0: float = 1.0, n: int = 4001):
+    """A straight free surface leaving the roll's lowest point (x0, H1) at slope beta towards
+    the roll (own frame: y towards it), sampled from the gap to 60 mm past it."""
+    x = np.linspace(x0, x0 + 0.06, n)
+    return np.c_[x, H1 + beta * (x - x0)]
+
+
+@pytest.mark.parametrize("beta", [0.01, 0.042])
+def test_a_line_inclined_into_the_roll_leaves_it_where_the_chord_ends(beta):
+    """[hand] a line through the circle's lowest point at slope beta meets the circle again
+    at x = 2 R beta / (1 + beta^2) past it, and lies inside it at most R (sqrt(1 + beta^2) - 1)
+    deep (at x = R beta / sqrt(1 + beta^2)); sampled every 15 um: the depth to 1e-6 of itself,
+    the crossing interpolated to 1e-3 of the chord."""
+    rp = RollPass(R, 0.0125, H1, omega=5.0)
+    depth, leaves = overlap_after(_line(beta), rp, 1.0, 1e-7)
+    assert depth == pytest.approx(R * (math.sqrt(1 + beta**2) - 1), rel=1e-5)
+    assert leaves - 1.0 == pytest.approx(2 * R * beta / (1 + beta**2), rel=1e-3)
+
+
+def test_a_line_leaving_the_roll_is_outside_it():
+    """[hand] inclined away from the roll (beta < 0) or straight (the roll rises away: x^2/2R):
+    no depth, no stretch inside; a surface after the end only (points before x_e ignored:
+    the contact itself lies on the roll)."""
+    rp = RollPass(R, 0.0125, H1, omega=5.0)
+    for beta in (-0.01, 0.0):
+        depth, leaves = overlap_after(_line(beta), rp, 1.0, 1e-7)
+        assert depth == 0.0 and leaves is None
+    inside_before = np.r_[np.c_[[0.99, 0.995], [H1 + 1e-3, H1 + 1e-3]], _line(-0.01)]
+    assert overlap_after(inside_before, rp, 1.0, 1e-7) == (0.0, None)
+
+
+def test_a_stretch_inside_that_starts_later_is_not_a_wrap():
+    """[hand] a surface that leaves the roll (by more than tol) and comes back into it later
+    reports its depth, but no stretch from the end to follow: the contact does not jump."""
+    rp = RollPass(R, 0.0125, H1, omega=5.0)
+    xy = _line(-0.01)
+    x = xy[:, 0] - 1.0
+    xy[:, 1] = H1 - 0.01 * x + 2.0 * x**2           # out first, then curling into the roll
+    depth, leaves = overlap_after(xy, rp, 1.0, 1e-6)
+    assert depth > 1e-4 and leaves is None
+
+
+def test_the_outcome_of_a_strip_inside_a_roll():
+    """[plumb] overlap above OVERLAP_LIMIT_H contact elements, or a contact end held at its
+    range's end (`bound`, on either roll): exit code 10 with the reason; at the limit and
+    below, or ends of other kinds: none."""
+    h = 1e-3
+    base = {"h_contact": h, "rolls": [{"side": "upper", "contact_end_kind": "separation"},
+                                      {"side": "lower", "contact_end_kind": "wrap"}]}
+    assert contact_problem({**base, "roll_overlap": OVERLAP_LIMIT_H * h}) is None
+    why = contact_problem({**base, "roll_overlap": 1.1 * OVERLAP_LIMIT_H * h})
+    assert why.startswith("contact not resolved: the strip's free surface lies 22 um")
+    bound = {**base, "roll_overlap": 0.0, "rolls": [base["rolls"][0],
+                                                    {"side": "lower", "contact_end_kind": "bound"}]}
+    assert "the lower roll's contact end is held at the end of its allowed range" in \
+        contact_problem(bound)
+    assert "the roll's contact end" in contact_problem({"contact_end_kind": "bound"})
+    s = {"converged": False, "contact_unresolved": True, "status": "steady",
+         "roll_force": 1.0, "roll_torque": 1.0}
+    assert exit_code(s) == 10 and EXIT_CODES[10] == "contact not resolved"
+
+
+def test_the_end_search_ignores_a_noise_flat_secant():
+    """[hand] two ends 2 um apart whose p_end differ by 1e-5 of the pressure's fall over the
+    last element (a secant 1e5 times flatter than the line): the step is the line's, the zero
+    of p through the last two vertices, not the secant's 1.4 mm; a secant as steep as the
+    line is taken."""
+    h = 2.8e-3
+    x = np.array([1.0, 1.0 + h])
+    search = ContactEndSearch()
+    search.step(x, np.array([1.547, 3.361e-3]), (0.9, 1.1))
+    x2 = x + 2e-6
+    new, _ = search.step(x2, np.array([1.547, 3.35e-3]), (0.9, 1.1))
+    line = x2[-1] + 3.35e-3 * h / (1.547 - 3.35e-3)
+    assert new == pytest.approx(line, abs=1e-12)
+    steep = ContactEndSearch()
+    steep.step(x, np.array([1.547, 0.1]), (0.9, 1.1))
+    x3 = x + 1e-4
+    new, _ = steep.step(x3, np.array([1.547, 0.05]), (0.9, 1.1))
+    assert new == pytest.approx(x3[-1] - 0.05 * 1e-4 / (0.05 - 0.1), abs=1e-12)
