@@ -77,7 +77,7 @@ def main() -> None:
 
         rows = {}
         with tempfile.TemporaryDirectory() as tmp:
-            for kind, asym in (("half (no speed ratio)", False), ("full, r = 1.15", True)):
+            for kind, asym in (("half (no speed ratio)", False), ("full, its speed ratio (1.1: wraps)", True)):
                 runs = [solve_example(asym, Path(tmp) / f"{asym}{i}") for i in range(a.repeat + 1)]
                 rows[kind] = (runs[0][0], statistics.median(r[0] for r in runs[1:]),
                               runs[-1][1], runs[-1][2], runs[-1][3])
