@@ -201,7 +201,8 @@ class ContactEndSearch:
     first zero crossing after the peak, however far); once the last update lies within an
     element, along the secant through the two (x_e, p_end) instead (p_end(x_e) falls about
     twice as steeply as the pressure along the arc: the line alone overshot, p_end alternating
-    in sign and shrinking by only 0.7 an update). A step is at most ``trust`` long: one
+    in sign and shrinking by only 0.7 an update), unless that secant is less than a quarter
+    as steep as the line (the flow's noise on two nearly equal p_end). A step is at most ``trust`` long: one
     element, halved whenever p_end changes sign (the root lies behind) and doubled back
     towards an element only while |p_end| falls on the same side (a trust that grew whenever
     the sign held let a search near the gap cycle with period four). p_end is read from a

@@ -89,7 +89,10 @@ def gap_figures(solved: list[dict], contacts, speed_ratio: float, shift: float) 
     for name, contact in zip(SIDES, contacts):
         entry = {"side": name, "radius": contact.rp.radius,
                  "surface_speed": contact.rp.u_roll, "roll_overlap": contact.overlap,
-                 "contact_end_kind": None}     # the summary's (results/run_summary.py)
+                 "contact_end_kind": None,     # the summary's (results/run_summary.py)
+                 "contact_end_pressure": (float(-contact.profile["normal_stress"][-1])
+                                          if contact.exact and len(contact.profile["x"])
+                                          else None)}
         for key in ROLL_ENTRY:
             if key not in entry:
                 entry[key] = _mean(solved, f"{name}_{key}") + (shift if key in X_COLUMNS

@@ -107,23 +107,33 @@ def contact_problem(summary: dict) -> str | None:
     """Why a converged run's contact is not an answer (exit code 10), or None: the strip's
     free surface inside a roll past a contact's end (``roll_overlap`` over
     ``OVERLAP_LIMIT_H`` elements), or a contact's end held at the end of its allowed range
-    (``contact_end_kind`` ``bound``: where the strip leaves the roll is not resolved)."""
+    (``contact_end_kind`` ``bound``: where the strip leaves the roll is not resolved; the
+    end's pressure, ``contact_end_pressure``, says which way it would move)."""
     why = []
     over, h = summary.get("roll_overlap"), summary.get("h_contact")
     if over is not None and h and over > OVERLAP_LIMIT_H * h:
         why.append(f"the strip's free surface lies {over * 1e6:.3g} um ({over / h:.3g} "
                    f"elements) inside a roll past its contact's end (limit "
                    f"{OVERLAP_LIMIT_H:g} elements)")
-    rolls = summary.get("rolls") or [{"side": "the", "contact_end_kind":
-                                      summary.get("contact_end_kind")}]
+    rolls = summary.get("rolls") or [{"side": None, "contact_end_kind":
+                                      summary.get("contact_end_kind"),
+                                      "contact_end_pressure": summary.get("contact_end_pressure")}]
     for r in rolls:
-        if r.get("contact_end_kind") == "bound":
-            why.append(f"the {r['side']} roll's contact end is held at the end of its allowed "
+        if r.get("contact_end_kind") != "bound":
+            continue
+        p = r.get("contact_end_pressure")
+        who = f"the {r['side']} roll's" if r.get("side") else "the roll's"
+        if p is not None and p < 0.0:
+            why.append(f"{who} contact end is held at the end of its allowed "
+                       f"range with a tensile contact stress there ({p / 1e6:.3g} MPa): the "
+                       f"strip would leave the roll before it")
+        else:
+            why.append(f"{who} contact end is held at the end of its allowed "
                        f"range (half a contact length before the gap, or past it: a quarter "
                        f"for an elastic strip, half for one that curls onto the roll) with the "
-                       f"strip still pressing on the roll")
+                       f"strip still pressing on the roll: it would follow the roll further "
+                       f"than the model does (asymmetric: a smaller speed or radius ratio, or "
+                       f"less friction, curls it less)")
     if not why:
         return None
-    return ("contact not resolved: " + "; ".join(why) + "; the strip would follow the roll "
-            "further than the model does (asymmetric: a smaller speed or radius ratio, or less "
-            "friction, curls it less)")
+    return "contact not resolved: " + "; ".join(why)

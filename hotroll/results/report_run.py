@@ -163,7 +163,8 @@ def run_warnings(s: dict) -> list[dict]:
         w.append({"level": level, "text": text})
 
     if s.get("failure"):
-        add("error", s["failure"] if s.get("not_conserved") else f"the run failed: {s['failure']}")
+        add("error", s["failure"] if s.get("not_conserved") or s.get("contact_unresolved")
+            else f"the run failed: {s['failure']}")
     if s.get("outlet_driven"):
         add("error", "skids: the outlet penalty drives the strip, no neutral point")
     if not finite(s.get("roll_force")):

@@ -43,6 +43,7 @@ ROLL_ENTRY: dict[str, tuple[str | None, str]] = {
     "contact_end_kind": (None, "how its contact ends: `gap`, `separation`, `recovery`, `wrap`, "
                          "`bound` (as the top-level key)"),
     "roll_overlap": ("m", "how deep the free surface after its contact's end lies inside it"),
+    "contact_end_pressure": ("Pa", "the contact pressure at its contact's end"),
 }
 #: ... and a flattening roll's (``[roll] model`` or its side's table: hitchcock or elastic),
 #: from its contact at the end of the solve (the half model's top-level ``roll_*`` keys).

@@ -119,18 +119,17 @@ class ContactEnd(Coupling):
     TOLERANCE_ELASTIC = 10.0
     #: (and a strip that curls onto a roll past its gap: its pressure falls smoothly to zero
     #: there too; asymmetric_plate with elastic-disc rolls dithered by 1-5 um (1e-3 h) for 20
-    #: rounds and ended unsettled; solvers/full_steady.py)
+    #: rounds and ended unsettled; solvers/full_contact_end.py: end_tolerance)
     #: moved once the other couplings are within 10 tolerances: a_f (3.15) of a warm start from
     #: another pass swings by 10x from update to update, and the end followed each swing
     #: (a study's warm-started Example 1 pass did not settle in 30 updates)
     after_others = 10.0
 
-    def __init__(self, move: Callable[[], float], tol: float | Callable[[], float]):
+    def __init__(self, move: Callable[[], float], tol: float):
         self.move, self.tol = move, tol
 
     def update(self, result) -> float:
-        moved = self.move()
-        return moved / (self.tol() if callable(self.tol) else self.tol)
+        return self.move() / self.tol
 
 
 class TandemSpeed(Coupling):

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from hotroll.solvers.contact_end import PAST_GAP, carried_pressure, move_end, overlap_after, winkler_end
+from hotroll.solvers.couplings import ContactEnd
 
 #: the traced free surface after a contact's end may lie inside its roll by this many of the
 #: traced tops' tolerance (surface_tol h) before the end moves on to where it leaves the roll
@@ -57,10 +58,20 @@ class FullContactEndMixin:
         move_end(self.shapes[side], self.rolls[side], new)
         self._set_shape()
 
+    def end_tolerance(self, side: int) -> float:
+        """The contact end's tolerance on ``side`` (m): 1e-2 h where its pressure falls
+        smoothly to zero at the end (an elastic strip, or one that curls onto the roll past
+        its gap: ``ContactEnd.TOLERANCE_ELASTIC``), else 1e-3 h."""
+        smooth = self.form.compliance or side in self.wraps
+        return ((ContactEnd.TOLERANCE_ELASTIC if smooth else ContactEnd.TOLERANCE)
+                * self.s.surface_tol * self.problem.h)
+
     def move_contact_end(self) -> float:
         """Each side's contact end by its own search (``ContactEndMixin.move_contact_end``:
         with the strip's elasticity past the gap, seen through its Winkler layer, the
-        multiplier carried with the end's moves)."""
+        multiplier carried with the end's moves); a strip that curls onto its roll followed
+        past the gap (``overlap_after``). The larger of the two ends' residual or move, each
+        in units of its own ``end_tolerance``."""
         out = 0.0
         f = self.form
         for s, top in self.tops.items():
@@ -82,6 +93,8 @@ class FullContactEndMixin:
                 # by PAST_GAP_WRAP at most; asymmetric_radii's slower roll: 9.2 mm)
                 self.wraps.add(s)
                 new = float(np.clip(leaves, *self.side_end_bounds(s)))
+            elif new < rp.axis_x:
+                self.wraps.discard(s)        # back before the gap: no longer curled onto it
             self._set_side_end(s, new)
             x_new = top.vertex_positions(self.d, verts)[:, 0]
             p_new = carried_pressure(x_new, x[order], p[order], rp,
@@ -89,5 +102,5 @@ class FullContactEndMixin:
             mv, dofs = f.multiplier_vertices()
             vec = f.multiplier.vec.FV().NumPy()
             vec[dofs[np.searchsorted(mv, verts)]] = p_new / f.lam_scale
-            out = max(out, residual, abs(new - old))
+            out = max(out, max(residual, abs(new - old)) / self.end_tolerance(s))
         return out

@@ -185,12 +185,8 @@ class FullSteadyRun(FullContactEndMixin, SteadyRun):
             flat.waits_not_on = (*C.RollFlattening.waits_not_on, "roll_upper", "roll_lower")
             out.append(flat)
         if self.unilateral:
-            def tol() -> float:      # an end that falls smoothly to zero: the elastic strip's
-                smooth = self.form.compliance or self.wraps
-                return ((C.ContactEnd.TOLERANCE_ELASTIC if smooth else C.ContactEnd.TOLERANCE)
-                        * s.surface_tol * self.problem.h)
-
-            end = C.ContactEnd(self.move_contact_end, tol)
+            # each side's move in units of its own tolerance (``end_tolerance``)
+            end = C.ContactEnd(self.move_contact_end, 1.0)
             # every round, not after the others have come within 10 tolerances (which guards
             # against a_f (3.15)'s swings, not estimated here): asymmetric_plate's fast roll
             # leaves 6.4 mm before the gap, and its end moved every other round (50 Newton

@@ -20,9 +20,9 @@ from hotroll.solvers.contact_end import overlap_after
 R, H1 = 0.36, 0.01
 
 
-def _line(beta: float, x0: float = 1.0, n: int = 4001):
+def _line(beta: float, x0: float = 1.0, n: int = 121):
     """A straight free surface leaving the roll's lowest point (x0, H1) at slope beta towards
-    the roll (own frame: y towards it), sampled from the gap to 60 mm past it."""
+    the roll (own frame: y towards it), sampled every 0.5 mm from the gap to 60 mm past it."""
     x = np.linspace(x0, x0 + 0.06, n)
     return np.c_[x, H1 + beta * (x - x0)]
 
@@ -31,12 +31,13 @@ def _line(beta: float, x0: float = 1.0, n: int = 4001):
 def test_a_line_inclined_into_the_roll_leaves_it_where_the_chord_ends(beta):
     """[hand] a line through the circle's lowest point at slope beta meets the circle again
     at x = 2 R beta / (1 + beta^2) past it, and lies inside it at most R (sqrt(1 + beta^2) - 1)
-    deep (at x = R beta / sqrt(1 + beta^2)); sampled every 15 um: the depth to 1e-6 of itself,
-    the crossing interpolated to 1e-3 of the chord."""
+    deep (at x = R beta / sqrt(1 + beta^2)); sampled every 0.5 mm: the depth (the deepest
+    sample) to 2 % of itself, the crossing interpolated between its two samples to 3e-3 of
+    the chord (the nearer sample alone is up to 0.25 mm off, 3-7 % of the chord)."""
     rp = RollPass(R, 0.0125, H1, omega=5.0)
     depth, leaves = overlap_after(_line(beta), rp, 1.0, 1e-7)
-    assert depth == pytest.approx(R * (math.sqrt(1 + beta**2) - 1), rel=1e-5)
-    assert leaves - 1.0 == pytest.approx(2 * R * beta / (1 + beta**2), rel=1e-3)
+    assert depth == pytest.approx(R * (math.sqrt(1 + beta**2) - 1), rel=2e-2)
+    assert leaves - 1.0 == pytest.approx(2 * R * beta / (1 + beta**2), rel=3e-3)
 
 
 def test_a_line_leaving_the_roll_is_outside_it():
@@ -76,7 +77,11 @@ def test_the_outcome_of_a_strip_inside_a_roll():
                                                     {"side": "lower", "contact_end_kind": "bound"}]}
     assert "the lower roll's contact end is held at the end of its allowed range" in \
         contact_problem(bound)
-    assert "the roll's contact end" in contact_problem({"contact_end_kind": "bound"})
+    assert "with the strip still pressing on the roll" in contact_problem(bound)
+    half = contact_problem({"contact_end_kind": "bound", "contact_end_pressure": -2.5e6})
+    assert half == ("contact not resolved: the roll's contact end is held at the end of its "
+                    "allowed range with a tensile contact stress there (-2.5 MPa): the strip "
+                    "would leave the roll before it")
     s = {"converged": False, "contact_unresolved": True, "status": "steady",
          "roll_force": 1.0, "roll_torque": 1.0}
     assert exit_code(s) == 10 and EXIT_CODES[10] == "contact not resolved"
