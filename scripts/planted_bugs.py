@@ -547,6 +547,22 @@ BUGS: dict[str, tuple[str, str, str, str]] = {
                       '"shear_strain": values[0].tolist(),',
                       '"shear_strain": (1.1 * values[0]).tolist(),',
                       "the exit profile's shear strain x 1.1"),
+    # --- issue 52 session 3: a strip that curls onto a roll ---
+    "overlap_depth": ("hotroll/solvers/contact_end.py",
+                      "depth = max(float(inside.max()), 0.0)",
+                      "depth = 1.1 * max(float(inside.max()), 0.0)",
+                      "the free surface's depth inside the roll x 1.1"),
+    "overlap_limit": ("hotroll/results/outcome.py",
+                      "OVERLAP_LIMIT_H = 0.02", "OVERLAP_LIMIT_H = 0.022",
+                      "exit code 10's overlap limit x 1.1"),
+    "end_pressure_per_roll": ("hotroll/results/gap_summary.py",
+                              '"contact_end_pressure": (float(-contact.profile["normal_stress"][-1])',
+                              '"contact_end_pressure": (float(-1.1 * contact.profile["normal_stress"][-1])',
+                              "each roll's contact end pressure x 1.1"),
+    "wrap_off": ("hotroll/solvers/full_contact_end.py",
+                 "if leaves is not None and p[order][-1] >= 0.0 and leaves > new:",
+                 "if False and leaves is not None and p[order][-1] >= 0.0 and leaves > new:",
+                 "the contact's end does not follow a strip that curls onto its roll"),
 }
 
 

@@ -54,6 +54,9 @@ def test_the_lower_contact_goes_on_past_its_gap_and_ends_where_its_pressure_vani
     assert upper_entry["contact_end_kind"] == "separation" and upper_entry["contact_end"] < 1.0
     peak = max(-r["normal_stress"] for r in lower)
     assert abs(lower[-1]["normal_stress"]) <= 0.01 * peak
+    # [id] the entry's end pressure is contact_lower.csv's last node's
+    assert lower_entry["contact_end_pressure"] == pytest.approx(-lower[-1]["normal_stress"],
+                                                                rel=1e-12, abs=1e-9)
     # past the gap the roll still carries the strip: pressure on the nodes after x = 1 m
     assert max(-r["normal_stress"] for r in lower if r["x"] > 1.0 + 0.5 * H) > 0.1 * peak
 
