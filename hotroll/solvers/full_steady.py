@@ -9,8 +9,10 @@ whole strip; the temperature lives on one strip mesh over the whole thickness
 (``solvers/thermal_coupling.py``); a flattening roll (``roll_models``) is the half model's
 ``FlatteningRoll`` on its own side, updated from its own contact's tractions in its own frame.
 The strip's elasticity (a Winkler layer in each contact) and each contact's end past its gap
-are the half model's, per side. Not yet here: a tandem speed, warm starts (refused by
-``check_supported``).
+are the half model's, per side; a strip that curls onto a roll follows it past the gap
+(``full_contact_end.py``). A sweep's neighbour on the same mesh starts a case warm
+(``warm_start``/``_warm``: both shapes, the wrapping sides). Not yet here: a tandem speed
+(refused by ``check_supported``).
 """
 from __future__ import annotations
 
@@ -34,7 +36,7 @@ from hotroll.solvers.full_contact_end import FullContactEndMixin
 from hotroll.solvers.gap_measure import gap_measure, strip_force
 from hotroll.solvers.problem import Problem
 from hotroll.solvers.steady import SteadyRun, top_parts
-from hotroll.solvers.steady_settings import SteadySettings, mesh_key
+from hotroll.solvers.steady_settings import FullWarmStart, SteadySettings, mesh_key
 
 SIDES = (1, -1)
 #: the Newton update (over U) below which the couplings move (``SteadySettings.couple_below``,
@@ -167,8 +169,34 @@ class FullSteadyRun(FullContactEndMixin, SteadyRun):
     def _estimate_a_f(self) -> float:
         raise ValueError("the full strip takes a_f given per roll (friction.a_f), not (3.15)")
 
-    def warm_start(self):
-        raise NotImplementedError("warm starts of the full strip: not yet")
+    def warm_start(self) -> FullWarmStart:
+        """This run's solved state, to start a neighbouring case on the same mesh from."""
+        return FullWarmStart(self.solution, {sd: sh.copy() for sd, sh in self.shapes.items()},
+                             tuple(sorted(self.wraps)), self.form.m.Get(),
+                             self.problem.rp.u_roll, self.mesh_key, self.s.free_surface)
+
+    def _warm(self, warm, vec: np.ndarray, target: float) -> None:
+        """Start from a neighbour's state (``SteadyRun._warm``): its two shapes and wrapping
+        sides, its velocity scaled to this reference roll speed and its (reduced) pressure by
+        the Norton-Hoff rate factor; the rolls rigid and the temperature the entry's, as a
+        cold start has them."""
+        if not isinstance(warm, FullWarmStart) or warm.mesh_key != self.mesh_key \
+                or warm.solution.shape != vec.shape:
+            raise ValueError("warm start: the neighbour was not a full strip on this mesh")
+        if warm.free_surface != self.s.free_surface:
+            raise ValueError(f"warm start: the neighbour has {warm.free_surface!r} free tops, "
+                             f"this case {self.s.free_surface!r}")
+        self._reset_couplings()
+        ratio = self.problem.rp.u_roll / warm.u_roll
+        nv = self.form.nonlinear.n_velocity_dofs()
+        pr, lr = self.form.nonlinear.pressure_range(), self.form.nonlinear.multiplier_range()
+        vec[:nv] = ratio * warm.solution[:nv]
+        vec[pr] = ratio**target * warm.solution[pr]
+        vec[lr] = ratio * warm.solution[lr]
+        self.shapes = {sd: sh.copy() for sd, sh in warm.shapes.items()}
+        self.wraps = set(warm.wraps)
+        self._set_shape()
+        self._update_strain()
 
     def _couplings(self, warm: bool = False) -> list:
         s, out = self.s, []
@@ -212,21 +240,18 @@ class FullSteadyRun(FullContactEndMixin, SteadyRun):
         return (prof["angle"][order], -prof["normal_stress"][order],
                 prof["shear_stress"][order], force)
 
-    def _cold_start(self) -> None:
+    def _reset_couplings(self) -> None:
+        """What a cold and a warm start share: each flattening roll back to its rigid start
+        (and waiting again), a fresh contact-end search and tilt relaxation, the entry
+        temperature until the first update (the half model's), each roll's a_f."""
         for s, roll in self.flattening.items():     # each flattening roll back to its start
             roll.shape.set(*self._flat_start[s])
         for c in getattr(self, "couplings", ()):    # ... and it waits again (cold)
             if isinstance(c, C.RollFlattening):
                 c.after_others = C.RollFlattening.after_others
-        self.shapes = {s: StripShape.flat(self.rolls[s]) for s in SIDES}
         self.end_searches = {s: ContactEndSearch() for s in SIDES}
-        self.wraps = set()           # the sides whose contact follows its roll past the gap
         self._tilt = None
-        self._set_shape()
-        self._predict_ends()
-        self._kinematic_guess()
-        self._update_strain()
-        if self.thermal is not None:     # the entry temperature until the first update (half's)
+        if self.thermal is not None:
             self.thermal.reset(self.problem.temperature)
         for s in SIDES:
             a_f = self.a_f_given[s]
@@ -234,6 +259,15 @@ class FullSteadyRun(FullContactEndMixin, SteadyRun):
                 raise ValueError(f"the full strip needs the {'upper' if s > 0 else 'lower'} "
                                  f"roll's a_f given (friction.a_f)")
             self.form.a_f_side[s].Set(1.0 if a_f is None else a_f)
+
+    def _cold_start(self) -> None:
+        self._reset_couplings()
+        self.shapes = {s: StripShape.flat(self.rolls[s]) for s in SIDES}
+        self.wraps = set()           # the sides whose contact follows its roll past the gap
+        self._set_shape()
+        self._predict_ends()
+        self._kinematic_guess()
+        self._update_strain()
 
     def _set_contact(self) -> None:
         chi = self.form.chi.vec.FV().NumPy()

@@ -88,6 +88,21 @@ class WarmStart:
     free_surface: str = "traced"
 
 
+@dataclass
+class FullWarmStart:
+    """A solved full strip (``solvers/full_steady.py``) that a neighbouring case on the same
+    mesh can start from: its vector, both sides' shapes ({+1: upper, -1: lower}), the sides
+    whose strip wraps its roll, and the m and reference roll speed it was solved for."""
+
+    solution: np.ndarray
+    shapes: dict
+    wraps: tuple
+    m: float
+    u_roll: float
+    mesh_key: str
+    free_surface: str = "traced"
+
+
 def mesh_key(mesh) -> str:
     """Hash of the vertex coordinates and element count: equal keys, same mesh and DOFs."""
     pts = np.array([v.point for v in mesh.vertices], dtype=float)

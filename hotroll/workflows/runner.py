@@ -93,10 +93,14 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
             near = warm = None
             if model.gap is not None:
                 # an asymmetric pass: the full-thickness strip between its two rolls (each
-                # in its own frame, their axes at x = 0); no warm start from a sweep yet
+                # in its own frame, their axes at x = 0); a sweep's neighbour on the same mesh
+                # (a study over the speed ratio, say) starts it warm
                 gap = model.gap.at_axis(0.0)
                 run = FullSteadyRun(model, steady_settings(case), case.plate.length,
                                     gap.rolls, gap.frictions, gap.a_f, gap.roll_models)
+                if sweep is not None:
+                    run.record = sweep.history
+                    near, warm = sweep.nearest(case, run)
             elif sweep is None:
                 run = SteadyRun(model, steady_settings(case), case.plate.length)
             else:
@@ -108,7 +112,7 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
             if model.gap is None and omega != case.pass_.roll_angular_velocity:      # a tandem speed found in the solve
                 case = case.with_overrides(**{"pass.roll_angular_velocity": omega})
                 write_text(out / "case.toml", case.to_toml())
-            if sweep is not None and model.gap is None:
+            if sweep is not None:
                 sweep.add(case, run)
             extra["warm_start_from"] = near
             extra["warm_start_failed"] = bool(run.result.warm_failed)

@@ -36,7 +36,7 @@ from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv, write_json, write_text
 from hotroll.results.units import UNITS
 from hotroll.solvers.steady import SteadyRun
-from hotroll.solvers.steady_settings import WarmStart
+from hotroll.solvers.steady_settings import FullWarmStart, WarmStart
 from hotroll.workflows.estimate import ResourceError
 from hotroll.workflows.runner import build_model, finished_summary, run_case, steady_settings
 from hotroll.workflows.schedule import ScheduleError, run_schedule
@@ -96,7 +96,8 @@ def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
                 cdir.mkdir(parents=True, exist_ok=True)
                 write_text(cdir / "worker.txt", row["worker"] + "\n")   # who solves it
                 if pending is not None:        # the last case was read back: its run too
-                    sweep._last = (pending[0].name, restore_run(*pending))
+                    if isinstance(pending[1], WarmStart):     # (the half strip's: schedules)
+                        sweep._last = (pending[0].name, restore_run(*pending))
                     pending = None
                 summary = run_case(case, cdir, resume=False, sweep=sweep)
                 if sweep is not None and sweep.solved and sweep.solved[-1][0] == case.name:
@@ -129,26 +130,46 @@ def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
 WARM_FILE = "warm_state.npz"
 
 
+def _shape_arrays(sh, prefix: str = "") -> dict:
+    return {f"{prefix}x_c": sh.x_c, f"{prefix}entry_x": sh.entry_x,
+            f"{prefix}entry_y": sh.entry_y, f"{prefix}exit_x": sh.exit_x,
+            f"{prefix}exit_y": sh.exit_y, f"{prefix}x_e": math.nan if sh.x_e is None else sh.x_e}
+
+
+def _shape_of(z, prefix: str = "") -> StripShape:
+    x_e = float(z[f"{prefix}x_e"]) if f"{prefix}x_e" in z.files else math.nan   # issue 50
+    return StripShape(float(z[f"{prefix}x_c"]), z[f"{prefix}entry_x"], z[f"{prefix}entry_y"],
+                      z[f"{prefix}exit_x"], z[f"{prefix}exit_y"],
+                      None if math.isnan(x_e) else x_e)
+
+
 def save_warm(path: Path, warm) -> None:
+    """A solved case's final state (``WarmStart`` of the half strip, ``FullWarmStart`` of
+    the full strip: both sides' shapes, prefixed ``upper_``/``lower_``)."""
     import numpy as np
 
-    sh = warm.shape
+    common = {"solution": warm.solution, "m": warm.m, "u_roll": warm.u_roll,
+              "mesh_key": warm.mesh_key, "free_surface": warm.free_surface}
+    if isinstance(warm, FullWarmStart):
+        arrays = {**common, "kind": "full", "wraps": np.asarray(warm.wraps, dtype=int),
+                  **_shape_arrays(warm.shapes[1], "upper_"),
+                  **_shape_arrays(warm.shapes[-1], "lower_")}
+    else:
+        arrays = {**common, "a_f": warm.a_f, **_shape_arrays(warm.shape)}
     with atomic(path) as tmp:
-        np.savez(tmp, solution=warm.solution, x_c=sh.x_c, entry_x=sh.entry_x, entry_y=sh.entry_y,
-                 exit_x=sh.exit_x, exit_y=sh.exit_y, a_f=warm.a_f, m=warm.m, u_roll=warm.u_roll,
-                 mesh_key=warm.mesh_key, free_surface=warm.free_surface,
-                 x_e=np.nan if sh.x_e is None else sh.x_e)
+        np.savez(tmp, **arrays)
 
 
 def load_warm(path: Path):
     import numpy as np
 
     z = np.load(path)
-    x_e = float(z["x_e"]) if "x_e" in z.files else math.nan      # the contact's end (issue 50)
-    shape = StripShape(float(z["x_c"]), z["entry_x"], z["entry_y"], z["exit_x"], z["exit_y"],
-                       None if math.isnan(x_e) else x_e)
-    return WarmStart(z["solution"], shape, float(z["a_f"]), float(z["m"]), float(z["u_roll"]),
-                     str(z["mesh_key"]), str(z["free_surface"]))
+    if "kind" in z.files and str(z["kind"]) == "full":
+        return FullWarmStart(z["solution"], {1: _shape_of(z, "upper_"), -1: _shape_of(z, "lower_")},
+                             tuple(int(v) for v in z["wraps"]), float(z["m"]), float(z["u_roll"]),
+                             str(z["mesh_key"]), str(z["free_surface"]))
+    return WarmStart(z["solution"], _shape_of(z), float(z["a_f"]), float(z["m"]),
+                     float(z["u_roll"]), str(z["mesh_key"]), str(z["free_surface"]))
 
 
 def restore_run(case, warm):

@@ -16,6 +16,7 @@ import hashlib
 from dataclasses import dataclass, field
 
 from hotroll.config.case import Case, flat
+from hotroll.solvers.full_steady import FullSteadyRun
 from hotroll.solvers.steady import SteadyRun
 from hotroll.solvers.transfer import SimilarPass
 from hotroll.workflows.build import steady_settings
@@ -91,7 +92,8 @@ class Sweep:
                 if w.mesh_key == run.mesh_key and w.free_surface == run.s.free_surface]
         if not same:
             last = self._last
-            if self.similar and last is not None and last[1].s.free_surface == run.s.free_surface:
+            if (self.similar and last is not None and not isinstance(run, FullSteadyRun)
+                    and last[1].s.free_surface == run.s.free_surface):
                 return last[0], SimilarPass(last[1], last[0])
             return None, None
         _, name, warm = min(same, key=lambda t: t[0])
@@ -101,4 +103,5 @@ class Sweep:
         """Remember a converged Newton solve (its settled a_f and free surface)."""
         if run.result.stats and run.result.stats[-1].converged:
             self.solved.append((case.name, parameters(case), run.warm_start()))
-            self._last = (case.name, run)
+            if not isinstance(run, FullSteadyRun):    # a similar pass maps the half strip
+                self._last = (case.name, run)
