@@ -105,3 +105,102 @@ def test_the_end_search_ignores_a_noise_flat_secant():
     x3 = x + 1e-4
     new, _ = steep.step(x3, np.array([1.547, 0.05]), (0.9, 1.1))
     assert new == pytest.approx(x3[-1] - 0.05 * 1e-4 / (0.05 - 0.1), abs=1e-12)
+
+
+def test_overlap_at_the_ends_of_the_samples():
+    """[hand] samples at or before the end only (the end's own sample belongs to the contact,
+    even inside the roll): nothing after it; the line at beta = 0.042 sampled to 20 mm past
+    the gap (its chord ends at 30.2 mm): inside up to its last sample, where it is said to
+    leave, its depth the chord's, R (sqrt(1 + beta^2) - 1) at 15.1 mm."""
+    rp = RollPass(R, 0.0125, H1, omega=5.0)
+    at_end = np.c_[[0.99, 0.995, 1.0], [H1 + 1e-3] * 3]
+    assert overlap_after(at_end, rp, 1.0, 1e-7) == (0.0, None)
+    beta = 0.042
+    xy = _line(beta)[:41]
+    depth, leaves = overlap_after(xy, rp, 1.0, 1e-7)
+    assert depth == pytest.approx(R * (math.sqrt(1 + beta**2) - 1), rel=2e-2)
+    assert leaves == xy[-1, 0] == pytest.approx(1.02, abs=1e-12)
+
+
+def test_overlap_of_samples_in_any_order_and_sparse():
+    """[hand] the line at beta = 0.042 bent back out of the roll 40 mm past the gap (after its
+    chord ends, at 30.2 mm), its samples shuffled: the chord's depth and crossing as in order
+    (sorted by x, not by height). Sampled every 20 mm: only the sample at 20 mm inside, by
+    d(x) = beta x - R + sqrt(R^2 - x^2) = 0.284 mm; the crossing interpolated between it and
+    the one at 40 mm (d = -0.549 mm)."""
+    rp = RollPass(R, 0.0125, H1, omega=5.0)
+    beta = 0.042
+    xy = _line(beta)
+    s = xy[:, 0] - 1.0
+    xy[s > 0.04, 1] = H1 + beta * 0.04 - 0.1 * (s[s > 0.04] - 0.04)
+    xy = xy[np.random.default_rng(52).permutation(len(xy))]
+    depth, leaves = overlap_after(xy, rp, 1.0, 1e-7)
+    assert depth == pytest.approx(R * (math.sqrt(1 + beta**2) - 1), rel=2e-2)
+    assert leaves - 1.0 == pytest.approx(2 * R * beta / (1 + beta**2), rel=3e-3)
+
+    def d(x):
+        return beta * x - R + math.sqrt(R * R - x * x)
+    depth, leaves = overlap_after(_line(beta, n=4), rp, 1.0, 1e-7)
+    assert depth == pytest.approx(d(0.02), rel=1e-9)
+    assert leaves - 1.0 == pytest.approx(0.02 + 0.02 * d(0.02) / (d(0.02) - d(0.04)), rel=1e-9)
+
+
+def test_overlap_tol_and_a_surface_back_on_the_roll():
+    """[hand] the line at beta = 0.042, its first sample past the end lowered 30 um (out of
+    the roll by t = 9.4 um): with tol = t (out by no more than tol) the stretch still starts
+    at the end and leaves where the chord ends; with tol = its depth nothing lies inside by
+    more than tol. Its sample 10 mm past the gap put on the roll (y = the roll's height, and
+    inside again after it): the stretch leaves there, not where the chord ends."""
+    rp = RollPass(R, 0.0125, H1, omega=5.0)
+    beta = 0.042
+    xy = _line(beta)
+    xy[1, 1] -= 3e-5
+    t = -float((xy[1:, 1] - rp.height(xy[1:, 0]))[0])
+    assert t == pytest.approx(3e-5 - beta * 5e-4 + R - math.sqrt(R * R - 25e-8), rel=1e-6)
+    depth, leaves = overlap_after(xy, rp, 1.0, t)
+    assert leaves - 1.0 == pytest.approx(2 * R * beta / (1 + beta**2), rel=3e-3)
+    assert overlap_after(xy, rp, 1.0, depth) == (depth, None)
+    xy = _line(beta)
+    xy[20, 1] = rp.height(xy[20, 0])
+    assert overlap_after(xy, rp, 1.0, 1e-7)[1] == pytest.approx(xy[20, 0], abs=1e-12)
+
+
+def test_the_end_search_secant_at_its_guards_edges():
+    """[hand] dyadic numbers, exact in floating point (h = 2^-8 m). Two ends exactly one
+    element apart, p_end 0.1875 then 0.0625 under a line falling by 0.5 over the last
+    element: the secant, exactly a quarter as steep as the line, is taken: its zero half an
+    element on (the line's: an eighth). The same end twice (no secant: the line's zero);
+    the same p_end twice on a pressure rising to the end (a flat secant, not taken: the
+    contact goes on an element)."""
+    h = 2.0**-8
+    x = np.array([1.0, 1.0 + h])
+    search = ContactEndSearch()
+    search.step(x, np.array([0.5, 0.1875]), (0.9, 1.1))
+    new, _ = search.step(x + h, np.array([0.5625, 0.0625]), (0.9, 1.1))
+    assert new == 1.0 + 2.5 * h
+    same = ContactEndSearch()
+    for _ in range(2):
+        new, res = same.step(x, np.array([0.5, 0.1875]), (0.9, 1.1))
+        assert new == 1.0 + h + 0.1875 * h / 0.3125 and res == new - (1.0 + h)
+    flat = ContactEndSearch()
+    flat.step(x, np.array([0.5, 0.75]), (0.9, 1.1))
+    new, _ = flat.step(x + 0.5 * h, np.array([0.5, 0.75]), (0.9, 1.1))
+    assert new == 1.0 + 2.5 * h
+
+
+def test_the_outcome_of_both_causes_in_full():
+    """[plumb] overlap and a held end on each roll: every reason, joined by "; "; the depth
+    in um and the stress in MPa to three digits (22.349995 um: 22.3; -1.2350005 MPa: -1.24),
+    the depth in elements (over / h); a held end with a zero contact stress is not tensile."""
+    why = contact_problem({"h_contact": 1e-3, "roll_overlap": 2.2349995e-5, "rolls": [
+        {"side": "upper", "contact_end_kind": "bound", "contact_end_pressure": 0.0},
+        {"side": "lower", "contact_end_kind": "bound", "contact_end_pressure": -1.2350005e6}]})
+    assert why == (
+        "contact not resolved: the strip's free surface lies 22.3 um (0.0223 elements) inside a "
+        "roll past its contact's end (limit 0.02 elements); the upper roll's contact end is held "
+        "at the end of its allowed range (half a contact length before the gap, or past it: a "
+        "quarter for an elastic strip, half for one that curls onto the roll) with the strip "
+        "still pressing on the roll: it would follow the roll further than the model does "
+        "(asymmetric: a smaller speed or radius ratio, or less friction, curls it less); the "
+        "lower roll's contact end is held at the end of its allowed range with a tensile "
+        "contact stress there (-1.24 MPa): the strip would leave the roll before it")

@@ -1,0 +1,81 @@
+"""Mutation testing of a few named functions with restricted tests (issue 52 session 3): the
+mutants mutmut 3 would make (its own ``create_mutations``), each written into a scratch
+clone, the given tests run there (PYTHONPATH = the clone), the file restored. For new pure
+code whose tests take a second, where the package-wide run (scripts/mutation.sh) would take
+hours. One JSON line per mutant (function, line, killed/survived/timeout, the diff).
+
+    git clone -q . /tmp/mutclone && ln -s "$PWD/.venv" /tmp/mutclone/.venv
+    python scripts/mutation_functions.py /tmp/mutclone [FUNCTION ...] > mutants.jsonl
+
+Never run it on the working tree itself: it rewrites the files it mutates (restored after
+each mutant, but a kill in between would leave one mutated).
+"""
+from __future__ import annotations
+
+import difflib
+import json
+import os
+import re
+import subprocess
+import sys
+
+import libcst  # noqa: F401 - mutmut's parser (installed with mutmut)
+from libcst.metadata import MetadataWrapper, PositionProvider
+from mutmut.mutation.file_mutation import create_mutations, deep_replace
+
+T_FAST = ["tests/solvers/test_roll_overlap.py"]
+T_RES = T_FAST + ["tests/results"]
+#: (file, function (a method: its name), a regex a removed line must match or None, tests)
+TARGETS = [
+    ("hotroll/solvers/contact_end.py", "overlap_after", None, T_FAST),
+    ("hotroll/results/outcome.py", "contact_problem", None, T_RES),
+    ("hotroll/results/outcome.py", "exit_code", "contact_unresolved|return 10", T_RES),
+    ("hotroll/fem/free_surface.py", "step", None, T_FAST),
+]
+
+
+def run(root: str, tests: list[str]) -> str:
+    env = dict(os.environ, PYTHONPATH=root)
+    try:
+        r = subprocess.run(["nice", ".venv/bin/python", "-m", "pytest", "-q", "-x", "-p",
+                            "no:cacheprovider", *tests], cwd=root, env=env,
+                           capture_output=True, text=True, timeout=600)
+    except subprocess.TimeoutExpired:
+        return "timeout"
+    return "killed" if r.returncode != 0 else "survived"
+
+
+def main() -> None:
+    root, only = sys.argv[1], sys.argv[2:]
+    for path, fname, linefilt, tests in TARGETS:
+        if only and fname not in only:
+            continue
+        full = os.path.join(root, path)
+        with open(full) as fh:
+            src = fh.read()
+        module, muts, _, _ = create_mutations(path, src)
+        pos = MetadataWrapper(module, unsafe_skip_copy=True).resolve(PositionProvider)
+        muts = [m for m in muts if m.contained_by_top_level_function is not None
+                and getattr(getattr(m.contained_by_top_level_function, "name", None), "value",
+                            None) == fname]
+        for k, m in enumerate(muts):
+            new_src = deep_replace(module, m.original_node, m.mutated_node).code
+            diff = [line for line in difflib.unified_diff(src.splitlines(), new_src.splitlines(),
+                                                          lineterm="", n=0)
+                    if line[:1] in "+-" and not line.startswith(("+++", "---"))]
+            if linefilt is not None and not any(re.search(linefilt, line) for line in diff
+                                                if line.startswith("-")):
+                continue
+            try:
+                with open(full, "w") as fh:
+                    fh.write(new_src)
+                status = run(root, tests)
+            finally:
+                with open(full, "w") as fh:
+                    fh.write(src)
+            print(json.dumps({"fn": fname, "k": k, "line": pos[m.original_node].start.line,
+                              "status": status, "diff": diff}), flush=True)
+
+
+if __name__ == "__main__":
+    main()
