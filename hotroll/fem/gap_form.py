@@ -25,8 +25,9 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from hotroll.fem.penalties import ScaledPenalties, _elements_on, reference_viscosity
 from hotroll.fem.reproducible import fe_space
-from hotroll.fem.rolling_form import RollingForm, ScaledPenalties, _elements_on, reference_viscosity
+from hotroll.fem.rolling_form import RollingForm
 from hotroll.fem.spaces import taylor_hood
 from hotroll.model.friction import FrictionLaw
 from hotroll.model.geometry import RollPass

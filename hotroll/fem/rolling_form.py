@@ -33,9 +33,10 @@ tops (3.2d)) scale with the same mu_ref / h (``ScaledPenalties``): unit-free.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 from hotroll.fem.forms import NonlinearProblem, norton_hoff_tangent, norton_hoff_volume, one_sided, strain_rate
+from hotroll.fem.penalties import PenaltyTable, ScaledPenalties, _elements_on, reference_viscosity
 from hotroll.fem.primal_dual import FrictionDual, NortonHoffDual, TangentPoints
 from hotroll.fem.reproducible import fe_space, integrate
 from hotroll.fem.spaces import taylor_hood
@@ -46,86 +47,12 @@ from hotroll.model.material import NortonHoff, edot_squared
 TOP = "top|arc|exit"   # the whole top boundary (the steady strip adds "exit")
 
 
-@dataclass(frozen=True)
-class PenaltyTable:
-    """Table 1 of the report (for K = 1), with h the contact mesh size."""
-
-    h: float
-    soft: float = 10.0   # gamma_v0 = gamma_vC in the zone I
-    hard: float = 25.0   # gamma_v0 = gamma_vC elsewhere
-    inout: float = 2.0   # gamma_in = gamma_out = inout / h^(m+1)
-
-    def surface(self, x, zone):
-        from ngsolve import IfPos
-
-        lo, hi = zone
-        return IfPos((x - lo) * (hi - x), self.soft / self.h, self.hard / self.h)
-
-    def inlet_outlet(self, m):
-        return self.inout / self.h ** (m + 1.0)
-
-    def at_nodes(self, x, zone):
-        """gamma_vC at the points x (numpy)."""
-        import numpy as np
-
-        lo, hi = zone
-        return np.where((x - lo) * (hi - x) > 0, self.soft, self.hard) / self.h
-
-
-@dataclass(frozen=True)
-class ScaledPenalties:
-    """The penalties that stay beside exact contact, scaled with the viscosity (Nitsche's
-    gamma = gamma0 mu / h): gamma_v0 = 25 mu_ref / h, gamma_in = gamma_out = 2 mu_ref / h, with
-    mu_ref the reduced secant viscosity at the pass's reference strain rate. Under a change of
-    roll speed, time or length unit they scale as the stresses do; no soft zone."""
-
-    h: float
-    mu_ref: object       # a number or a Parameter (RollingForm: it follows the roll speed)
-    hard: float = 25.0
-    inout: float = 2.0
-
-    def surface(self, x, zone):
-        return self.hard * self.mu_ref / self.h
-
-    def inlet_outlet(self, m):
-        return self.inout * self.mu_ref / self.h
-
-    def at_nodes(self, x, zone):
-        import numpy as np
-
-        mu = self.mu_ref.Get() if hasattr(self.mu_ref, "Get") else self.mu_ref
-        return np.full(np.shape(x), self.hard * mu / self.h)
-
-
 #: Contact methods of the steady solver: the exact one (default) and the report's penalty.
 CONTACT_METHODS = ("multiplier", "penalty")
 #: Relative weight of the -delta s lambda xi term that only the Newton matrix carries (never the
 #: residual): it gives the multiplier rows a non-zero pivot so that the LDL^T factorisation
 #: (no pivoting) works; the solution is the exact one (docs/theory.md 1e).
 MATRIX_REGULARISATION = 1e-8
-
-
-def reference_viscosity(material: NortonHoff, rp: RollPass) -> float:
-    """Reduced secant viscosity at the strain rate U / l_c: the scale of every unit-free
-    penalty and of the multiplier."""
-    rate = rp.u_roll / rp.contact_length
-    return float(material.viscosity(rate * rate))
-
-
-def _elements_on(mesh, regions: str):
-    """BitArray of the volume elements with an edge on the boundary ``regions``."""
-    import re
-
-    from ngsolve import BND, BitArray
-
-    pattern = re.compile(f"^({regions})$")
-    edges = {el.edges[0].nr for el in mesh.Elements(BND) if pattern.match(el.mat)}
-    ba = BitArray(mesh.ne)
-    ba.Clear()
-    for el in mesh.Elements():
-        if any(e.nr in edges for e in el.edges):
-            ba.Set(el.nr)
-    return ba
 
 
 class RollingForm:

@@ -32,7 +32,8 @@ from hotroll.fem import quantities as Q
 from hotroll.fem.free_surface import ContactEndSearch, StripMap, StripShape, kinematic_update
 from hotroll.fem.mesh import build_steady_mesh
 from hotroll.fem.nonlinear import SolveStats
-from hotroll.fem.rolling_form import PenaltyTable, RollingForm
+from hotroll.fem.penalties import PenaltyTable
+from hotroll.fem.rolling_form import RollingForm
 from hotroll.fem.top_boundary import TopBoundary
 from hotroll.model.friction_estimate import estimate_a_f
 from hotroll.model.material import NortonHoff

@@ -22,8 +22,9 @@ import numpy as np
 from hotroll.fem import quantities as Q
 from hotroll.fem.mesh import build_plate_mesh
 from hotroll.fem.nonlinear import LinearSolveError, SolveStats, picard, solve
+from hotroll.fem.penalties import PenaltyTable
 from hotroll.fem.reproducible import fe_space
-from hotroll.fem.rolling_form import PenaltyTable, RollingForm
+from hotroll.fem.rolling_form import RollingForm
 from hotroll.fem.top_boundary import TopBoundary
 from hotroll.files import atomic
 from hotroll.model.friction_estimate import estimate_a_f

@@ -727,7 +727,7 @@ def test_the_soft_zone_anywhere_along_x():
     """Table 1's penalties at points: 10/h inside the zone I = (lo, hi), 25/h outside and on its
     ends, wherever the roll axis puts the zone (left of x = 0 here, as the steady solver's roll
     frame does)."""
-    from hotroll.fem.rolling_form import PenaltyTable
+    from hotroll.fem.penalties import PenaltyTable
 
     pen = PenaltyTable(h=0.1)
     x = np.array([-0.5, -0.3, -0.25, -0.2, -0.1, 0.1, 0.25])
