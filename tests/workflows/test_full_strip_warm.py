@@ -14,8 +14,8 @@ from hotroll.config.case import load_case
 from hotroll.examples import example_path
 from hotroll.solvers.steady_settings import FullWarmStart
 from hotroll.workflows.runner import run_case
-from hotroll.workflows.study import load_warm, save_warm
 from hotroll.workflows.sweep import Sweep
+from hotroll.workflows.warm_state import load_warm, save_warm
 
 COARSE = {"mesh.h_contact": 0.0025, "output.figures": False}
 

@@ -26,7 +26,7 @@ def _warm(solution: np.ndarray, shape: StripShape) -> WarmStart:
 def test_a_saved_warm_state_loads_back_unchanged(tmp_path):
     """save_warm then load_warm: every field of the WarmStart back as written (arrays to the
     bit, a_f, m, u_roll, mesh key and free-surface model, the contact's end)."""
-    from hotroll.workflows.study import load_warm, save_warm
+    from hotroll.workflows.warm_state import load_warm, save_warm
 
     shape = StripShape(0.25, np.array([-1.0, 0.0, 0.25]), np.array([0.25, 0.25, 0.24]),
                        np.array([0.5, 0.7, 1.5]), np.array([0.2, 0.201, 0.2015]))
@@ -53,7 +53,7 @@ def test_restore_run_is_the_cases_steady_run_at_the_saved_state():
 
     from hotroll.solvers.steady import SteadyRun
     from hotroll.workflows.runner import build_model, steady_settings
-    from hotroll.workflows.study import restore_run
+    from hotroll.workflows.warm_state import restore_run
 
     case = build_case(EXAMPLE1_COARSE)
     fresh = SteadyRun(build_model(case)[0], steady_settings(case), case.plate.length)
