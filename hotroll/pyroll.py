@@ -179,8 +179,12 @@ def solve(rp) -> dict:
     STATS["fe_solves"] += 1
     STATS["warm_starts"] += summary.get("warm_start_from") is not None
     if summary.get("exit_code") != 0:
-        raise RuntimeError(f"hotroll.pyroll: pass {rp.label!r} ended with exit code "
-                           f"{summary.get('exit_code')} (status {summary.get('status')}); "
+        from hotroll.results.outcome import EXIT_CODES
+
+        code = summary.get("exit_code")
+        why = f": {summary['failure']}" if summary.get("failure") else ""
+        raise RuntimeError(f"hotroll.pyroll: pass {rp.label!r} ended with exit code {code}, "
+                           f"{EXIT_CODES.get(code, '?')} (status {summary.get('status')}{why}); "
                            f"its output is in {out}")
     # PyRolL's pass velocity is U cos(phi_n): the next call's roll speed uses this phi_n
     rp.__dict__["_hotroll_neutral"] = float(summary.get("neutral_angle") or 0.0)

@@ -194,3 +194,28 @@ def test_the_asymmetric_hooks_give_each_rolls_figures(monkeypatch):
     lower_roll = rp.lower_roll
     lower_roll.__dict__["roll_pass"] = rp
     assert hp.contact_length(lower_roll) == 0.041
+
+
+def test_a_pass_hotroll_cannot_answer_raises_with_its_reason(monkeypatch, tmp_path):
+    """[plumb] a pass whose run ends with a non-zero exit code (a canned summary: exit 10, a
+    strip that would follow its slower roll further than the model) raises with the code's
+    meaning and the run's reason, not only the number."""
+    from hotroll.config.case import load_case
+    from hotroll.examples import example_path
+
+    case = load_case(example_path("asymmetric_plate"), {"pass.speed_ratio": 1.15})
+    monkeypatch.setattr(hp, "pass_case", lambda rp: (case, None))
+    monkeypatch.setattr(hp, "run_case", lambda *a, **k: {
+        "exit_code": 10, "status": "steady",
+        "failure": "contact not resolved: the lower roll's contact end is held"})
+    monkeypatch.setattr(hp.Config, "OUTPUT_DIR", str(tmp_path))
+
+    class Pass:
+        label = "P1"
+
+    with pytest.raises(RuntimeError) as err:
+        hp.solve(Pass())
+    assert str(err.value) == (
+        f"hotroll.pyroll: pass 'P1' ended with exit code 10, contact not resolved (status "
+        f"steady: contact not resolved: the lower roll's contact end is held); its output is "
+        f"in {tmp_path / case.name}")
