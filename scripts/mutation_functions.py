@@ -6,6 +6,10 @@ hours. One JSON line per mutant (function, line, killed/survived/timeout, the di
 
     git clone -q . /tmp/mutclone && ln -s "$PWD/.venv" /tmp/mutclone/.venv
     python scripts/mutation_functions.py /tmp/mutclone [FUNCTION ...] > mutants.jsonl
+    python scripts/mutation_functions.py /tmp/mutclone --targets T.json > mutants.jsonl
+
+``--targets``: a JSON list of [file, function, regex or null, [test files]] instead of
+``TARGETS`` below (the wrap's functions).
 
 Never run it on the working tree itself: it rewrites the files it mutates (restored after
 each mutant, but a kill in between would leave one mutated).
@@ -47,7 +51,12 @@ def run(root: str, tests: list[str]) -> str:
 
 def main() -> None:
     root, only = sys.argv[1], sys.argv[2:]
-    for path, fname, linefilt, tests in TARGETS:
+    targets = TARGETS
+    if only[:1] == ["--targets"]:
+        with open(only[1]) as fh:
+            targets = [tuple(t) for t in json.load(fh)]
+        only = only[2:]
+    for path, fname, linefilt, tests in targets:
         if only and fname not in only:
             continue
         full = os.path.join(root, path)
