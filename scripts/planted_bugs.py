@@ -42,7 +42,7 @@ BUGS: dict[str, tuple[str, str, str, str]] = {
                       "friction_term = (chi * self.friction_coefficient(w, lam=lam)",
                       "friction_term = (chi * 2.0 * self.friction_coefficient(w, lam=lam)",
                       "friction stress doubled in the weak form only"),
-    "friction_coefficient": ("hotroll/fem/rolling_form.py",
+    "friction_coefficient": ("hotroll/fem/friction_terms.py",
                              "return self.friction.coefficient(s * s, **self.friction_arguments",
                              "return 2.0 * self.friction.coefficient(s * s, **self.friction_arguments",
                              "friction stress doubled in the form and the quantities"),

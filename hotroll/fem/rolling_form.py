@@ -35,14 +35,15 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from hotroll.fem.forms import NonlinearProblem, norton_hoff_tangent, norton_hoff_volume, one_sided, strain_rate
+from hotroll.fem.forms import NonlinearProblem, norton_hoff_tangent, norton_hoff_volume, one_sided
+from hotroll.fem.friction_terms import FrictionTerms
 from hotroll.fem.penalties import PenaltyTable, ScaledPenalties, _elements_on, reference_viscosity
 from hotroll.fem.primal_dual import FrictionDual, NortonHoffDual, TangentPoints
-from hotroll.fem.reproducible import fe_space, integrate
+from hotroll.fem.reproducible import fe_space
 from hotroll.fem.spaces import taylor_hood
 from hotroll.model.friction import FrictionLaw
 from hotroll.model.geometry import RollPass
-from hotroll.model.material import NortonHoff, edot_squared
+from hotroll.model.material import NortonHoff
 
 TOP = "top|arc|exit"   # the whole top boundary (the steady strip adds "exit")
 
@@ -55,7 +56,7 @@ CONTACT_METHODS = ("multiplier", "penalty")
 MATRIX_REGULARISATION = 1e-8
 
 
-class RollingForm:
+class RollingForm(FrictionTerms):
     """Spaces, parameters and the Newton/Picard forms of (3.6) on one (moving) mesh."""
 
     #: the boundary the contact multiplier lives on (taylor_hood's ``multiplier_on``)
@@ -281,50 +282,6 @@ class RollingForm:
         n, _ = self.roll_frame()
         return self.penalties.surface(x, self.rp.soft_zone) * (u * n)
 
-    def shear_flow_stress(self, w):
-        """k = sigma_ef / sqrt3 of the strain rate of w (reduced; regularised (2.21)). Needs
-        the volume gradient: valid in volume and element-boundary integrals only."""
-        e2 = edot_squared(strain_rate(w))
-        return self.material.sigma_ef_reg(e2, m=self.m_material, K=self.consistency) / 3.0**0.5
-
-    def friction_arguments(self, w, k=None, lam=None) -> dict:
-        """The friction law's keyword arguments at the velocity w (and multiplier ``lam``):
-        a_f, m, and the pressure and k = sigma_ef/sqrt3 where the law takes them (``k`` given:
-        that CF instead, e.g. a P1 field where the volume gradient is not at hand)."""
-        law = self.friction
-        if law.uses_k and k is None:
-            k = self.shear_flow_stress(w)
-        return dict(a_f=self.a_f, m=self.m,
-                    pressure=self.pressure(w, lam) if law.uses_pressure else None,
-                    k=k if law.uses_k else None)
-
-    def friction_coefficient(self, w, k=None, lam=None):
-        """The friction law's secant coefficient k_f at the velocity w (T_tau = -k_f v_s)."""
-        s = self.slip(w)
-        return self.friction.coefficient(s * s, **self.friction_arguments(w, k, lam))
-
-    def friction_measure(self):
-        """Where the friction term is integrated: the boundary the contact can be on
-        (``contact_regions``: the steady strip's arc, the report's scheme's whole top; chi
-        picks the contact, zero elsewhere: the rest of the top's 4.4 of 15.5 ms of a Jacobian's
-        assembly on a ten-stand pass, issue 34 session 8), or, for a law with k (which needs
-        the volume gradient: a boundary integral sees only the surface gradient), the
-        boundaries of the elements along it."""
-        from ngsolve import ds, dx
-
-        if self.top_elements is None:
-            return ds(self.contact_regions)
-        return dx(element_boundary=True, definedonelements=self.top_elements)
-
-    def integrate_friction(self, cf) -> float:
-        """Integral of ``cf`` (with chi in it) over the contact, on ``friction_measure``."""
-        from ngsolve import BND
-
-        if self.top_elements is None:
-            return integrate(cf.Compile(), self.mesh, BND,
-                             definedon=self.mesh.Boundaries(self.contact_regions))
-        return integrate(cf.Compile() * self.friction_measure(), self.mesh)
-
     def inlet_penalty(self, u, w):
         """(3.2a) per unit test v_x: gamma_in [v_x - |U_roll|]_+, active set taken at w."""
         U = self.U
@@ -407,36 +364,6 @@ class RollingForm:
             out = out + self.constraint(u, v, lam, xi, regularise=MATRIX_REGULARISATION,
                                         u_w=w, lam_w=lam_w)
         return out
-
-    def friction_tangent(self, w, u, v, lam=None, lam_w=None):
-        """d/dw of the friction term chi k_f(w) s(w) (v.t) along u (and the multiplier's
-        direction ``lam``; ``lam_w`` the multiplier at the iterate), by the chain rule through
-        the law's ``coefficient_partials`` (slip^2, pressure, k of the strain rate)."""
-        from ngsolve import InnerProduct
-
-        n, t = self.roll_frame()
-        law, s, s_u = self.friction, self.slip(w), u * t
-        kw = self.friction_arguments(w, lam=lam_w)
-        kf = law.coefficient(s * s, **kw)
-        d_s2, d_p, d_k = law.coefficient_partials(s * s, **kw)
-        k = kw["k"]
-        # Newton: d k_f = 2 k_f' s ds; primal-dual: one factor s/S replaced by the dual z
-        # (fem/primal_dual.py: FrictionDual)
-        if self.friction_dual is None:
-            d_kf = d_s2 * 2.0 * s * s_u
-        else:
-            from ngsolve import sqrt
-
-            S = sqrt(s * s + self.v_reg * self.v_reg)
-            d_kf = d_s2 * 2.0 * S * self.friction_dual.z(s, self.v_reg) * s_u
-        if law.uses_pressure:      # p = gamma (w.n) or s lambda~
-            d_kf = d_kf + d_p * self.pressure(u, lam)
-        if law.uses_k:             # k ~ (eps0^2 + e2)^(m/2), e2 = 2/3 eps(w):eps(w)
-            ew = strain_rate(w)
-            e2 = edot_squared(ew)
-            dk_de2 = k * self.m_material / (2.0 * (self.material.eps0**2 + e2))
-            d_kf = d_kf + d_k * dk_de2 * (4.0 / 3.0) * InnerProduct(ew, strain_rate(u))
-        return self.chi * (kf * s_u + s * d_kf) * (v * t)
 
     def boundary(self, u, w, v, friction: bool = True, lam=None):
         """Friction law, penalty terms (3.2), (3.3) and tensions on the boundary, coefficients at w
