@@ -10,6 +10,8 @@ hours. One JSON line per mutant (function, line, killed/survived/timeout, the di
 
 ``--targets``: a JSON list of [file, function, regex or null, [test files]] instead of
 ``TARGETS`` below (the wrap's functions).
+``--sample N --seed S``: enumerate all mutants of the targets, run a seeded uniform random
+subset of N. ``--dry``: print the mutant counts per file and stop.
 
 Never run it on the working tree itself: it rewrites the files it mutates (restored after
 each mutant, but a kill in between would leave one mutated).
@@ -49,16 +51,10 @@ def run(root: str, tests: list[str]) -> str:
     return "killed" if r.returncode != 0 else "survived"
 
 
-def main() -> None:
-    root, only = sys.argv[1], sys.argv[2:]
-    targets = TARGETS
-    if only[:1] == ["--targets"]:
-        with open(only[1]) as fh:
-            targets = [tuple(t) for t in json.load(fh)]
-        only = only[2:]
+def enumerate_mutants(root: str, targets) -> list[dict]:
+    """Every mutant of the targets, in order: dicts with the target, k, line, diff, new_src."""
+    out = []
     for path, fname, linefilt, tests in targets:
-        if only and fname not in only:
-            continue
         full = os.path.join(root, path)
         with open(full) as fh:
             src = fh.read()
@@ -75,15 +71,54 @@ def main() -> None:
             if linefilt is not None and not any(re.search(linefilt, line) for line in diff
                                                 if line.startswith("-")):
                 continue
-            try:
-                with open(full, "w") as fh:
-                    fh.write(new_src)
-                status = run(root, tests)
-            finally:
-                with open(full, "w") as fh:
-                    fh.write(src)
-            print(json.dumps({"fn": fname, "k": k, "line": pos[m.original_node].start.line,
-                              "status": status, "diff": diff}), flush=True)
+            out.append({"file": path, "fn": fname, "k": k, "line": pos[m.original_node].start.line,
+                        "diff": diff, "tests": tests, "full": full, "src": src,
+                        "new_src": new_src})
+    return out
+
+
+def main() -> None:
+    root, only = sys.argv[1], sys.argv[2:]
+    targets = TARGETS
+    sample, seed, dry = None, 0, False
+    if "--sample" in only:
+        i = only.index("--sample")
+        sample = int(only[i + 1])
+        del only[i:i + 2]
+    if "--seed" in only:
+        i = only.index("--seed")
+        seed = int(only[i + 1])
+        del only[i:i + 2]
+    if "--dry" in only:
+        only.remove("--dry")
+        dry = True
+    if only[:1] == ["--targets"]:
+        with open(only[1]) as fh:
+            targets = [tuple(t) for t in json.load(fh)]
+        only = only[2:]
+    targets = [t for t in targets if not only or t[1] in only]
+    muts = enumerate_mutants(root, targets)
+    if sample is not None and sample < len(muts):
+        import random
+        idx = sorted(random.Random(seed).sample(range(len(muts)), sample))
+        muts = [muts[i] for i in idx]
+    if dry:
+        import collections
+        c = collections.Counter(m["file"] for m in muts)
+        for f, n in c.items():
+            print(f, n)
+        print("total", len(muts))
+        return
+    for m in muts:
+        try:
+            with open(m["full"], "w") as fh:
+                fh.write(m["new_src"])
+            status = run(root, m["tests"])
+        finally:
+            with open(m["full"], "w") as fh:
+                fh.write(m["src"])
+        print(json.dumps({"file": m["file"], "fn": m["fn"], "k": m["k"], "line": m["line"],
+                          "status": status, "diff": m["diff"]}), flush=True)
 
 
 if __name__ == "__main__":

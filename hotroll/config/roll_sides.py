@@ -8,8 +8,6 @@ from __future__ import annotations
 import math
 from typing import Literal
 
-from pydantic import Field
-
 from hotroll.config.base import MAX_LENGTH, PosFloat, Section, field
 from hotroll.model.roll_gap import LOWER, UPPER, fit_problems
 
@@ -45,13 +43,6 @@ class RollModelSide(Section):
 
     model: Literal["rigid", "hitchcock", "elastic"] | None = field(
         None, "this roll's model (omit: roll.model)", "", '"rigid", "hitchcock" or "elastic"')
-
-
-def side_fields(what: str, model: type, section: str) -> dict:
-    """The ``upper`` and ``lower`` fields of a section, each an optional table ``model``."""
-    return {name: (model | None, Field(None, description=f"the {name} roll's own {what}, "
-                                       f"[{section}.{name}] (omit: [{section}]'s)"))
-            for name in SIDES.values()}
 
 
 def roll_values(p, side: int) -> tuple[float, float]:

@@ -220,3 +220,13 @@ def test_the_reference_pages_example_is_the_gap_it_describes():
     assert g.speed_ratio == pytest.approx(1.2, rel=1e-14)
     assert g.lower.friction == RollFriction("coulomb", (("a_f_max", 1e6), ("mu", 0.35)))
     assert g.lower.model == "hitchcock" and g.upper.model == "rigid"
+
+
+def test_two_refusals_of_one_pass_are_both_said():
+    """A lower roll given both its speeds AND a radius below its share of the draft: both lines
+    (the speed conflict and the fit), neither hiding the other."""
+    lines = problems(with_(**{"pass.lower": {"roll_radius": "0.5 mm", "roll_angular_velocity": 4.0,
+                                             "roll_surface_speed": 4.0}}))
+    assert len(lines) == 2, lines
+    assert lines[0].startswith("pass.lower.roll_surface_speed: give one of")
+    assert lines[1].startswith("pass.lower.roll_radius: must exceed")

@@ -164,3 +164,10 @@ def test_unregistered_friction_law_and_bad_side_are_refused():
         RollGap(Roll(R1, OMEGA), Roll(R2, OMEGA), H0, H1)
     with pytest.raises(ValueError, match=r"upper.model: must be one of"):
         RollGap(Roll(R1, OMEGA, model="soft"), Roll(R2, OMEGA, side=LOWER), H0, H1)
+
+
+def test_a_zero_radius_is_refused_and_a_bad_side_named():
+    """R = 0 is no roll (> 0, not >= 0); a side other than +1/-1 is refused naming it."""
+    assert Roll(0.0, OMEGA).problems("upper")[0].startswith("upper.radius: must be > 0")
+    with pytest.raises(ValueError, match=r"^side: must be \+1 \(upper\) or -1 \(lower\), got 0$"):
+        gap().roll(0)

@@ -21,6 +21,7 @@ from hotroll.theory.asymmetric import (
     NoNeutralPointError,
     Roll,
     draft_split,
+    shear_magnitude,
     solve_asymmetric,
     tresca_closed_form,
 )
@@ -489,3 +490,32 @@ def test_no_steady_state_is_said():
     with pytest.raises(NoNeutralPointError) as e:
         shoot_r(1.0, front_tension=1.9 * K, back_tension=-3 * K)
     assert e.value.where == "entry"
+
+
+def test_no_steady_state_says_why():
+    """The closed form's refusal says what happens (the strip skids), not only where."""
+    with pytest.raises(NoNeutralPointError, match=r"^no steady state: the strip skids"):
+        case_r(1.0, m=0.05)
+
+
+def test_a_rate_independent_law_with_v_reg_is_regularised_as_the_fe():
+    """Tresca m = 0.5 with v_reg = 0.01 m/s at a slip of 0.03 m/s: |tau| = m k |v|/sqrt(v^2 +
+    v_reg^2) = 0.5 k 0.03/sqrt(0.001) (the FE's secant form), not m k."""
+    tau = shear_magnitude(Roll(R, 1.0, TrescaFriction(0.01, factor=0.5)), 0.03, 2 * K, K)
+    assert tau == pytest.approx(0.5 * K * 0.03 / math.sqrt(0.001), rel=1e-14)
+
+
+@pytest.mark.parametrize("solver", [case_r, shoot_r])
+def test_n_profile_two_samples_each_zone_at_its_ends(solver):
+    """n_profile = 2: every zone between entry, the two neutral points and the exit is
+    sampled at its two ends only; the closed form's ends are the entry's 2k - t_b and the
+    exit's 2k - t_f."""
+    tb, tf = 0.1 * K, 0.2 * K
+    r = solver(1.05, back_tension=tb, front_tension=tf, n_profile=2)
+    ends = np.array([r.x[0], r.x_n1, r.x_n2, 0.0])
+    assert all(np.min(np.abs(ends - x)) <= 1e-12 * r.contact_length for x in r.x)
+    assert len(r.x) % 2 == 0 and r.x[-1] == 0.0
+    if solver is case_r:
+        assert r.x[0] == -r.contact_length and len(r.x) == 6
+        assert r.pressure[0] == pytest.approx(2 * K - tb, rel=1e-14)
+        assert r.pressure[-1] == pytest.approx(2 * K - tf, rel=1e-9)

@@ -219,3 +219,30 @@ def test_a_pass_hotroll_cannot_answer_raises_with_its_reason(monkeypatch, tmp_pa
         f"hotroll.pyroll: pass 'P1' ended with exit code 10, contact not resolved (status "
         f"steady: contact not resolved: the lower roll's contact end is held); its output is "
         f"in {tmp_path / case.name}")
+
+
+def test_the_hooks_answer_only_for_the_pass_hotroll_handles():
+    """[id] handles(rp) true for one pass only: that pass gets hotroll's result, its rolls'
+    torques and its out profile's width (the in profile's); another pass gets None."""
+    class Out(HookHost):
+        width = Hook[float]()
+
+    class Asym(HookHost):
+        OutProfile = Out
+
+        class UpperRoll(HookHost):
+            roll_torque = Hook[float]()
+
+        class LowerRoll(HookHost):
+            roll_torque = Hook[float]()
+
+    rp = _pass({"R": 0.4, "rotational_frequency": 0.8}, {"R": 0.4, "working_velocity": 1.7})
+    other = _pass({"R": 0.4, "rotational_frequency": 0.8}, {"R": 0.4, "working_velocity": 1.7})
+    ha.install_on(Asym, lambda p: SUMMARY, lambda p: p is rp, hp._declare)
+    first = lambda host, name: getattr(host, name)._first_functions[0].function  # noqa: E731
+    on = lambda p: type("H", (), {"roll_pass": p})()  # noqa: E731
+    assert first(Asym, "hotroll_result")(rp) is SUMMARY
+    assert first(Asym, "hotroll_result")(other) is None
+    assert first(Asym.UpperRoll, "roll_torque")(on(rp)) == 6.7e5 * WIDTH
+    assert first(Asym.LowerRoll, "roll_torque")(on(other)) is None
+    assert first(Out, "width")(on(rp)) == WIDTH and first(Out, "width")(on(other)) is None
