@@ -106,7 +106,8 @@ def run_group(items: list[dict], out: str, warm: bool) -> list[dict]:
 
                 warm_state = load_warm(cdir / WARM_FILE)
                 sweep.solved.append((case.name, parameters(case), warm_state))
-                pending = (case, warm_state)
+                if isinstance(warm_state, WarmStart):    # the half strip's: a similar pass's
+                    pending = (case, warm_state)         # start (Sweep.add keeps it too)
             code = int(summary.get("exit_code", 1))
             row.update(status="done" if code == 0 else "not_converged", exit_code=code,
                        reason=None if code == 0 else _reason(summary), resumed=resumed)

@@ -49,6 +49,17 @@ def parameters(case: Case) -> dict[str, float]:
          "v_reg": case.friction.regularisation_velocity(rp.u_roll)}
     # the friction law's own parameters (an estimated a_f is not one: it follows the solve)
     p.update({k: float(v) for k, v in case.friction.given().items() if not isinstance(v, str)})
+    gap = case.roll_gap()
+    if not gap.symmetric:
+        # an asymmetric pass: each roll's own surface speed and friction (a study over the
+        # speed ratio ranks its neighbours by them: with the upper roll's alone every ratio
+        # lay at distance 0, the first solved taken)
+        for roll in (gap.upper, gap.lower):
+            name = "upper" if roll.side > 0 else "lower"
+            p[f"u_roll_{name}"] = roll.surface_speed
+            if roll.friction is not None:
+                p.update({f"{k}_{name}": float(v) for k, v in roll.friction.parameters
+                          if not isinstance(v, str)})
     return p
 
 

@@ -77,3 +77,19 @@ def test_the_full_strips_state_is_written_and_read_back(runs, tmp_path):
             np.testing.assert_array_equal(getattr(b, key), getattr(a, key))
     assert (back.wraps, back.m, back.u_roll, back.mesh_key, back.free_surface) == (
         state.wraps, state.m, state.u_roll, state.mesh_key, state.free_surface)
+
+
+def test_neighbours_are_ranked_by_each_rolls_speed():
+    """[hand] an asymmetric pass's parameters carry each roll's surface speed (upper 2 m/s,
+    lower 2/r), so a study over the speed ratio starts r = 1.09 from r = 1.1, not from
+    r = 1.02 (with the upper roll's speed alone every ratio lay at distance 0); a symmetric
+    pass's parameters are the half model's as before (no per-roll keys)."""
+    from hotroll.workflows.sweep import distance, parameters
+
+    p = {r: parameters(_case(r)) for r in (1.02, 1.09, 1.1)}
+    assert p[1.1]["u_roll_lower"] == pytest.approx(2.0 / 1.1, rel=1e-12)
+    assert p[1.1]["u_roll_upper"] == pytest.approx(2.0, rel=1e-12)
+    assert distance(p[1.09], p[1.1]) < distance(p[1.09], p[1.02])
+    symmetric = parameters(load_case(example_path("asymmetric_plate"),
+                                     {**COARSE, "pass.speed_ratio": None}))
+    assert not any(k.endswith(("_upper", "_lower")) for k in symmetric)
