@@ -57,6 +57,13 @@ def overlap_after(xy: np.ndarray, rp, x_e: float, tol: float) -> tuple[float, fl
     return depth, float(x[i - 1] + inside[i - 1] * (x[i] - x[i - 1]) / (inside[i - 1] - inside[i]))
 
 
+def surface_overlap(top, d, rp, x_e: float, tol: float) -> tuple[float, float | None]:
+    """``overlap_after`` of the free surface ``top`` (its vertices and edge midpoints at the
+    displacement ``d``, in its roll's frame) against the roll ``rp`` after the end ``x_e``."""
+    xy = np.vstack([top.vertex_positions(d), top.midpoint_positions(d)])
+    return overlap_after(xy, rp, x_e, tol)
+
+
 def move_end(shape, rp, new: float) -> None:
     """The contact's end of ``shape`` on the roll ``rp`` at ``new`` (m): the exit top moves
     with its start, which stays on the roll."""

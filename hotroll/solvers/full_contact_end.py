@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from hotroll.solvers.contact_end import PAST_GAP, carried_pressure, move_end, overlap_after, winkler_end
+from hotroll.solvers.contact_end import PAST_GAP, carried_pressure, move_end, surface_overlap, winkler_end
 from hotroll.solvers.couplings import ContactEnd
 
 #: the traced free surface after a contact's end may lie inside its roll by this many of the
@@ -32,10 +32,9 @@ class FullContactEndMixin:
 
     def side_overlap(self, side: int) -> tuple[float, float | None]:
         """``overlap_after`` of the free surface after the contact's end on ``side``."""
-        top, rp = self.tops[side], self.rolls[side]
-        xy = np.vstack([top.vertex_positions(self.d), top.midpoint_positions(self.d)])
-        return overlap_after(xy, rp, self.shapes[side].end(rp),
-                             OVERLAP_TOL * self.s.surface_tol * self.problem.h)
+        rp = self.rolls[side]
+        return surface_overlap(self.tops[side], self.d, rp, self.shapes[side].end(rp),
+                               OVERLAP_TOL * self.s.surface_tol * self.problem.h)
 
     def _predict_ends(self) -> None:
         """An elastic strip's contact ends to start from, each where its Winkler layer at 2k

@@ -12,7 +12,7 @@ import numpy as np
 
 from hotroll.fem import quantities as Q
 from hotroll.model.solution import PassData, RollContact, Solution
-from hotroll.solvers.contact_end import overlap_after
+from hotroll.solvers.contact_end import surface_overlap
 from hotroll.solvers.record_fields import exit_profiles, gap_means, vertex_fields, write_vtk
 
 
@@ -62,14 +62,7 @@ def roll_contact(run, prof: dict) -> RollContact:
         roll_last_move=roll.last_move if roll is not None else None,
         roll_shape_error=shape_error(roll, prof) if roll is not None else None,
         overlap=(None if run.time_stepping else
-                 run_overlap(run.top, run.d, pb.rp, float(run.shape.end(pb.rp)))))
-
-
-def run_overlap(top, d, rp, x_e: float) -> float:
-    """How deep the free surface ``top`` (positions from the displacement ``d``) lies inside
-    the roll ``rp`` after the contact's end ``x_e`` (m; ``contact_end.overlap_after``)."""
-    xy = np.vstack([top.vertex_positions(d), top.midpoint_positions(d)])
-    return overlap_after(xy, rp, x_e, 0.0)[0]
+                 surface_overlap(run.top, run.d, pb.rp, float(run.shape.end(pb.rp)), 0.0)[0]))
 
 
 def shape_error(roll, prof: dict) -> float:

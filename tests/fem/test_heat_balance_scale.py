@@ -7,20 +7,13 @@ from __future__ import annotations
 
 import pytest
 
-from hotroll.fem.thermal_field import TemperatureField
-from tests.fem.test_thermal import STEEL, boundary, rectangle
+from tests.fem.test_thermal import adiabatic_plug
 
 
 def test_the_adiabatic_error_is_the_inlet_reaction_over_the_heat_gained():
-    from ngsolve import CF, IfPos, x, y
+    from ngsolve import CF
 
-    H, L, U = 0.01, 0.06, 0.5
-    mesh = rectangle(L, H, 48, 8)
-    bc = boundary(1200.0, taylor_quinney=0.9, friction_heat_to_strip=0.4)
-    q = 4e8 * IfPos(x - 0.02, IfPos(0.04 - x, 1.0, 0.0), 0.0) * (1.0 + y / H)  # W/m^3
-    qf = 3e6 * (x / L)                                                        # W/m^2
-    field = TemperatureField(mesh, STEEL, bc, top="top")
-    field.solve_steady(CF((U, 0.0)), q, qf, 1.0)
+    field, q, qf, U, _ = adiabatic_plug()
     b = field.balance(CF((U, 0.0)), q, qf, 1.0)
     heat = 0.9 * 1.2e5 + 0.4 * 9e4
     assert b["heat_to_roll"] == 0.0 and b["heat_to_air"] == 0.0

@@ -153,16 +153,27 @@ def sink_flow(Q, angle=0.2, apex=0.1):
     return CF((Q / angle * (apex - x) / r2, -Q / angle * y / r2))
 
 
-def test_adiabatic_plug_flow_exit_rise():
-    from ngsolve import CF, IfPos, x, y
+def adiabatic_plug(nx: int = 48, ny: int = 8, order: int = 1):
+    """The adiabatic plug flow (H = 10 mm, L = 60 mm, U = 0.5 m/s at 1200 K): a plastic heat
+    of 4e8 (1 + y/H) W/m^3 over 20 mm and a friction flux 3e6 x/L W/m^2 on the top, no roll,
+    no air; (field solved, q, qf, U, H)."""
+    from ngsolve import CF, IfPos, x
+    from ngsolve import y as y_
 
     H, L, U = 0.01, 0.06, 0.5
-    mesh = rectangle(L, H, 48, 8)
+    mesh = rectangle(L, H, nx, ny)
     bc = boundary(1200.0, taylor_quinney=0.9, friction_heat_to_strip=0.4)
-    q = 4e8 * IfPos(x - 0.02, IfPos(0.04 - x, 1.0, 0.0), 0.0) * (1.0 + y / H)  # W/m^3
-    qf = 3e6 * (x / L)                                                        # W/m^2
-    field = TemperatureField(mesh, STEEL, bc, top="top")
+    q = 4e8 * IfPos(x - 0.02, IfPos(0.04 - x, 1.0, 0.0), 0.0) * (1.0 + y_ / H)  # W/m^3
+    qf = 3e6 * (x / L)                                                         # W/m^2
+    field = TemperatureField(mesh, STEEL, bc, top="top", order=order)
     field.solve_steady(CF((U, 0.0)), q, qf, 1.0)
+    return field, q, qf, U, H
+
+
+def test_adiabatic_plug_flow_exit_rise():
+    from ngsolve import CF
+
+    field, q, qf, U, H = adiabatic_plug()
     # by hand: int q = 4e8 * 0.02 * 1.5 H = 1.2e5 W/m, int qf over the top = 3e6 L / 2 = 9e4 W/m
     heat = 0.9 * 1.2e5 + 0.4 * 9e4
     rise = heat / (RHO * C * U * H)                          # 5.680 K
