@@ -86,11 +86,17 @@ class StripMap:
         self.H_ref = np.where(X >= rp.axis_x, rp.half_exit, rp.half_entry)
         self.H_ref[on_arc] = roll_height(rp, X[on_arc])
         self.roll = rp           # the roll now (its surface, if flattened, moves)
-        # the stretch acts between x_a (half a contact length before the bite) and X_roll,
-        # and on the exit side from X_roll to x_b (where the contact's end moves the exit top)
+        self.set_anchors(x_in, float(X.max()))
+
+    def set_anchors(self, x_in: float, x_out: float) -> None:
+        """The stretch's fixed points (the mesh's inlet and outlet at x_in, x_out): it acts
+        between x_a (half a contact length before the bite) and X_roll, and on the exit side
+        from X_roll to x_b (where the contact's end moves the exit top), which moves on with
+        a contact end past the gap (``exit_anchor``) up to x_b_max, midway to the outlet."""
+        rp = self.rp
         self.x_a = max(rp.x_touch - 0.5 * rp.contact_length, 0.5 * (x_in + rp.x_touch))
-        x_out = float(X.max())
-        self.x_b = min(rp.axis_x + 0.5 * rp.contact_length, 0.5 * (rp.axis_x + x_out))
+        self.x_b_max = 0.5 * (rp.axis_x + x_out)
+        self.x_b = min(rp.axis_x + 0.5 * rp.contact_length, self.x_b_max)
 
     def x_bounds(self) -> tuple[float, float]:
         """Allowed range of the contact start (keeps the stretch within a factor ~2)."""
@@ -102,13 +108,23 @@ class StripMap:
         to the gap, or ``past_gap`` contact lengths after it (an elastic strip follows the
         rising roll while it recovers)."""
         rp = self.rp
-        return (rp.axis_x - 0.5 * rp.contact_length, rp.axis_x + past_gap * rp.contact_length)
+        past = min(past_gap * rp.contact_length, 0.5 * (self.x_b_max - rp.axis_x))
+        return (rp.axis_x - 0.5 * rp.contact_length, rp.axis_x + past)
+
+    def exit_anchor(self, x_e: float) -> float:
+        """Where the exit side's stretch ends for a contact end at x_e: x_b, or twice the end's
+        distance past the gap where that is further (at most x_b_max), so that the elements
+        between the gap and it are squeezed by at most a factor 2 (with x_b fixed, a wrap held
+        at half a contact length past the gap squeezed them to nothing)."""
+        a = self.rp.axis_x
+        return min(max(self.x_b, a + 2.0 * (x_e - a)), self.x_b_max)
 
     def stretch(self, X: np.ndarray, x_c: float, x_e: float | None = None) -> np.ndarray:
         """Piecewise-linear in x: x_a and x_b stay, the reference touching point goes to x_c,
         the reference gap X_roll to the contact's end x_e (default X_roll)."""
-        rp, xa, xb = self.rp, self.x_a, self.x_b
+        rp, xa = self.rp, self.x_a
         x_e = rp.axis_x if x_e is None else x_e
+        xb = self.exit_anchor(x_e)
         x = X.copy()
         a = (X > xa) & (X <= rp.x_touch)
         x[a] = xa + (X[a] - xa) * (x_c - xa) / (rp.x_touch - xa)

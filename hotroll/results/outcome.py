@@ -130,7 +130,8 @@ def contact_problem(summary: dict) -> str | None:
         else:
             why.append(f"{who} contact end is held at the end of its allowed "
                        f"range (half a contact length before the gap, or past it: a quarter "
-                       f"for an elastic strip, half for one that curls onto the roll) with the "
+                       f"for an elastic strip, half for one that curls onto the roll, at most "
+                       f"a quarter of the exit length solver.steady_exit_length) with the "
                        f"strip still pressing on the roll: it would follow the roll further "
                        f"than the model does (asymmetric: a smaller speed or radius ratio, or "
                        f"less friction, curls it less)")

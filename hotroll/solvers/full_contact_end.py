@@ -16,7 +16,8 @@ from hotroll.solvers.couplings import ContactEnd
 OVERLAP_TOL = 10.0
 #: how far past its gap a strip that curls onto a roll may follow it, in contact lengths: the
 #: mesh's exit zone is at least one contact length, and the strip must leave the roll well
-#: before the outlet (docs/theory.md 1e, "wrap")
+#: before the outlet (at most a quarter of the exit zone: ``StripMap.end_bounds``;
+#: docs/theory.md 1e, "wrap")
 PAST_GAP_WRAP = 0.5
 
 
