@@ -11,7 +11,8 @@ hours. One JSON line per mutant (function, line, killed/survived/timeout, the di
 ``--targets``: a JSON list of [file, function, regex or null, [test files]] instead of
 ``TARGETS`` below (the wrap's functions).
 ``--sample N --seed S``: enumerate all mutants of the targets, run a seeded uniform random
-subset of N. ``--dry``: print the mutant counts per file and stop.
+subset of N. ``--dry``: print the mutant counts per file and stop. ``--done F.jsonl``: skip
+the mutants an interrupted run already wrote to F (append the rest to it).
 
 Never run it on the working tree itself: it rewrites the files it mutates (restored after
 each mutant, but a kill in between would leave one mutated).
@@ -89,6 +90,12 @@ def main() -> None:
         i = only.index("--seed")
         seed = int(only[i + 1])
         del only[i:i + 2]
+    done = set()
+    if "--done" in only:         # a JSONL of an interrupted run: its mutants are skipped
+        i = only.index("--done")
+        with open(only[i + 1]) as fh:
+            done = {(d["file"], d["fn"], d["k"]) for d in map(json.loads, fh) if d.strip()}
+        del only[i:i + 2]
     if "--dry" in only:
         only.remove("--dry")
         dry = True
@@ -110,6 +117,8 @@ def main() -> None:
         print("total", len(muts))
         return
     for m in muts:
+        if (m["file"], m["fn"], m["k"]) in done:
+            continue
         try:
             with open(m["full"], "w") as fh:
                 fh.write(m["new_src"])
