@@ -1,0 +1,78 @@
+"""The 3D strip's mesh: a 2D strip mesh in (x, y) extruded along the width z in prism layers
+(issue 53; ../shared/notes/3d-steady.md: an extruded mesh is 1.3-2.5x fewer Taylor-Hood
+unknowns than an isotropic tetrahedral one on a roughing pass, and it keeps the 2D mesh's
+grading towards the roll).
+
+Axes: x along the strip, y through the thickness (the 2D model's), z across the width, z = 0
+the mid-width plane of a quarter model. Each 2D triangle (counter-clockwise in (x, y)) gives
+one prism per layer [z_k, z_k+1]; each 2D boundary segment one quadrilateral per layer, named
+as the segment was (``sym``, ``arc``, ``top``, ``in``, ...). The two new faces: ``zsym`` at
+z = z_0 (the mid-width symmetry plane) and ``edge`` at z = z_n (the strip's lateral face).
+The layers (``width_axis``) are thin at the free edge, where the spread and the edge's bulge
+form, and grow towards mid-width, where the strip is nearly in plane strain.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+#: layer-to-layer growth from the free edge towards mid-width (3d-steady.md: 1.2)
+WIDTH_GROWTH = 1.2
+
+
+def width_axis(half_width: float, edge: float, growth: float = WIDTH_GROWTH,
+               largest: float | None = None) -> np.ndarray:
+    """z nodes from 0 (mid-width) to ``half_width`` (m): the layer at the free edge ``edge``
+    thick, each next one towards mid-width ``growth`` times thicker, up to ``largest`` (default
+    no limit); the last (innermost) layer takes what is left, at least half a layer."""
+    if not 0.0 < edge <= half_width:
+        raise ValueError(f"width layers: need 0 < edge ({edge!r} m) <= half width "
+                         f"({half_width!r} m)")
+    if not growth >= 1.0:
+        raise ValueError(f"width layers: growth ({growth!r}) must be >= 1")
+    largest = half_width if largest is None else max(float(largest), edge)
+    z, s = [half_width], edge
+    while z[-1] - s > 0.5 * s:
+        z.append(z[-1] - s)
+        s = min(s * growth, largest)
+    z.append(0.0)
+    return np.array(z[::-1])
+
+
+def extrude(mesh2d, z: np.ndarray, region: str = "strip"):
+    """The prism mesh of ``mesh2d`` (an NGSolve 2D mesh in (x, y), straight-sided) through the
+    layers ``z`` (increasing): vertex i of the 2D mesh in layer k is vertex k * nv + i. Returns
+    an NGSolve mesh (module docstring for its boundaries)."""
+    import ngsolve
+    from netgen.meshing import Mesh as NetgenMesh
+
+    z = np.asarray(z, dtype=float)
+    if len(z) < 2 or np.any(np.diff(z) <= 0.0):
+        raise ValueError("extrude: the layers' z must increase (at least two)")
+    ng2 = mesh2d.ngmesh
+    P = np.asarray(ng2.Coordinates())[:, :2]
+    nv, nl = len(P), len(z) - 1
+    tri = np.asarray(ng2.Elements2D().NumPy()["nodes"][:, :3], dtype=np.int64) - 1
+    seg = ng2.Elements1D().NumPy()
+    seg_nodes = np.asarray(seg["nodes"][:, :2], dtype=np.int64) - 1
+    seg_index = np.asarray(seg["index"], dtype=np.int64)
+    ng = NetgenMesh(dim=3)
+    pts = np.concatenate([np.tile(P, (nl + 1, 1)), np.repeat(z, nv)[:, None]], axis=1)
+    ng.AddPoints(pts)
+    dom = ng.AddRegion(region, dim=3)
+    layer = (np.arange(nl) * nv)[:, None, None]
+    prisms = np.concatenate([tri[None] + layer, tri[None] + layer + nv], axis=2).reshape(-1, 6)
+    ng.AddElements(dim=3, index=dom, base=0, data=prisms.astype(np.int32))
+    # the end faces: outward normal -z at z_0 (clockwise seen from +z), +z at z_n
+    for name, faces in (("zsym", tri[:, ::-1]), ("edge", tri + nl * nv)):
+        ng.AddElements(dim=2, index=ng.AddRegion(name, dim=2), base=0,
+                       data=faces.astype(np.int32))
+    # the 2D boundary's segments (a, b), outward normal on the right of a -> b: quads
+    # (a, b, b', a') with a' = a one layer up
+    for idx in np.unique(seg_index):
+        name = ng2.GetBCName(int(idx) - 1)
+        ab = seg_nodes[seg_index == idx]
+        quads = np.concatenate([ab[None] + layer, ab[None, :, ::-1] + layer + nv],
+                               axis=2).reshape(-1, 4)
+        ng.AddElements(dim=2, index=ng.AddRegion(name, dim=2), base=0,
+                       data=quads.astype(np.int32))
+    return ngsolve.Mesh(ng)

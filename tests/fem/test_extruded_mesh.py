@@ -1,0 +1,127 @@
+"""The 3D strip's prism mesh (fem/extruded_mesh.py, issue 53 stage 0).
+
+Labels: [hand] volumes, areas and normals of a box computed by hand; [analytic] a manufactured
+Stokes solution on the extruded prisms and the convergence orders Taylor-Hood P2/P1 must reach
+(velocity L2 O(h^3), pressure L2 O(h^2)); [id] the layers' construction rules."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from hotroll.fem.extruded_mesh import extrude, width_axis
+from hotroll.fem.mesh import structured_triangle_mesh
+
+
+def box(nx: int, ny: int, z: np.ndarray, lx: float = 2.0, ly: float = 1.0):
+    return extrude(structured_triangle_mesh(np.linspace(0.0, lx, nx + 1),
+                                            np.linspace(0.0, ly, ny + 1)), z)
+
+
+def test_width_layers_are_thin_at_the_edge_and_grow_inwards():
+    """[id] from the edge inwards: the edge layer, then x1.2 each, capped at ``largest``; the
+    innermost layer at least half of the one before it; the ends exact."""
+    z = width_axis(0.75, 0.01, largest=0.05)
+    dz = np.diff(z)[::-1]                         # edge first
+    assert z[0] == 0.0 and z[-1] == 0.75
+    assert dz[0] == pytest.approx(0.01)
+    for a, b in zip(dz[:-2], dz[1:-1]):
+        assert b == pytest.approx(min(1.2 * a, 0.05))
+    assert dz[-1] >= 0.5 * dz[-2]
+    assert width_axis(0.1, 0.1).tolist() == [0.0, 0.1]
+    for bad in ((0.1, 0.0), (0.1, 0.2)):
+        with pytest.raises(ValueError, match="edge"):
+            width_axis(*bad)
+
+
+def test_a_box_has_its_volume_faces_and_outward_normals():
+    """[hand] the box [0, 2] x [0, 1] x [0, 0.5] in three graded layers: volume 1, each face's
+    area and its outward unit normal (integrated over the face: area times the normal)."""
+    from ngsolve import Integrate, specialcf
+
+    mesh = box(4, 2, width_axis(0.5, 0.1))
+    assert mesh.ne == 8 * 2 * 4 and mesh.GetMaterials() == ("strip",)
+    assert Integrate(1.0, mesh) == pytest.approx(1.0, rel=1e-12)
+    n = specialcf.normal(3)
+    faces = {"bottom": (1.0, (0, -1, 0)), "top": (1.0, (0, 1, 0)), "left": (0.5, (-1, 0, 0)),
+             "right": (0.5, (1, 0, 0)), "zsym": (2.0, (0, 0, -1)), "edge": (2.0, (0, 0, 1))}
+    assert set(mesh.GetBoundaries()) == set(faces)
+    for name, (area, normal) in faces.items():
+        on = mesh.Boundaries(name)
+        assert Integrate(1.0, mesh, definedon=on) == pytest.approx(area, rel=1e-12)
+        got = [Integrate(n[i], mesh, definedon=on) for i in range(3)]
+        assert got == pytest.approx([area * c for c in normal], abs=1e-12)
+
+
+def test_the_steady_strip_mesh_keeps_its_boundary_names():
+    """[hand] hotroll's 2D steady strip extruded: its boundaries plus ``zsym`` and ``edge``,
+    the volume its area times the half width, the extruded arc's area its length times it."""
+    from ngsolve import Integrate
+
+    from hotroll.fem.mesh import MeshSpec, build_steady_mesh
+    from hotroll.model.geometry import RollPass
+
+    rp = RollPass(0.3, 0.005, 0.004, omega=10.0, axis_x=0.0)
+    m2 = build_steady_mesh(rp, 0.02, 0.02, MeshSpec(h=1e-3, fine_length=0.03), margin=0.005)
+    half_width = 0.02
+    mesh = extrude(m2, width_axis(half_width, 2e-3))
+    assert set(mesh.GetBoundaries()) == set(m2.GetBoundaries()) | {"zsym", "edge"}
+    area = Integrate(1.0, m2)
+    assert Integrate(1.0, mesh) == pytest.approx(area * half_width, rel=1e-12)
+    arc = Integrate(1.0, m2, definedon=m2.Boundaries("arc"))
+    assert Integrate(1.0, mesh, definedon=mesh.Boundaries("arc")) == pytest.approx(
+        arc * half_width, rel=1e-12)
+
+
+def stokes_errors(n: int) -> tuple[float, float]:
+    """L2 errors of Taylor-Hood P2/P1 on the unit cube in n x n x n prism layers for the
+    divergence-free u = (sin(pi x) cos(pi z) y, 0, -cos(pi x) sin(pi z) y) and
+    p = cos(pi x) cos(pi y) cos(pi z) (the body force from them by the coefficient
+    functions' symbolic derivatives, Diff)."""
+    import ngsolve as ng
+    from ngsolve import CF, cos, pi, sin, x, y, z
+
+    from hotroll.fem.reproducible import fe_space
+
+    mesh = extrude(structured_triangle_mesh(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1)),
+                   np.linspace(0.0, 1.0, n + 1))
+    # div u = 0: d/dx (sin(pi x) cos(pi z) y) + d/dz (-cos(pi x) sin(pi z) y) = 0
+    ue = CF((sin(pi * x) * cos(pi * z) * y, CF(0.0), -cos(pi * x) * sin(pi * z) * y))
+    pe = cos(pi * x) * cos(pi * y) * cos(pi * z)
+    coords = (x, y, z)
+    eps = [[0.5 * (ue[i].Diff(coords[j]) + ue[j].Diff(coords[i])) for j in range(3)]
+           for i in range(3)]
+    f = CF(tuple(-sum((2.0 * eps[i][j]).Diff(coords[j]) for j in range(3))
+                 + pe.Diff(coords[i]) for i in range(3)))
+    V = fe_space(ng.VectorH1, mesh, order=2, dirichlet=".*")
+    X = V * fe_space(ng.H1, mesh, order=1) * fe_space(ng.NumberSpace, mesh)
+    (u, p, lam), (v, q, mu) = X.TnT()
+    a = ng.BilinearForm(X)
+    a += (2.0 * ng.InnerProduct(ng.Sym(ng.grad(u)), ng.Sym(ng.grad(v))) - ng.div(u) * q - ng.div(v) * p
+          + p * mu + q * lam) * ng.dx
+    a.Assemble()
+    lf = ng.LinearForm(X)
+    lf += f * v * ng.dx
+    lf.Assemble()
+    gf = ng.GridFunction(X)
+    gf.components[0].Set(ue, definedon=mesh.Boundaries(".*"))
+    r = lf.vec.CreateVector()
+    r.data = lf.vec - a.mat * gf.vec
+    gf.vec.data += a.mat.Inverse(X.FreeDofs(), inverse="umfpack") * r
+    uh, ph = gf.components[0], gf.components[1]
+    eu = ng.sqrt(ng.Integrate(ng.InnerProduct(uh - ue, uh - ue), mesh))
+    mean = ng.Integrate(pe, mesh)
+    ep = ng.sqrt(ng.Integrate((ph - (pe - mean)) ** 2, mesh))
+    return float(eu), float(ep)
+
+
+def test_taylor_hood_on_the_prisms_converges_at_its_orders():
+    """[analytic] a manufactured Stokes solution (viscosity 1, the velocity on the whole
+    boundary, mean pressure 0): the L2 errors fall by 2^3 (velocity) and at least 2^2
+    (pressure) per halving of the prisms. Measured (n = 2, 3, 4, 6, 8): velocity 2.73, 2.84,
+    2.92, 2.96; pressure 2.94, 2.94, 2.64, 2.46."""
+    (u1, p1), (u2, p2) = stokes_errors(3), stokes_errors(6)
+    assert math.log2(u1 / u2) > 2.6
+    assert math.log2(p1 / p2) > 1.8
+    assert u2 < 1e-3
