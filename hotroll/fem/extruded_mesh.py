@@ -76,3 +76,43 @@ def extrude(mesh2d, z: np.ndarray, region: str = "strip"):
         ng.AddElements(dim=2, index=ng.AddRegion(name, dim=2), base=0,
                        data=quads.astype(np.int32))
     return ngsolve.Mesh(ng)
+
+
+class LayerCopy:
+    """A field of the 2D mesh carried onto its extrusion, the same in every layer: the 3D
+    field's vertex DOFs and the DOFs of the edges inside a layer take the 2D vertex's and
+    edge's; the DOFs of the edges across a layer and of the quadrilateral faces are zero (the
+    field is constant along z). Exact for H1 of order <= 2: a prism's shape functions of a
+    layer's vertex or edge are the triangle's times the layer's linear hat in z, and the two
+    hats sum to one."""
+
+    def __init__(self, mesh2d, mesh3d):
+        from ngsolve import EDGE, VERTEX, NodeId
+
+        nv = mesh2d.nv
+        self.nv2, self.mesh3 = nv, mesh3d
+        flat = {tuple(sorted(v.nr for v in e.vertices)): e.nr for e in mesh2d.edges}
+        self.pairs = [(NodeId(VERTEX, v), NodeId(VERTEX, v % nv)) for v in range(mesh3d.nv)]
+        for e in mesh3d.edges:
+            a, b = sorted(v.nr for v in e.vertices)
+            if a // nv == b // nv:                     # inside a layer
+                self.pairs.append((NodeId(EDGE, e.nr), NodeId(EDGE, flat[(a % nv, b % nv)])))
+
+    def copy(self, space2d, vec2d, space3d, vec3d) -> None:
+        """vec3d (numpy, of the scalar ``space3d``) = vec2d (of ``space2d``) in every layer."""
+        vec3d[:] = 0.0
+        for node3, node2 in self.pairs:
+            d3, d2 = space3d.GetDofNrs(node3), space2d.GetDofNrs(node2)
+            for a, b in zip(d3, d2):
+                if a >= 0 and b >= 0:
+                    vec3d[a] = vec2d[b]
+
+    def vector(self, gf2d, gf3d) -> None:
+        """A 2D VectorH1 GridFunction (x, y) onto a 3D one (x, y, 0)."""
+        s2, s3 = gf2d.space, gf3d.space
+        n2, n3 = s2.ndof // 2, s3.ndof // 3
+        v2, v3 = gf2d.vec.FV().NumPy(), gf3d.vec.FV().NumPy()
+        v3[2 * n3:] = 0.0
+        for c in range(2):
+            self.copy(s2.components[c], v2[c * n2:(c + 1) * n2], s3.components[c],
+                      v3[c * n3:(c + 1) * n3])

@@ -64,8 +64,7 @@ class FrictionTerms:
         the law's ``coefficient_partials`` (slip^2, pressure, k of the strain rate)."""
         from ngsolve import InnerProduct
 
-        n, t = self.roll_frame()
-        law, s, s_u = self.friction, self.slip(w), u * t
+        law, s, s_u = self.friction, self.slip(w), self.tangential(u)
         kw = self.friction_arguments(w, lam=lam_w)
         kf = law.coefficient(s * s, **kw)
         d_s2, d_p, d_k = law.coefficient_partials(s * s, **kw)
@@ -86,4 +85,4 @@ class FrictionTerms:
             e2 = edot_squared(ew)
             dk_de2 = k * self.m_material / (2.0 * (self.material.eps0**2 + e2))
             d_kf = d_kf + d_k * dk_de2 * (4.0 / 3.0) * InnerProduct(ew, strain_rate(u))
-        return self.chi * (kf * s_u + s * d_kf) * (v * t)
+        return self.chi * (kf * s_u + s * d_kf) * self.tangential(v)

@@ -71,16 +71,19 @@ def reference_viscosity(material: NortonHoff, rp: RollPass) -> float:
 
 
 def _elements_on(mesh, regions: str):
-    """BitArray of the volume elements with an edge on the boundary ``regions``."""
+    """BitArray of the volume elements with a facet (an edge; a face in 3D) on the boundary
+    ``regions``."""
     import re
 
     from ngsolve import BND, BitArray
 
     pattern = re.compile(f"^({regions})$")
-    edges = {el.edges[0].nr for el in mesh.Elements(BND) if pattern.match(el.mat)}
+    # a boundary element is one facet of the volume mesh: an edge in 2D, a face in 3D
+    nodes = (lambda el: el.edges) if mesh.dim == 2 else (lambda el: el.faces)
+    facets = {nodes(el)[0].nr for el in mesh.Elements(BND) if pattern.match(el.mat)}
     ba = BitArray(mesh.ne)
     ba.Clear()
     for el in mesh.Elements():
-        if any(e.nr in edges for e in el.edges):
+        if any(f.nr in facets for f in nodes(el)):
             ba.Set(el.nr)
     return ba

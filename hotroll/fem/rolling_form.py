@@ -61,6 +61,8 @@ class RollingForm(FrictionTerms):
 
     #: the boundary the contact multiplier lives on (taylor_hood's ``multiplier_on``)
     MULTIPLIER_ON = "arc"
+    #: the space dimension (a 3D strip: ``fem/rolling_form_3d.py``)
+    dim = 2
 
     def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: FrictionLaw,
                  penalties: PenaltyTable, free_surface: str, tensions: tuple = (0.0, 0.0),
@@ -97,8 +99,7 @@ class RollingForm(FrictionTerms):
         # K(strain, T) / K_ref of a strain-dependent flow stress (a CF of the strain field,
         # fem/strain.py), 1 for Norton-Hoff
         self.consistency = consistency
-        self.fes = taylor_hood(mesh, dirichlety="sym",
-                               multiplier_on=self.MULTIPLIER_ON if contact == "multiplier" else None)
+        self.fes = self._spaces(self.MULTIPLIER_ON if contact == "multiplier" else None)
         self.m = Parameter(material.m)      # set to 1 for the very first iterate (Section 3.4)
         # the material's rate exponent: m, plus m(T) - m_ref (a CF) where a temperature-
         # dependent law's exponent varies (solvers/thermal_feedback.py); the friction law keeps m
@@ -125,6 +126,10 @@ class RollingForm(FrictionTerms):
             self.roll_tilt, self.roll_hoop = GridFunction(P1), GridFunction(P1)
             self.roll_cx = Parameter(rp.centre[0])     # moves with the lowest point
         self._newton_problem(material.eps0, contact_regions, rp.u_roll, primal_dual)
+
+    def _spaces(self, multiplier_on: str | None):
+        """Taylor-Hood with v_y = 0 on the symmetry line (and the contact's multiplier)."""
+        return taylor_hood(self.mesh, dirichlety="sym", multiplier_on=multiplier_on)
 
     def _newton_problem(self, eps0: float, contact_regions: str, velocity_scale: float,
                         primal_dual: bool) -> None:
@@ -219,12 +224,17 @@ class RollingForm(FrictionTerms):
         grow and the mesh tangles (see docs/theory.md, "Free exit surface")."""
         from ngsolve import IfPos, specialcf, x
 
-        return IfPos(x - self.rp.axis_x, u[1], u * specialcf.normal(2))
+        return IfPos(x - self.rp.axis_x, u[1], u * specialcf.normal(self.dim))
+
+    def tangential(self, u):
+        """u's part along the roll's surface, where the friction acts: u.t (the tangent of
+        the roll's circle; a 3D strip's is a vector in the roll's tangent plane)."""
+        _, t = self.roll_frame()
+        return u * t
 
     def slip(self, u):
         """Scalar slip v_s . t = u.t - |U_roll| (2.27); negative where the plate lags the roll."""
-        _, t = self.roll_frame()
-        return u * t - self.roll_speed()
+        return self.tangential(u) - self.roll_speed()
 
     @property
     def exact(self) -> bool:
@@ -376,8 +386,8 @@ class RollingForm(FrictionTerms):
         gam_s = pen.surface(x, rp.soft_zone)
         chi = self.chi
 
-        friction_term = (chi * self.friction_coefficient(w, lam=lam) * self.slip(u) * (v * t)
-                         if friction else None)
+        friction_term = (chi * self.friction_coefficient(w, lam=lam) * self.slip(u)
+                         * self.tangential(v) if friction else None)
         # the penalty contact; exact contact: the constraint (``constraint``) instead
         contact = 0.0 if self.exact else gam_s * (u * n) * (v * n)
 
@@ -387,7 +397,7 @@ class RollingForm(FrictionTerms):
         if self.free_surface == "constrained":
             free = free + gam_s * self.free_normal(u) * self.free_normal(v)
 
-        nh = specialcf.normal(2)
+        nh = specialcf.normal(self.dim)
         rest = ((chi * contact + (1.0 - chi) * free) * ds(TOP)
                 + (inlet - self.tension_back * (v * nh)) * ds("in")
                 + (outlet + gam_s * u[1] * v[1] - self.tension_front * (v * nh)) * ds("out"))

@@ -13,7 +13,7 @@ BUBBLE_MID = -0.125
 
 
 def taylor_hood(mesh, dirichletx: str = "", dirichlety: str = "sym", order: int = 2,
-                multiplier_on: str | None = None):
+                multiplier_on: str | None = None, dirichletz: str | None = None):
     """Velocity VectorH1(order) x pressure H1(order - 1), component-wise Dirichlet regions;
     with ``multiplier_on`` (a boundary region) a third factor: continuous P1 with DOFs at that
     boundary's vertices only (the contact pressure; stable with P2 velocities,
@@ -22,7 +22,8 @@ def taylor_hood(mesh, dirichletx: str = "", dirichlety: str = "sym", order: int 
     gradient, e.g. Coulomb's cap k of the strain rate) evaluates it too, as the P1 trace."""
     from ngsolve import H1, Compress, VectorH1
 
-    V = fe_space(VectorH1, mesh, order=order, dirichletx=dirichletx, dirichlety=dirichlety)
+    z = {} if dirichletz is None else {"dirichletz": dirichletz}       # a 3D mesh's
+    V = fe_space(VectorH1, mesh, order=order, dirichletx=dirichletx, dirichlety=dirichlety, **z)
     Q = fe_space(H1, mesh, order=order - 1)
     if multiplier_on is None:
         return fe_space(mul, V, Q)
