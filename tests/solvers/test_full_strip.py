@@ -230,7 +230,23 @@ def test_what_the_full_strip_does_not_carry_is_refused_by_name():
         check_supported(problem, replace(st, free_surface="constrained"))
     with pytest.raises(ValueError, match="flattening roll"):
         check_supported(replace(problem, roll=object()), st)
+    with pytest.raises(ValueError, match=r"support: the penalty contact \(contact\.method\)$"):
+        check_supported(problem, replace(st, contact="penalty"))
     assert np.isfinite(problem.h)
+
+
+def test_each_flattening_roll_keeps_its_own_relaxation():
+    """[plumb] a roll model's under-relaxation (roll.relaxation) reaches that roll's
+    FlatteningRoll; the other roll stays rigid (no entry)."""
+    from hotroll.model.roll_elastic import RollElasticity
+
+    case, problem, st = _setup()
+    rp = problem.rp
+    run = FullSteadyRun(problem, st, case.plate.length, {1: rp, -1: rp},
+                        {1: problem.friction, -1: problem.friction},
+                        roll_models={1: ("hitchcock", RollElasticity(), 0.4, 0.0)})
+    assert set(run.flattening) == {1} and run.flattening[1].relaxation == 0.4
+    assert run.flattening[1].kind == "hitchcock"
 
 
 @pytest.mark.parametrize("elastic", ["off", "auto"])
