@@ -79,33 +79,54 @@ def extrude(mesh2d, z: np.ndarray, region: str = "strip"):
 
 
 class LayerCopy:
-    """A field of the 2D mesh carried onto its extrusion, the same in every layer: the 3D
-    field's vertex DOFs and the DOFs of the edges inside a layer take the 2D vertex's and
-    edge's; the DOFs of the edges across a layer and of the quadrilateral faces are zero (the
-    field is constant along z). Exact for H1 of order <= 2: a prism's shape functions of a
-    layer's vertex or edge are the triangle's times the layer's linear hat in z, and the two
-    hats sum to one."""
+    """Fields of the 2D mesh carried onto its extrusion and back: a 3D field the same in every
+    layer (``copy``, ``vector``; ``scale`` per layer: a field linear in z along each spine), and
+    one layer of a 3D field read as a 2D one (``take``). The 3D field's vertex DOFs and the DOFs
+    of the edges inside a layer are the 2D vertex's and edge's; the DOFs of the edges across a
+    layer and of the quadrilateral faces are zero (constant, or linear, along z). Exact for H1
+    of order <= 2: a prism's shape functions of a layer's vertex or edge are the triangle's
+    times the layer's linear hat in z."""
 
     def __init__(self, mesh2d, mesh3d):
         from ngsolve import EDGE, VERTEX, NodeId
 
         nv = mesh2d.nv
-        self.nv2, self.mesh3 = nv, mesh3d
+        self.nv2, self.layers = nv, mesh3d.nv // nv - 1
         flat = {tuple(sorted(v.nr for v in e.vertices)): e.nr for e in mesh2d.edges}
-        self.pairs = [(NodeId(VERTEX, v), NodeId(VERTEX, v % nv)) for v in range(mesh3d.nv)]
+        #: (layer, 3D node, 2D node) of every vertex and every edge inside a layer
+        self.nodes = [(v // nv, NodeId(VERTEX, v), NodeId(VERTEX, v % nv))
+                      for v in range(mesh3d.nv)]
         for e in mesh3d.edges:
             a, b = sorted(v.nr for v in e.vertices)
-            if a // nv == b // nv:                     # inside a layer
-                self.pairs.append((NodeId(EDGE, e.nr), NodeId(EDGE, flat[(a % nv, b % nv)])))
+            if a // nv == b // nv:
+                self.nodes.append((a // nv, NodeId(EDGE, e.nr),
+                                   NodeId(EDGE, flat[(a % nv, b % nv)])))
+        self._cache: dict = {}
 
-    def copy(self, space2d, vec2d, space3d, vec3d) -> None:
-        """vec3d (numpy, of the scalar ``space3d``) = vec2d (of ``space2d``) in every layer."""
+    def indices(self, space2d, space3d) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(layer, 3D DOF, 2D DOF) arrays of the scalar spaces' matching DOFs (cached)."""
+        key = (id(space2d), id(space3d))
+        hit = self._cache.get(key)
+        if hit is None:
+            rows = [(k, a, b) for k, n3, n2 in self.nodes
+                    for a, b in zip(space3d.GetDofNrs(n3), space2d.GetDofNrs(n2))
+                    if a >= 0 and b >= 0]
+            arr = np.array(rows, dtype=np.int64).reshape(-1, 3)
+            hit = self._cache[key] = (arr[:, 0], arr[:, 1], arr[:, 2], space2d, space3d)
+        return hit[:3]
+
+    def copy(self, space2d, vec2d, space3d, vec3d, scale=None) -> None:
+        """vec3d (numpy, of the scalar ``space3d``) = vec2d (of ``space2d``) in every layer,
+        times ``scale[layer]`` if given; zero elsewhere."""
+        layer, d3, d2 = self.indices(space2d, space3d)
         vec3d[:] = 0.0
-        for node3, node2 in self.pairs:
-            d3, d2 = space3d.GetDofNrs(node3), space2d.GetDofNrs(node2)
-            for a, b in zip(d3, d2):
-                if a >= 0 and b >= 0:
-                    vec3d[a] = vec2d[b]
+        vec3d[d3] = vec2d[d2] if scale is None else np.asarray(scale)[layer] * vec2d[d2]
+
+    def take(self, layer: int, space3d, vec3d, space2d, vec2d) -> None:
+        """vec2d = the 3D field's values in ``layer`` (its nodes' DOFs)."""
+        k, d3, d2 = self.indices(space2d, space3d)
+        on = k == layer
+        vec2d[d2[on]] = vec3d[d3[on]]
 
     def vector(self, gf2d, gf3d) -> None:
         """A 2D VectorH1 GridFunction (x, y) onto a 3D one (x, y, 0)."""
@@ -116,3 +137,26 @@ class LayerCopy:
         for c in range(2):
             self.copy(s2.components[c], v2[c * n2:(c + 1) * n2], s3.components[c],
                       v3[c * n3:(c + 1) * n3])
+
+    def facets(self, mesh2d, mesh3d, space2d, vec2d, space3d, vec3d) -> None:
+        """A facet field of order 0 (one value per edge, as the contact indicator chi) onto
+        the extrusion: every quadrilateral boundary face takes the value of the 2D boundary
+        edge it is extruded from; every other face 0."""
+        from ngsolve import BND
+
+        nv = self.nv2
+        flat = {tuple(sorted(v.nr for v in e.vertices)): e.nr for e in mesh2d.edges}
+        vec3d[:] = 0.0
+        for el in mesh3d.Elements(BND):
+            vs = sorted(v.nr for v in el.vertices)
+            low = [v % nv for v in vs if v // nv == vs[0] // nv]
+            if len(vs) == 4 and len(low) == 2:
+                edge = flat[tuple(sorted(low))]
+                vec3d[space3d.GetDofNrs(el)[0]] = vec2d[space2d.GetDofNrs(
+                    _edge_id(edge))[0]]
+
+
+def _edge_id(nr: int):
+    from ngsolve import EDGE, NodeId
+
+    return NodeId(EDGE, nr)

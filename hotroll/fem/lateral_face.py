@@ -1,0 +1,83 @@
+"""The 3D strip's lateral face as a stream surface (issue 53 stage 2;
+../shared/notes/3d-steady.md, "Free surfaces in 3D").
+
+The face is z = B(x, y), a height over the strip's cross-section (the 2D mesh, deformed as the
+strip's (x, y) shape). In a steady flow it is a stream surface: u.n = 0, that is
+
+    u_x dB/dx + u_y dB/dy = u_z   on the face, B = b0 on the entry face (the stock's half width),
+
+a linear transport equation along the face's own streamlines (u_x > 0 in a steady pass). It is
+solved for a P2 field B by streamline-upwind Petrov-Galerkin (SUPG: the test function w +
+tau u.grad w, tau = h / 2|u|), the velocity the 3D solution's on the face. Every layer of the
+extruded mesh then moves along its spine, z = Z (B / b0) (``displace``; the note: moving only
+the edge layer folds it on narrow bars). The exit width and the spread are read off B.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from hotroll.fem.reproducible import fe_space
+
+
+class LateralFace:
+    """B(x, y) on the 2D cross-section ``mesh2d`` (its reference mesh: a copy is deformed by
+    ``disp2d``, the 2D displacement's coefficient vector), for the extruded mesh of
+    ``copy`` (``fem/extruded_mesh.LayerCopy``) with layers ``z`` (the last its free edge, b0)."""
+
+    def __init__(self, mesh2d, disp2d: np.ndarray, z: np.ndarray, copy, inflow: str = "in"):
+        import ngsolve as ng
+
+        self.face = ng.Mesh(mesh2d.ngmesh.Copy())
+        d = ng.GridFunction(fe_space(ng.VectorH1, self.face, order=2))
+        d.vec.FV().NumPy()[:] = disp2d
+        self._d = d
+        self.face.SetDeformation(d)
+        self.z, self.b0, self.copy = np.asarray(z, dtype=float), float(z[-1]), copy
+        self.S = fe_space(ng.H1, self.face, order=2, dirichlet=inflow)
+        self.B = ng.GridFunction(self.S)
+        self.B.Set(self.b0)
+        self._scalar = fe_space(ng.H1, self.face, order=2)
+        self.velocity = ng.GridFunction(self._scalar ** 3)
+        u, w = self.S.TnT()
+        v = ng.CF((self.velocity[0], self.velocity[1]))
+        tau = ng.specialcf.mesh_size / (2.0 * ng.sqrt(v * v) + 1e-300)
+        test = w + tau * (v * ng.grad(w))
+        self._a = ng.BilinearForm(self.S)
+        self._a += (v * ng.grad(u)) * test * ng.dx
+        self._f = ng.LinearForm(self.S)
+        self._f += self.velocity[2] * test * ng.dx
+        self._dB = ng.GridFunction(self.S)
+
+    def update(self, velocity3d) -> float:
+        """Solve for B with the 3D velocity ``velocity3d`` (a VectorH1 GridFunction of the
+        extruded mesh) on the face; the largest change of B (m)."""
+        V3, n = velocity3d.space, self._scalar.ndof
+        n3 = V3.ndof // 3
+        u3, vel = velocity3d.vec.FV().NumPy(), self.velocity.vec.FV().NumPy()
+        last = len(self.z) - 1
+        for c in range(3):
+            self.copy.take(last, V3.components[c], u3[c * n3:(c + 1) * n3], self._scalar,
+                           vel[c * n:(c + 1) * n])
+        self._a.Assemble()
+        self._f.Assemble()
+        r = self._f.vec.CreateVector()
+        r.data = self._f.vec - self._a.mat * self.B.vec
+        self._dB.vec.data = self._a.mat.Inverse(self.S.FreeDofs(), inverse="umfpack") * r
+        self.B.vec.data += self._dB.vec
+        return float(np.abs(self._dB.vec.FV().NumPy()).max())
+
+    def displace(self, disp3d) -> None:
+        """The z part of the extruded mesh's displacement (a VectorH1 GridFunction, order 2):
+        (Z / b0) (B - b0) at every node of layer Z (x, y from the 2D shape, untouched)."""
+        import ngsolve as ng
+
+        V3 = disp3d.space
+        n3 = V3.ndof // 3
+        excess = ng.GridFunction(self.S)
+        excess.Set(self.B - self.b0)            # exact: B - b0 is P2
+        self.copy.copy(self.S, excess.vec.FV().NumPy(), V3.components[2],
+                       disp3d.vec.FV().NumPy()[2 * n3:], scale=self.z / self.b0)
+
+    def half_width(self, x: float, y: np.ndarray) -> np.ndarray:
+        """B at the physical points (x, y_i) of the cross-section (m)."""
+        return np.array([self.B(self.face(x, float(yi))) for yi in np.asarray(y)])

@@ -1,0 +1,131 @@
+"""A steady 3D pass with spread from a solved 2D pass (issue 53 stage 2).
+
+The quarter strip (mid-thickness and mid-width symmetry) is the solved 2D pass's mesh
+extruded across the stock's half width b0 (``fem/extruded_mesh.py``), its form the 2D one in
+3D (``fem/rolling_form_3d.py``), its start the 2D solution in every layer. The strip's top
+shape, the contact's extent along x, the friction parameter and the tensions stay as the 2D
+pass left them (the top is the roll's over the contact and the strip is rigid after it; how
+the top and the contact change near the edge is the next stage); the lateral face is a free
+stream surface (``fem/lateral_face.py``). Newton on the current shape and the face's update
+alternate until the face settles (its largest move below ``surface_tol`` h, the 2D pass's
+tolerance of its traced tops). With ``edge_held`` the face is held (u_z = 0): plane strain,
+the 2D answer.
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from hotroll.fem.extruded_mesh import LayerCopy, extrude, width_axis
+from hotroll.fem.lateral_face import LateralFace
+from hotroll.fem.nonlinear import newton
+from hotroll.fem.penalties import PenaltyTable
+from hotroll.fem.reproducible import integrate
+from hotroll.fem.rolling_form_3d import RollingForm3D
+from hotroll.model.material import NortonHoff
+
+
+class Spread3D:
+    """The 3D quarter strip of the solved 2D ``SteadyRun`` ``run`` for a stock of half width
+    ``half_width`` (m): width layers ``edge`` thick at the free edge (default the 2D contact
+    mesh size), growing by ``growth`` inwards up to ``largest`` (default 4 edge layers)."""
+
+    def __init__(self, run, half_width: float, edge: float | None = None, growth: float = 1.2,
+                 largest: float | None = None, edge_held: bool = False):
+        import ngsolve as ng
+
+        t0 = time.perf_counter()
+        if not half_width > 0.0:
+            raise ValueError(f"half_width = {half_width!r} m: must be > 0")
+        problem, f2 = run.problem, run.form
+        self.run2d, self.problem = run, problem
+        h = problem.h
+        edge = min(h, half_width) if edge is None else edge
+        self.z = width_axis(half_width, edge, growth, 4.0 * edge if largest is None else largest)
+        ref2 = ng.Mesh(run.mesh.ngmesh.Copy())          # the 2D reference (undeformed)
+        self.mesh = extrude(ref2, self.z)
+        mat = problem.material
+        self.form = RollingForm3D(self.mesh, problem.rp, NortonHoff(1.0, mat.m, mat.eps0),
+                                  problem.friction, PenaltyTable(h),
+                                  tensions=problem.reduced_tensions, edge_held=edge_held)
+        f3 = self.form
+        copy = self.copy = LayerCopy(ref2, self.mesh)
+        self.disp = ng.GridFunction(f3.fes.components[0])
+        copy.vector(run.disp, self.disp)
+        self.mesh.SetDeformation(self.disp)
+        for name in ("a_f", "m", "x_split", "U", "v_reg", "_mu", "_lam", "tension_back",
+                     "tension_front"):
+            getattr(f3, name).Set(getattr(f2, name).Get())
+        copy.facets(ref2, self.mesh, f2.chi.space, f2.chi.vec.FV().NumPy(), f3.chi.space,
+                    f3.chi.vec.FV().NumPy())
+        g2, g3 = f2.nonlinear.gf, f3.nonlinear.gf
+        copy.vector(g2.components[0], g3.components[0])
+        for c in range(1, len(g2.components)):
+            copy.copy(g2.components[c].space, g2.components[c].vec.FV().NumPy(),
+                      g3.components[c].space, g3.components[c].vec.FV().NumPy())
+        self.face = None if edge_held else LateralFace(ref2, run.disp.vec.FV().NumPy(),
+                                                       self.z, copy)
+        self.edge_held = edge_held
+        self.rounds, self.iterations, self.settled = 0, 0, False
+        self.setup_time, self.solve_time = time.perf_counter() - t0, 0.0
+
+    def solve(self, max_rounds: int = 30) -> bool:
+        """Newton and the face's update in turn until the face moves less than surface_tol h
+        and Newton converged; True if settled."""
+        t0 = time.perf_counter()
+        s = self.run2d.s
+        tol_face = s.surface_tol * self.problem.h
+        for _ in range(max_rounds):
+            st = newton(self.form.nonlinear, s.tol, s.max_it)
+            self.rounds += 1
+            self.iterations += st.iterations
+            if self.face is None:
+                self.settled = st.converged
+                break
+            change = self.face.update(self.form.nonlinear.velocity)
+            self.face.displace(self.disp)
+            self.mesh.SetDeformation(self.disp)
+            if st.converged and change <= tol_face:
+                self.settled = True
+                break
+        self.solve_time += time.perf_counter() - t0
+        return self.settled
+
+    def figures(self) -> dict:
+        """The pass's figures (SI, per roll and the whole strip): roll force (N) and per
+        width (N/m of the stock's width), roll torque (N m), the exit's mean half width and
+        the spread (m), the mass fluxes through the cut faces and the lateral face (m^3/s of
+        the quarter), Newton iterations, rounds, DOFs, wall time (s)."""
+        import ngsolve as ng
+
+        f, mesh, K = self.form, self.mesh, self.problem.material.K
+        u = f.nonlinear.velocity
+        n, t = f.roll_frame()
+        s = f.slip(u)
+        kf = f.friction_coefficient(u)
+        arc = mesh.Boundaries("arc")
+        force_y = (integrate(f.pressure(u) * n[1], mesh, ng.BND, definedon=arc)
+                   + f.integrate_friction(f.chi * kf * s[1]))
+        cx, cy = f.rp.centre
+        r = ng.sqrt((ng.x - cx) ** 2 + (ng.y - cy) ** 2)
+        torque = f.integrate_friction(f.chi * (-kf * (s * t)) * r)
+        nn = ng.specialcf.normal(3)
+        flux = {b: float(integrate(u * nn, mesh, ng.BND, definedon=mesh.Boundaries(b)))
+                for b in ("in", "out", "edge")}
+        b0 = float(self.z[-1])
+        out = {"roll_force": 2.0 * K * force_y, "roll_torque": 2.0 * K * torque,
+               "stock_half_width": b0, "flux_in": -flux["in"], "flux_out": flux["out"],
+               "flux_edge": flux["edge"], "rounds": self.rounds,
+               "newton_iterations": self.iterations, "dofs": f.fes.ndof,
+               "wall_time": self.setup_time + self.solve_time, "settled": self.settled}
+        out["roll_force_per_width"] = out["roll_force"] / (2.0 * b0)
+        if self.face is not None:
+            x_out = max(v.point[0] for v in mesh.vertices)
+            y = np.linspace(0.0, self.problem.rp.half_exit, 41)[:-1] + 0.5 * (
+                self.problem.rp.half_exit / 40.0)
+            half = self.face.half_width(x_out - 1e-9 * abs(x_out) - 1e-12, y)
+            out["exit_half_width"] = float(np.mean(half))
+            out["exit_half_width_profile"] = half.tolist()
+            out["spread"] = 2.0 * (out["exit_half_width"] - b0)
+        return out

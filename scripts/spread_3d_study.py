@@ -1,0 +1,90 @@
+"""The 3D strip's spread (issue 53 stage 2, solvers/spread_3d.py) on Case R's geometry (R = 250
+mm, 10 -> 8 mm, Tresca 0.3, Norton-Hoff m = 0.05) against the empirical formulas of Hill,
+Sparling and Wusatowski (theory/spread.py, PyRolL's plugins, correction factors 1), over the
+stock's width b0/h0 and two width gradings. One JSON line a run (appended to OUT, resumed: a
+run already in OUT is skipped); a markdown table of OUT at the end.
+
+    python scripts/spread_3d_study.py OUT [--ratios 0.5,1,2] [--h 1e-3]
+        [--gradings coarse,fine]
+
+Gradings: ``coarse`` the edge layer h thick, x1.2 inwards up to 4h; ``fine`` h/2, up to 2h.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from pathlib import Path
+
+from asymmetric_case_r import H0, H1, R, case_r
+
+from hotroll.solvers.spread_3d import Spread3D
+from hotroll.solvers.steady import SteadyRun
+from hotroll.theory.spread import hill, sparling, wusatowski
+
+GRADINGS = {"coarse": (1.0, 4.0), "fine": (0.5, 2.0)}     # (edge, largest) in h
+
+
+def one(ratio: float, h: float, grading: str, two_d: dict) -> dict:
+    b0 = ratio * H0
+    edge, largest = GRADINGS[grading]
+    run = two_d["run"]
+    t0 = time.perf_counter()
+    s3 = Spread3D(run, 0.5 * b0, edge=min(edge * h, 0.5 * b0), largest=largest * h)
+    s3.solve()
+    fig = s3.figures()
+    fig.pop("exit_half_width_profile", None)
+    return {"b0_over_h0": ratio, "h": h, "grading": grading, "layers": len(s3.z) - 1,
+            "wall": time.perf_counter() - t0, "plane_strain_force": two_d["force"],
+            "hill": hill(b0, H0, H1, R) - b0, "sparling": sparling(b0, H0, H1, R) - b0,
+            "wusatowski": wusatowski(b0, H0, H1, R) - b0, **fig}
+
+
+def table(rows: list[dict]) -> str:
+    out = ["| b0/h0 | grading | layers | DOFs | spread mm | Hill | Sparling | Wusatowski | inside | "
+           "force/width / plane strain | (out-in)/in | Newton its | rounds | wall s |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lo, hi = (min(r[k] for k in ("hill", "sparling", "wusatowski")),
+                  max(r[k] for k in ("hill", "sparling", "wusatowski")))
+        out.append(
+            f"| {r['b0_over_h0']:g} | {r['grading']} | {r['layers']} | {r['dofs']} | "
+            f"{r['spread'] * 1e3:.3f} | {r['hill'] * 1e3:.3f} | {r['sparling'] * 1e3:.3f} | "
+            f"{r['wusatowski'] * 1e3:.3f} | {'yes' if lo <= r['spread'] <= hi else 'no'} | "
+            f"{r['roll_force_per_width'] / r['plane_strain_force']:.4f} | "
+            f"{(r['flux_out'] - r['flux_in']) / r['flux_in']:.1e} | {r['newton_iterations']} | "
+            f"{r['rounds']} | {r['wall']:.0f} |")
+    return "\n".join(out)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("out", type=Path)
+    ap.add_argument("--ratios", default="0.5,1,2")
+    ap.add_argument("--h", type=float, default=1e-3)
+    ap.add_argument("--gradings", default="coarse,fine")
+    a = ap.parse_args()
+    done = set()
+    if a.out.exists():
+        for line in a.out.read_text().splitlines():
+            r = json.loads(line)
+            done.add((r["b0_over_h0"], r["h"], r["grading"]))
+    case, problem, st = case_r(0.05, a.h)
+    run = SteadyRun(problem, st, case.plate.length)
+    assert run.run().status == "steady"
+    two_d = {"run": run, "force": run.state.history[-1]["roll_force"]}
+    for ratio in map(float, a.ratios.split(",")):
+        for grading in a.gradings.split(","):
+            if (ratio, a.h, grading) in done:
+                continue
+            row = one(ratio, a.h, grading, two_d)
+            with a.out.open("a") as fh:
+                fh.write(json.dumps(row) + "\n")
+            print(f"b0/h0 {ratio:g} {grading}: spread {row['spread'] * 1e3:.3f} mm, "
+                  f"{row['wall']:.0f} s", flush=True)
+    rows = [json.loads(line) for line in a.out.read_text().splitlines()]
+    print(table(rows))
+
+
+if __name__ == "__main__":
+    main()
