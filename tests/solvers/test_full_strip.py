@@ -384,3 +384,18 @@ def test_equal_rolls_give_the_half_model_on_an_elastic_thin_strip():
         assert full[f"{name}_forward_slip"] == pytest.approx(half["forward_slip"], abs=1e-5)
         assert run.shapes[s].end(run.rolls[s]) == pytest.approx(half_end,
                                                                 abs=2e-4 * rp.contact_length)
+
+
+def test_a_warm_start_that_is_not_a_full_strip_on_this_mesh_is_refused():
+    """[plumb] a half model's state (or anything but this mesh's full strip) is refused by
+    name before it touches the solution vector."""
+    case, problem, st = _setup()
+    rp = problem.rp
+    run = FullSteadyRun(problem, st, case.plate.length, {1: rp, -1: rp},
+                        {1: problem.friction, -1: problem.friction})
+    vec = run.form.nonlinear.gf.vec.FV().NumPy()
+    before = vec.copy()
+    with pytest.raises(ValueError, match="^warm start: the neighbour was not a full strip on "
+                                         "this mesh$"):
+        run._warm(object(), vec, problem.material.m)
+    assert np.array_equal(vec, before)
