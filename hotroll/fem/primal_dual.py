@@ -44,6 +44,22 @@ from __future__ import annotations
 
 from hotroll.fem.reproducible import fe_space
 
+
+def symmetric_components(dim: int) -> list[tuple[int, int]]:
+    """The stored components (i, j), i <= j, of a symmetric dim x dim tensor: xx, xy, yy in
+    2D; xx, xy, xz, yy, yz, zz in 3D."""
+    return [(i, j) for i in range(dim) for j in range(i, dim)]
+
+
+def symmetric_tensor(values, dim: int):
+    """The dim x dim CF of the stored components ``values`` (``symmetric_components``)."""
+    from ngsolve import CF
+
+    index = {ij: k for k, ij in enumerate(symmetric_components(dim))}
+    return CF(tuple(values[index[(min(i, j), max(i, j))]] for i in range(dim) for j in range(dim)),
+              dims=(dim, dim))
+
+
 #: order of the ``IntegrationRuleSpace``: its rule (6 points on a triangle, exact to order 4)
 #: is the one NGSolve picks by default for the P2-P1 forms (P2 trial x P2 test), so the
 #: residual is the same as with plain ``dx`` (tests/fem/test_primal_dual.py)
@@ -55,16 +71,18 @@ class NortonHoffDual:
     hook (``nonlinear.newton``): nu = eps/E at the first iterate, then the update above."""
 
     def __init__(self, mesh, eps0: float):
-        from ngsolve import CF, GridFunction
+        from ngsolve import GridFunction
         from ngsolve.comp import IntegrationRuleSpace
 
         self.space = space = fe_space(IntegrationRuleSpace, mesh, order=ORDER)
         self.intrules = space.GetIntegrationRules()
         self.eps0 = eps0
-        self.gf, self._next = GridFunction(space**3), GridFunction(space**3)
+        self.dim = dim = mesh.dim
+        n = len(symmetric_components(dim))
+        self.gf, self._next = GridFunction(space**n), GridFunction(space**n)
         g = self.gf
-        #: nu as a 2x2 tensor (symmetric: xx, xy, yy stored)
-        self.cf = CF((g[0], g[1], g[1], g[2]), dims=(2, 2))
+        #: nu as a dim x dim tensor (symmetric: ``symmetric_components`` stored)
+        self.cf = symmetric_tensor([g[k] for k in range(n)], dim)
         self.velocity = self._previous = self._primal = self._step = None
 
     def attach(self, velocity) -> None:
@@ -77,7 +95,7 @@ class NortonHoffDual:
         def stored(t):
             norm = sqrt(2.0 / 3.0 * InnerProduct(t, t))
             t = t / IfPos(norm - 1.0, norm, 1.0)        # held inside (2/3) nu:nu <= 1
-            return CF((t[0, 0], t[0, 1], t[1, 1])).Compile()
+            return CF(tuple(t[i, j] for i, j in symmetric_components(self.dim))).Compile()
 
         self.velocity = velocity
         self._previous = GridFunction(velocity.space)
@@ -104,11 +122,13 @@ class TangentPoints:
     thermo-mechanical pass's assembly 36 -> 9 ms on 2 threads, Example 1's 39 -> 17 ms, the
     matrix equal to rounding (4e-12; issue 34 session 7)."""
 
-    def __init__(self, space):
-        """``space``: the dual's ``IntegrationRuleSpace`` (its points are the integrals')."""
+    def __init__(self, space, dim: int = 2):
+        """``space``: the dual's ``IntegrationRuleSpace`` (its points are the integrals');
+        ``dim``: the mesh's."""
         from ngsolve import GridFunction
 
-        self.gf = GridFunction(space**5)
+        self.dim = dim
+        self.gf = GridFunction(space**(2 + len(symmetric_components(dim))))
         self._cf = None
 
     def attach(self, material, m, velocity, K) -> None:
@@ -123,7 +143,8 @@ class TangentPoints:
         e2 = edot_squared(ew)
         mu = material.viscosity(e2, m=m, K=K)
         a = ew / sqrt(material.eps0**2 + e2)
-        self._cf = CF((mu, mu * (m - 1.0) * (2.0 / 3.0), a[0, 0], a[0, 1], a[1, 1])).Compile()
+        self._cf = CF((mu, mu * (m - 1.0) * (2.0 / 3.0),
+                       *(a[i, j] for i, j in symmetric_components(self.dim)))).Compile()
 
     def prepare(self) -> None:
         self.gf.Interpolate(self._cf)
@@ -131,12 +152,13 @@ class TangentPoints:
     def tangent(self, u, p, v, q, dual):
         """The primal-dual tangent (module docstring) at the interpolated coefficients (the
         dual's nu: ``dual``)."""
-        from ngsolve import CF, InnerProduct, div
+        from ngsolve import InnerProduct, div
 
         from hotroll.fem.forms import strain_rate
 
         g = self.gf
-        a = CF((g[2], g[3], g[3], g[4]), dims=(2, 2))
+        a = symmetric_tensor([g[2 + k] for k in range(len(symmetric_components(self.dim)))],
+                             self.dim)
         eu, ev = strain_rate(u), strain_rate(v)
         rank = 0.5 * (InnerProduct(a, eu) * InnerProduct(dual, ev)
                       + InnerProduct(dual, eu) * InnerProduct(a, ev))

@@ -63,6 +63,8 @@ class RollingForm(FrictionTerms):
     MULTIPLIER_ON = "arc"
     #: the space dimension (a 3D strip: ``fem/rolling_form_3d.py``)
     dim = 2
+    #: the slip is a number (the primal-dual friction tangent, ``FrictionDual``, takes one)
+    scalar_slip = True
 
     def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: FrictionLaw,
                  penalties: PenaltyTable, free_surface: str, tensions: tuple = (0.0, 0.0),
@@ -140,23 +142,26 @@ class RollingForm(FrictionTerms):
         self.dual = NortonHoffDual(mesh, eps0)
         self._dual_cf = self.dual.cf if primal_dual else None
         # ... and the friction's slip (FrictionDual) where the law has a tangent in the slip
-        self.friction_dual = FrictionDual(mesh, contact_regions) if primal_dual else None
+        self.friction_dual = (FrictionDual(mesh, contact_regions)
+                              if primal_dual and self.scalar_slip else None)
         # ... and the tangent's coefficients at those points, interpolated once an iteration
-        self.tangent_points = TangentPoints(self.dual.space) if primal_dual else None
+        self.tangent_points = TangentPoints(self.dual.space, mesh.dim) if primal_dual else None
         self.nonlinear = NonlinearProblem(self.fes, self.integrand,
                                           velocity_scale=velocity_scale,
                                           jacobian=self.jacobian,
                                           pressure_row_scale=self.mu_ref)
         if primal_dual:
             self.dual.attach(self.nonlinear.velocity)
-            self.friction_dual.attach(self.nonlinear.velocity, self.slip, self.v_reg)
+            if self.friction_dual is not None:
+                self.friction_dual.attach(self.nonlinear.velocity, self.slip, self.v_reg)
             self.nonlinear.prepare = self._prepare_duals
 
     def _prepare_duals(self, iteration: int) -> bool:
         """Newton's hook (``nonlinear.newton``): the two duals at the current iterate."""
         self.dual.prepare(iteration)
         self.tangent_points.prepare()
-        self.friction_dual.prepare(iteration)
+        if self.friction_dual is not None:
+            self.friction_dual.prepare(iteration)
         return False
 
     @property

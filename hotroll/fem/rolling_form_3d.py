@@ -8,12 +8,13 @@ the friction acts in the roll's tangent plane, spanned by t and e_z: the slip is
 v_s = (u.t - |U_roll|) t + u_z e_z (2.27 in 3D; the strip slides across the roll where it
 spreads), the laws take |v_s|^2 as in 2D and the shear is -k_f v_s. With ``edge_held`` the
 lateral face has u_z = 0 (plane strain): the 2D solution, the same in every layer, solves this
-form (the consistency check of issue 53). Not yet: flattened rolls, the strip's elasticity and
-the primal-dual tangent (the primal Newton tangent is used).
+form (the consistency check of issue 53). Newton's tangent is the primal-dual one for the
+Norton-Hoff volume (``fem/primal_dual.py``, in 3D) and the primal one for the friction (its
+dual takes a scalar slip). Not yet: flattened rolls, the strip's elasticity.
 """
 from __future__ import annotations
 
-from hotroll.fem.rolling_form import TOP, RollingForm
+from hotroll.fem.rolling_form import RollingForm
 from hotroll.fem.spaces import taylor_hood
 
 
@@ -21,16 +22,17 @@ class RollingForm3D(RollingForm):
     """``RollingForm`` on a 3D quarter strip (module docstring)."""
 
     dim = 3
+    scalar_slip = False
 
     def __init__(self, mesh, rp, material, friction, penalties, free_surface: str = "traced",
                  tensions: tuple = (0.0, 0.0), contact: str = "multiplier",
-                 edge_held: bool = False, consistency=1.0):
+                 edge_held: bool = False, consistency=1.0, primal_dual: bool = True):
         if rp.shape is not None:
             raise NotImplementedError("a flattened roll on the 3D strip")
         self.edge_held = bool(edge_held)
         super().__init__(mesh, rp, material, friction, penalties, free_surface, tensions,
-                         consistency=consistency, contact=contact, contact_regions=TOP,
-                         primal_dual=False)
+                         consistency=consistency, contact=contact, contact_regions="arc",
+                         primal_dual=primal_dual)
 
     def _spaces(self, multiplier_on: str | None):
         """Taylor-Hood with v_y = 0 on ``sym``, v_z = 0 on ``zsym`` (and on ``edge`` if held)."""
