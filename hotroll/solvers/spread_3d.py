@@ -120,6 +120,7 @@ class Spread3D:
                "newton_iterations": self.iterations, "dofs": f.fes.ndof,
                "wall_time": self.setup_time + self.solve_time, "settled": self.settled}
         out["roll_force_per_width"] = out["roll_force"] / (2.0 * b0)
+        out.update(self.midplane_deviation())
         if self.face is not None:
             x_out = max(v.point[0] for v in mesh.vertices)
             y = np.linspace(0.0, self.problem.rp.half_exit, 41)[:-1] + 0.5 * (
@@ -129,3 +130,28 @@ class Spread3D:
             out["exit_half_width_profile"] = half.tolist()
             out["spread"] = 2.0 * (out["exit_half_width"] - b0)
         return out
+
+    def midplane_deviation(self) -> dict:
+        """How far the mid-width plane (z = 0) is from the 2D pass: the largest difference of
+        the pressure at its vertices over the 2D pass's largest |p|, and of the velocity at its
+        P2 nodes over the roll speed (both 0 with the edge held; the plane-strain limit of a
+        wide strip)."""
+        f2, f3 = self.run2d.form, self.form
+        g2, g3 = f2.nonlinear.gf, f3.nonlinear.gf
+        out = {}
+        P2, P3 = g2.components[1], g3.components[1]
+        mid = np.zeros_like(P2.vec.FV().NumPy())
+        self.copy.take(0, P3.space, P3.vec.FV().NumPy(), P2.space, mid)
+        p2 = P2.vec.FV().NumPy()
+        out["midplane_pressure_deviation"] = float(np.abs(mid - p2).max() / np.abs(p2).max())
+        V2, V3 = g2.components[0], g3.components[0]
+        n2, n3 = V2.space.ndof // 2, V3.space.ndof // 3
+        worst = 0.0
+        for c in range(2):
+            mid = np.zeros(n2)
+            self.copy.take(0, V3.space.components[c], V3.vec.FV().NumPy()[c * n3:(c + 1) * n3],
+                           V2.space.components[c], mid)
+            worst = max(worst, float(np.abs(mid - V2.vec.FV().NumPy()[c * n2:(c + 1) * n2]).max()))
+        out["midplane_velocity_deviation"] = worst / self.problem.rp.u_roll
+        return out
+
