@@ -6,6 +6,7 @@ run already in OUT is skipped); a markdown table of OUT at the end.
 
     python scripts/spread_3d_study.py OUT [--ratios 0.5,1,2] [--h 1e-3]
         [--gradings coarse,fine]
+    python scripts/spread_3d_study.py OUT --ratios 2,4,8,16 --gradings coarse   # the 1/W limit
 
 Gradings: ``coarse`` the edge layer h thick, x1.2 inwards up to 4h; ``fine`` h/2, up to 2h.
 """
@@ -57,6 +58,28 @@ def table(rows: list[dict]) -> str:
     return "\n".join(out)
 
 
+def plane_strain_limit(rows: list[dict], grading: str = "coarse") -> str:
+    """The force per width against h0/b0 (1/W) over the runs with b0/h0 >= 2 of ``grading``,
+    a straight line extrapolated to an infinitely wide strip, against the 2D pass; and the
+    mid-width plane's deviation from the 2D pass at each width."""
+    import numpy as np
+
+    pts = sorted((1.0 / r["b0_over_h0"], r["roll_force_per_width"] / r["plane_strain_force"],
+                  r.get("midplane_pressure_deviation"), r["b0_over_h0"])
+                 for r in rows if r["grading"] == grading and r["b0_over_h0"] >= 2.0)
+    if len(pts) < 2:
+        return "(1/W: fewer than two widths with b0/h0 >= 2)"
+    x, y = np.array([p[0] for p in pts]), np.array([p[1] for p in pts])
+    slope, intercept = np.polyfit(x, y, 1)
+    lines = [f"force per width / plane strain = {intercept:.5f} + {slope:.4f} h0/b0 "
+             f"(fit over b0/h0 = {', '.join(f'{p[3]:g}' for p in pts)}): the wide limit is "
+             f"{intercept:.5f} of the 2D pass's"]
+    for p in pts:
+        if p[2] is not None:
+            lines.append(f"b0/h0 = {p[3]:g}: mid-width pressure {p[2]:.2e} of its peak off the 2D")
+    return "\n".join(lines)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("out", type=Path)
@@ -84,6 +107,7 @@ def main() -> None:
                   f"{row['wall']:.0f} s", flush=True)
     rows = [json.loads(line) for line in a.out.read_text().splitlines()]
     print(table(rows))
+    print(plane_strain_limit(rows))
 
 
 if __name__ == "__main__":
