@@ -39,6 +39,14 @@ class Spread3D:
         if not half_width > 0.0:
             raise ValueError(f"half_width = {half_width!r} m: must be > 0")
         problem, f2 = run.problem, run.form
+        missing = [what for what, on in (
+            ("a strain or temperature field (a flow stress of the strain or the temperature: "
+             "use Norton-Hoff)", run.strain is not None or run.thermal is not None),
+            ("the strip's elasticity (contact.strip_youngs_modulus)", bool(f2.compliance)),
+            ("a flattening roll (roll.model)", problem.rp.shape is not None),
+            ("the penalty contact (contact.method)", not f2.exact)) if on]
+        if missing:
+            raise ValueError("the 3D strip does not yet carry: " + "; ".join(missing))
         self.run2d, self.problem = run, problem
         h = problem.h
         edge = min(h, half_width) if edge is None else edge

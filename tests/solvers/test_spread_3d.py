@@ -79,3 +79,14 @@ def test_the_spread_lies_inside_the_empirical_formulas_band(passes):
     b0 = 2.0 * B0
     formulas = [f(b0, 0.01, 0.008, 0.25) - b0 for f in (hill, sparling, wusatowski)]
     assert min(formulas) <= free["spread"] <= max(formulas)
+
+
+def test_what_the_3d_strip_does_not_carry_is_refused_by_name():
+    """[plumb] a 2D pass with a strain field (Hensel-Spittel) or the strip's elasticity is
+    refused before any 3D work, naming what is missing."""
+    case, problem, st = _setup(**{"material.law": "hensel-spittel", "material.grade": "C45",
+                                  "material.m": None, "material.K": None,
+                                  "contact.strip_youngs_modulus": 2.0e11})
+    run = SteadyRun(problem, st, case.plate.length)
+    with pytest.raises(ValueError, match="strain or temperature field.*elasticity"):
+        Spread3D(run, B0)
