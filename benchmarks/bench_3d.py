@@ -1,0 +1,80 @@
+"""The 3D strip's cost (issue 53: a narrow-bar pass, b0/h0 = 1, in under 3 minutes; a
+quarter-model roughing pass in under 10 minutes cold and 6 GB), at three width gradings.
+
+    python benchmarks/bench_3d.py [--case narrow|roughing] [--sizes coarse,medium,fine]
+
+``narrow``: Case R of ../shared/notes/asymmetric-rolling.md (R = 250 mm, 10 -> 8 mm, Tresca
+0.3, Norton-Hoff m = 0.05, h = 1 mm) with a stock 10 mm wide. ``roughing``: the bundled
+roughing_slab's geometry (R = 0.6 m, 200 -> 170 mm, Tresca 0.9) with the issue's width 1.5 m and
+a Norton-Hoff law (K = 150 MPa s^m, m = 0.15: the 3D strip carries no strain field yet).
+Each size is one process's run after the 2D pass: ``Spread3D`` set-up and solve
+(solvers/spread_3d.py), cold (the first 3D forms of the process are compiled in it). Sizes:
+the edge layer and the largest layer in units of the 2D contact mesh size h: coarse (2h, 8h),
+medium (h, 4h), fine (h/2, 2h). Prints a table: DOFs, layers, Newton iterations, rounds, wall
+s (2D, 3D set-up, 3D solve), peak resident memory of the process (GB), spread. The linear
+solver is UMFPACK (fem/forms.py: LINEAR_SOLVERS). Time on 2 cores with nothing else running.
+"""
+from __future__ import annotations
+
+import argparse
+import resource
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "scripts"))
+
+from asymmetric_case_r import case_r  # noqa: E402
+
+from hotroll.config.case import load_case  # noqa: E402
+from hotroll.examples import example_path  # noqa: E402
+from hotroll.solvers.spread_3d import Spread3D  # noqa: E402
+from hotroll.solvers.steady import SteadyRun  # noqa: E402
+from hotroll.workflows.build import build_model, steady_settings  # noqa: E402
+
+SIZES = {"coarse": (2.0, 8.0), "medium": (1.0, 4.0), "fine": (0.5, 2.0)}
+
+
+def two_d(kind: str):
+    if kind == "narrow":
+        case, problem, st = case_r(0.05, 1e-3)
+        half_width = 0.005
+    else:
+        over = {"material.law": "norton-hoff", "material.grade": None, "material.K": 1.5e8,
+                "material.m": 0.15, "output.figures": False}
+        case = load_case(example_path("roughing_slab"), over)
+        problem, _ = build_model(case)
+        st = steady_settings(case)
+        half_width = 0.75
+    t0 = time.perf_counter()
+    run = SteadyRun(problem, st, case.plate.length)
+    status = run.run().status
+    return run, half_width, status, time.perf_counter() - t0
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--case", default="narrow", choices=("narrow", "roughing"))
+    ap.add_argument("--sizes", default="coarse,medium,fine")
+    a = ap.parse_args()
+    run, half_width, status, wall2 = two_d(a.case)
+    h = run.problem.h
+    print(f"{a.case}: 2D pass {status}, {run.form.fes.ndof} DOFs, h = {h * 1e3:.3g} mm, "
+          f"{wall2:.1f} s")
+    print("| size | layers | DOFs | Newton its | rounds | 3D set-up s | 3D solve s | peak GB | "
+          "spread mm |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for size in a.sizes.split(","):
+        edge, largest = SIZES[size]
+        s3 = Spread3D(run, half_width, edge=min(edge * h, half_width), largest=largest * h)
+        s3.solve()
+        fig = s3.figures()
+        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2
+        print(f"| {size} | {len(s3.z) - 1} | {fig['dofs']} | {fig['newton_iterations']} | "
+              f"{fig['rounds']} | {s3.setup_time:.1f} | {s3.solve_time:.1f} | {peak:.2f} | "
+              f"{fig.get('spread', float('nan')) * 1e3:.3f} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
