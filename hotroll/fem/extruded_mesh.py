@@ -51,6 +51,9 @@ def extrude(mesh2d, z: np.ndarray, region: str = "strip"):
     ng2 = mesh2d.ngmesh
     P = np.asarray(ng2.Coordinates())[:, :2]
     nv, nl = len(P), len(z) - 1
+    if nv != mesh2d.nv:
+        raise ValueError(f"extrude: the 2D mesh has {nv} points but {mesh2d.nv} vertices "
+                         "(a curved, second-order mesh): extrude its straight-sided one")
     tri = np.asarray(ng2.Elements2D().NumPy()["nodes"][:, :3], dtype=np.int64) - 1
     seg = ng2.Elements1D().NumPy()
     seg_nodes = np.asarray(seg["nodes"][:, :2], dtype=np.int64) - 1
@@ -91,6 +94,9 @@ class LayerCopy:
         from ngsolve import EDGE, VERTEX, NodeId
 
         nv = mesh2d.nv
+        if mesh3d.nv % nv:
+            raise ValueError(f"LayerCopy: {mesh3d.nv} 3D vertices are not layers of the 2D "
+                             f"mesh's {nv}")
         self.nv2, self.layers = nv, mesh3d.nv // nv - 1
         flat = {tuple(sorted(v.nr for v in e.vertices)): e.nr for e in mesh2d.edges}
         #: (layer, 3D node, 2D node) of every vertex and every edge inside a layer

@@ -106,7 +106,8 @@ class StripMap:
     def end_bounds(self, past_gap: float = 0.0) -> tuple[float, float]:
         """Allowed range of the contact's end x_e: from half a contact length before the gap
         to the gap, or ``past_gap`` contact lengths after it (an elastic strip follows the
-        rising roll while it recovers)."""
+        rising roll while it recovers), at most a quarter of the way to the outlet (half of
+        x_b_max's distance: the exit side's elements squeezed by at most 2)."""
         rp = self.rp
         past = min(past_gap * rp.contact_length, 0.5 * (self.x_b_max - rp.axis_x))
         return (rp.axis_x - 0.5 * rp.contact_length, rp.axis_x + past)
@@ -120,8 +121,9 @@ class StripMap:
         return min(max(self.x_b, a + 2.0 * (x_e - a)), self.x_b_max)
 
     def stretch(self, X: np.ndarray, x_c: float, x_e: float | None = None) -> np.ndarray:
-        """Piecewise-linear in x: x_a and x_b stay, the reference touching point goes to x_c,
-        the reference gap X_roll to the contact's end x_e (default X_roll)."""
+        """Piecewise-linear in x: x_a and the exit anchor (``exit_anchor(x_e)``) stay, the
+        reference touching point goes to x_c, the reference gap X_roll to the contact's end x_e
+        (default X_roll)."""
         rp, xa = self.rp, self.x_a
         x_e = rp.axis_x if x_e is None else x_e
         xb = self.exit_anchor(x_e)

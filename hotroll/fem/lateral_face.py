@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from hotroll.fem.reproducible import fe_space
+from hotroll.fem.spaces import P2Nodes
 
 
 class LateralFace:
@@ -47,6 +48,7 @@ class LateralFace:
         self._f = ng.LinearForm(self.S)
         self._f += self.velocity[2] * test * ng.dx
         self._dB = ng.GridFunction(self.S)
+        self._nodes = P2Nodes(self.face, self.S.ndof)
 
     def update(self, velocity3d) -> float:
         """Solve for B with the 3D velocity ``velocity3d`` (a VectorH1 GridFunction of the
@@ -64,7 +66,10 @@ class LateralFace:
         r.data = self._f.vec - self._a.mat * self.B.vec
         self._dB.vec.data = self._a.mat.Inverse(self.S.FreeDofs(), inverse="umfpack") * r
         self.B.vec.data += self._dB.vec
-        return float(np.abs(self._dB.vec.FV().NumPy()).max())
+        # the largest move of B at the P2 nodes (vertices and edge midpoints: an edge's DOF is
+        # its bubble's coefficient, not a value)
+        d = self._dB.vec.FV().NumPy()
+        return float(np.abs(self._nodes.values(np.concatenate([d, np.zeros_like(d)]))[0]).max())
 
     def displace(self, disp3d) -> None:
         """The z part of the extruded mesh's displacement (a VectorH1 GridFunction, order 2):
@@ -79,5 +84,6 @@ class LateralFace:
                        disp3d.vec.FV().NumPy()[2 * n3:], scale=self.z / self.b0)
 
     def half_width(self, x: float, y: np.ndarray) -> np.ndarray:
-        """B at the physical points (x, y_i) of the cross-section (m)."""
+        """B (m) at the strip's points whose reference (undeformed 2D mesh) coordinates are
+        (x, y_i): NGSolve finds a point in the reference mesh, whatever its deformation."""
         return np.array([self.B(self.face(x, float(yi))) for yi in np.asarray(y)])

@@ -44,6 +44,8 @@ class Spread3D:
              "use Norton-Hoff)", run.strain is not None or run.thermal is not None),
             ("the strip's elasticity (contact.strip_youngs_modulus)", bool(f2.compliance)),
             ("a flattening roll (roll.model)", problem.rp.shape is not None),
+            ("the constrained free surface (plate.free_surface)",
+             run.s.free_surface != "traced"),
             ("the penalty contact (contact.method)", not f2.exact)) if on]
         if missing:
             raise ValueError("the 3D strip does not yet carry: " + "; ".join(missing))
@@ -103,8 +105,10 @@ class Spread3D:
     def figures(self) -> dict:
         """The pass's figures (SI, per roll and the whole strip): roll force (N) and per
         width (N/m of the stock's width), roll torque (N m), the exit's mean half width and
-        the spread (m), the mass fluxes through the cut faces and the lateral face (m^3/s of
-        the quarter), Newton iterations, rounds, DOFs, wall time (s)."""
+        the spread (m), the exit half width over the thickness (m, at 40 equal steps of
+        y / exit half thickness from the mid-plane), the mass fluxes through the cut faces and
+        the lateral face (m^3/s of the quarter), Newton iterations, rounds, DOFs, wall time
+        (s)."""
         import ngsolve as ng
 
         f, mesh, K = self.form, self.mesh, self.problem.material.K
@@ -130,6 +134,9 @@ class Spread3D:
         out["roll_force_per_width"] = out["roll_force"] / (2.0 * b0)
         out.update(self.midplane_deviation())
         if self.face is not None:
+            # at the outlet, over the reference cross-section's heights: the strip there is
+            # flat and x stays (the strip map moves neither past its exit anchor), its
+            # heights the reference's times one factor, so the mean is the physical one
             x_out = max(v.point[0] for v in mesh.vertices)
             y = np.linspace(0.0, self.problem.rp.half_exit, 41)[:-1] + 0.5 * (
                 self.problem.rp.half_exit / 40.0)

@@ -167,6 +167,8 @@ def norton_hoff_errors(n: int, m: float = 0.3) -> tuple[float, float]:
         gf.vec.data -= du
         if np.abs(du.FV().NumPy()).max() < 1e-12:
             break
+    else:
+        pytest.fail(f"Newton did not converge on n = {n}")
     uh, ph = gf.components[0], gf.components[1]
     assert float(np.abs(strain_rate(uh)[0, 0](mesh(0.5, 0.5, 0.5)))) < 10.0
     eu = ng.sqrt(ng.Integrate(ng.InnerProduct(uh - ue, uh - ue), mesh))

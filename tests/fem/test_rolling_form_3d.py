@@ -84,14 +84,17 @@ def test_the_extruded_2d_solution_solves_the_3d_form(plane_strain):
 
 
 def test_force_per_width_is_the_2d_force(plane_strain):
-    """[identity] the contact pressure's vertical resultant over the 3D arc divided by the
-    half width is the 2D arc's (per unit width): 1e-10."""
+    """[identity] after the 3D form's own Newton from the 2D solution, the contact
+    pressure's vertical resultant over the 3D arc divided by the half width is the 2D arc's
+    (per unit width): 1e-8."""
     import ngsolve as ng
 
+    from hotroll.fem.nonlinear import newton
     from hotroll.fem.reproducible import integrate
 
     problem, run, f3, start = plane_strain
     f3.nonlinear.gf.vec.FV().NumPy()[:] = start
+    assert newton(f3.nonlinear, 1e-11, 3).converged
     f2 = run.form
     n2, _ = f2.roll_frame()
     n3, _ = f3.roll_frame()
@@ -101,7 +104,7 @@ def test_force_per_width_is_the_2d_force(plane_strain):
     force3 = integrate(f3.pressure(u3) * n3[1], f3.mesh, ng.BND,
                        definedon=f3.mesh.Boundaries("arc"))
     assert abs(force2) > 0.0
-    assert force3 / HALF_WIDTH == pytest.approx(force2, rel=1e-10)
+    assert force3 / HALF_WIDTH == pytest.approx(force2, rel=1e-8)
 
 
 def test_the_slip_is_a_vector_in_the_rolls_tangent_plane(plane_strain):
