@@ -94,7 +94,8 @@ def main() -> None:
     if "--done" in only:         # a JSONL of an interrupted run: its mutants are skipped
         i = only.index("--done")
         with open(only[i + 1]) as fh:
-            done = {(d["file"], d["fn"], d["k"]) for d in map(json.loads, fh) if d.strip()}
+            done = {(d["file"], d["fn"], d["k"])
+                    for d in (json.loads(line) for line in fh if line.strip())}
         del only[i:i + 2]
     if "--dry" in only:
         only.remove("--dry")
