@@ -92,3 +92,27 @@ def test_what_the_3d_strip_does_not_carry_is_refused_by_name():
     with pytest.raises(ValueError, match="strain or temperature field.*elasticity.*"
                                          "constrained free surface"):
         Spread3D(run, B0)
+
+
+def test_the_3d_pass_keeps_the_exact_scaling_in_k():
+    """[scaling] K x 1000 (every stress x 1000, the reduced problem the same): the spread,
+    the exit half widths and the fluxes the same to 1e-9, the roll force and torque x 1000
+    (one width layer: the cheapest free edge)."""
+    from dataclasses import replace
+
+    out = []
+    for k in (1.0, 1000.0):
+        case, problem, st = _setup()
+        problem = replace(problem, material=replace(problem.material,
+                                                    K=k * problem.material.K))
+        run = SteadyRun(problem, st, case.plate.length)
+        assert run.run().status == "steady"
+        s3 = Spread3D(run, B0, edge=B0)
+        assert s3.solve()
+        out.append(s3.figures())
+    a, b = out
+    for key in ("spread", "flux_in", "flux_out"):
+        assert b[key] == pytest.approx(a[key], rel=1e-9)
+    assert b["exit_half_width_profile"] == pytest.approx(a["exit_half_width_profile"], rel=1e-9)
+    for key in ("roll_force", "roll_torque"):
+        assert b[key] == pytest.approx(1000.0 * a[key], rel=1e-9)
