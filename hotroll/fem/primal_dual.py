@@ -171,10 +171,12 @@ class FrictionDual:
     (z the primal value) and after a ``restart``, then the update above."""
 
     def __init__(self, mesh, region: str):
-        from ngsolve import H1, GridFunction
+        from ngsolve import H1, GridFunction, VectorH1
 
         self.region = mesh.Boundaries(region)
-        space = fe_space(H1, mesh, order=2)
+        #: a 3D strip's slip is a vector in the roll's tangent plane, and so is z (issue 53)
+        self.vector = mesh.dim == 3
+        space = fe_space(VectorH1 if self.vector else H1, mesh, order=2)
         self.d, self._next = GridFunction(space), GridFunction(space)
         self.velocity = self._previous = self._step = None
         self._restart = False
@@ -201,14 +203,16 @@ class FrictionDual:
         self._previous = GridFunction(velocity.space)
         s, sp = slip(velocity), slip(self._previous)
         Sp2 = sp * sp + v_reg * v_reg
-        z_next = (s / sqrt(Sp2) - self.z(sp, v_reg) * sp * (s - sp) / Sp2)
+        if self.vector:        # z+ = (s + ds)/S - z (s.ds)/S^2, ds = s - sp
+            z_next = s / sqrt(Sp2) - self.z(sp, v_reg) * ((sp * (s - sp)) / Sp2)
+        else:
+            z_next = (s / sqrt(Sp2) - self.z(sp, v_reg) * sp * (s - sp) / Sp2)
         self._step = (self._capped(z_next) - s / sqrt(s * s + v_reg * v_reg)).Compile()
 
-    @staticmethod
-    def _capped(z):
-        from ngsolve import IfPos
+    def _capped(self, z):
+        from ngsolve import IfPos, sqrt
 
-        size = IfPos(z, z, -z)
+        size = sqrt(z * z) if self.vector else IfPos(z, z, -z)
         return z / IfPos(size - 1.0, size, 1.0)
 
     def prepare(self, iteration: int) -> bool:

@@ -63,8 +63,6 @@ class RollingForm(FrictionTerms):
     MULTIPLIER_ON = "arc"
     #: the space dimension (a 3D strip: ``fem/rolling_form_3d.py``)
     dim = 2
-    #: the slip is a number (the primal-dual friction tangent, ``FrictionDual``, takes one)
-    scalar_slip = True
 
     def __init__(self, mesh, rp: RollPass, material: NortonHoff, friction: FrictionLaw,
                  penalties: PenaltyTable, free_surface: str, tensions: tuple = (0.0, 0.0),
@@ -142,8 +140,7 @@ class RollingForm(FrictionTerms):
         self.dual = NortonHoffDual(mesh, eps0)
         self._dual_cf = self.dual.cf if primal_dual else None
         # ... and the friction's slip (FrictionDual) where the law has a tangent in the slip
-        self.friction_dual = (FrictionDual(mesh, contact_regions)
-                              if primal_dual and self.scalar_slip else None)
+        self.friction_dual = FrictionDual(mesh, contact_regions) if primal_dual else None
         # ... and the tangent's coefficients at those points, interpolated once an iteration
         self.tangent_points = TangentPoints(self.dual.space, mesh.dim) if primal_dual else None
         self.nonlinear = NonlinearProblem(self.fes, self.integrand,

@@ -8,9 +8,9 @@ the friction acts in the roll's tangent plane, spanned by t and e_z: the slip is
 v_s = (u.t - |U_roll|) t + u_z e_z (2.27 in 3D; the strip slides across the roll where it
 spreads), the laws take |v_s|^2 as in 2D and the shear is -k_f v_s. With ``edge_held`` the
 lateral face has u_z = 0 (plane strain): the 2D solution, the same in every layer, solves this
-form (the consistency check of issue 53). Newton's tangent is the primal-dual one for the
-Norton-Hoff volume (``fem/primal_dual.py``, in 3D) and the primal one for the friction (its
-dual takes a scalar slip). Not yet: flattened rolls, the strip's elasticity.
+form (the consistency check of issue 53). Newton's tangent is the primal-dual one
+(``fem/primal_dual.py``): nu a 3 x 3 tensor, the friction's z a vector like the slip. Not yet:
+flattened rolls, the strip's elasticity.
 """
 from __future__ import annotations
 
@@ -22,7 +22,6 @@ class RollingForm3D(RollingForm):
     """``RollingForm`` on a 3D quarter strip (module docstring)."""
 
     dim = 3
-    scalar_slip = False
 
     def __init__(self, mesh, rp, material, friction, penalties, free_surface: str = "traced",
                  tensions: tuple = (0.0, 0.0), contact: str = "multiplier",
