@@ -7,9 +7,13 @@ Each pending name (``mutation_sample.py pending``: ``module.x_function__mutmut_N
 of the sample's tree. The tests are those mutmut's stats say call the function
 (``mutants/mutmut-stats.json``), fastest first, with ``-x``: a failure kills the mutant, as
 under mutmut. One JSON line per mutant (name, exit code as mutmut records it: 1 killed, 0
-survived, 36 timeout).
+survived, 36 timeout, 35 suspicious: pytest ended otherwise).
 
-    cp -a /work/wt-mut/. /tmp/pend1 && rm -rf /tmp/pend1/mutants       # the sample's tree
+    # the sample's tree: its source (unmutated), and the tests mutmut runs (mutants/tests:
+    # the sample's, with the tests added for its verdicts)
+    mkdir /tmp/pend1 && (cd /work/wt-mut && tar --exclude=./mutants --exclude=./.venv -cf - .) \
+        | tar xf - -C /tmp/pend1 && rm -rf /tmp/pend1/tests \
+        && cp -a /work/wt-mut/mutants/tests /tmp/pend1/ && ln -s "$PWD/.venv" /tmp/pend1/.venv
     python scripts/mutation_pending.py run /tmp/pend1 --names P.txt --stats STATS.json \\
         [--part 1/2] [--timeout 1800] [--done OUT.jsonl] >> OUT.jsonl
     python scripts/mutation_pending.py record OUT.jsonl --mutants /work/wt-mut/mutants
@@ -70,9 +74,13 @@ def run_tests(root: str, tests: list[str], timeout: float) -> int:
                            capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
         return 36
-    if r.returncode == 5:          # no tests collected
+    if r.returncode in (0, 1, 3):   # passed; a test failed; pytest's internal error (mutmut: a kill)
+        return r.returncode
+    if r.returncode == 5:           # no tests collected
         return 33
-    return 1 if r.returncode != 0 else 0
+    print(f"mutation_pending: pytest exit {r.returncode}:\n{r.stdout[-2000:]}{r.stderr[-2000:]}",
+          file=sys.stderr)
+    return 35                       # anything else (a usage error, an interrupt): suspicious
 
 
 def run(a) -> None:
