@@ -66,12 +66,35 @@ def mutant_source(root: str, path: str, cls: str | None, fn: str, n: int) -> tup
     return src, deep_replace(module, m.original_node, m.mutated_node).code
 
 
+#: a pytest plugin (written into the tree) that keeps the collected items whose ids are in the
+#: file $MUTATION_PENDING_IDS, in that file's order: ids with a "/" in a parameter ("[W/(m^2
+#: K)]") cannot be given on the command line (pytest reads them as paths)
+PLUGIN = '''import os
+
+
+def pytest_collection_modifyitems(session, config, items):
+    path = os.environ.get("MUTATION_PENDING_IDS")
+    if not path:
+        return
+    with open(path) as fh:
+        order = {line.rstrip("\\n"): i for i, line in enumerate(fh) if line.strip()}
+    keep = sorted((it for it in items if it.nodeid in order), key=lambda it: order[it.nodeid])
+    config.hook.pytest_deselected(items=[it for it in items if it.nodeid not in order])
+    items[:] = keep
+'''
+
+
 def run_tests(root: str, tests: list[str], timeout: float) -> int:
-    env = dict(os.environ, PYTHONPATH=root)
+    ids = Path(root) / "_pending_ids.txt"
+    ids.write_text("\n".join(tests) + "\n")
+    (Path(root) / "_pending_select.py").write_text(PLUGIN)
+    files = sorted({t.split("::", 1)[0] for t in tests})
+    env = dict(os.environ, PYTHONPATH=root, MUTATION_PENDING_IDS=str(ids))
     try:
         r = subprocess.run(["nice", sys.executable, "-m", "pytest", "-q", "-x", "-p",
-                            "no:cacheprovider", "-p", "no:randomly", *tests], cwd=root, env=env,
-                           capture_output=True, text=True, timeout=timeout)
+                            "no:cacheprovider", "-p", "no:randomly", "-p", "_pending_select",
+                            *files], cwd=root, env=env, capture_output=True, text=True,
+                           timeout=timeout)
     except subprocess.TimeoutExpired:
         return 36
     if r.returncode in (0, 1, 3):   # passed; a test failed; pytest's internal error (mutmut: a kill)
