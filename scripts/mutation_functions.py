@@ -12,7 +12,9 @@ hours. One JSON line per mutant (function, line, killed/survived/timeout, the di
 ``TARGETS`` below (the wrap's functions).
 ``--sample N --seed S``: enumerate all mutants of the targets, run a seeded uniform random
 subset of N. ``--dry``: print the mutant counts per file and stop. ``--done F.jsonl``: skip
-the mutants an interrupted run already wrote to F (append the rest to it).
+the mutants an interrupted run already wrote to F (append the rest to it); with
+``--retry-timeouts`` its timeouts run again (a loaded machine's; the report takes a mutant's
+last line).
 
 Never run it on the working tree itself: it rewrites the files it mutates (restored after
 each mutant, but a kill in between would leave one mutated).
@@ -91,11 +93,15 @@ def main() -> None:
         seed = int(only[i + 1])
         del only[i:i + 2]
     done = set()
+    retry = "--retry-timeouts" in only       # with --done: run its timeouts again
+    if retry:
+        only.remove("--retry-timeouts")
     if "--done" in only:         # a JSONL of an interrupted run: its mutants are skipped
         i = only.index("--done")
         with open(only[i + 1]) as fh:
             done = {(d["file"], d["fn"], d["k"])
-                    for d in (json.loads(line) for line in fh if line.strip())}
+                    for d in (json.loads(line) for line in fh if line.strip())
+                    if not (retry and d["status"] == "timeout")}
         del only[i:i + 2]
     if "--dry" in only:
         only.remove("--dry")
