@@ -13,8 +13,8 @@ hours. One JSON line per mutant (function, line, killed/survived/timeout, the di
 ``--sample N --seed S``: enumerate all mutants of the targets, run a seeded uniform random
 subset of N. ``--dry``: print the mutant counts per file and stop. ``--done F.jsonl``: skip
 the mutants an interrupted run already wrote to F (append the rest to it); with
-``--retry-timeouts`` its timeouts run again (a loaded machine's; the report takes a mutant's
-last line).
+``--retry-timeouts`` its timeouts run again (a loaded machine's; count a mutant by its last
+line in F).
 
 Never run it on the working tree itself: it rewrites the files it mutates (restored after
 each mutant, but a kill in between would leave one mutated).
