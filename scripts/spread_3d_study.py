@@ -65,7 +65,8 @@ def plane_strain_limit(rows: list[dict], grading: str = "coarse") -> str:
     import numpy as np
 
     pts = sorted((1.0 / r["b0_over_h0"], r["roll_force_per_width"] / r["plane_strain_force"],
-                  r.get("midplane_pressure_deviation"), r["b0_over_h0"])
+                  r.get("midplane_pressure_deviation"), r["b0_over_h0"],
+                  r.get("midplane_pressure_rms_deviation"))
                  for r in rows if r["grading"] == grading and r["b0_over_h0"] >= 2.0)
     if len(pts) < 2:
         return "(1/W: fewer than two widths with b0/h0 >= 2)"
@@ -76,7 +77,9 @@ def plane_strain_limit(rows: list[dict], grading: str = "coarse") -> str:
              f"{intercept:.5f} of the 2D pass's"]
     for p in pts:
         if p[2] is not None:
-            lines.append(f"b0/h0 = {p[3]:g}: mid-width pressure {p[2]:.2e} of its peak off the 2D")
+            rms = "" if p[4] is None else f", root mean square {p[4]:.2e} of the 2D's"
+            lines.append(f"b0/h0 = {p[3]:g}: mid-width pressure {p[2]:.2e} of its peak off the "
+                         f"2D{rms}")
     return "\n".join(lines)
 
 

@@ -43,6 +43,7 @@ def test_the_held_edge_is_the_2d_pass(passes):
     # step from where the 2D pass stopped
     assert held["midplane_velocity_deviation"] <= 1e-7
     assert held["midplane_pressure_deviation"] <= 1e-3
+    assert 0.0 <= held["midplane_pressure_rms_deviation"] <= 1e-3
     assert "spread" not in held
 
 
