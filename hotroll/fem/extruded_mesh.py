@@ -128,6 +128,18 @@ class LayerCopy:
         vec3d[:] = 0.0
         vec3d[d3] = vec2d[d2] if scale is None else np.asarray(scale)[layer] * vec2d[d2]
 
+    def per_layer(self, space2d, vecs2d, space3d, vec3d) -> None:
+        """vec3d = a 2D field of its own in each layer (``vecs2d``: one vector of ``space2d``
+        per layer, z_0 first), linear in z between two layers; zero elsewhere (a field whose
+        shape changes across the width: the contact and the top per layer, issue 53 stage 3)."""
+        layer, d3, d2 = self.indices(space2d, space3d)
+        stack = np.asarray(vecs2d, dtype=float)
+        if stack.shape[0] != self.layers + 1:
+            raise ValueError(f"LayerCopy.per_layer: {stack.shape[0]} fields for "
+                             f"{self.layers + 1} layers")
+        vec3d[:] = 0.0
+        vec3d[d3] = stack[layer, d2]
+
     def take(self, layer: int, space3d, vec3d, space2d, vec2d) -> None:
         """vec2d = the 3D field's values in ``layer`` (its nodes' DOFs)."""
         k, d3, d2 = self.indices(space2d, space3d)

@@ -185,3 +185,37 @@ def test_the_norton_hoff_volume_form_on_the_prisms_converges_at_its_orders():
     (u1, p1), (u2, p2) = norton_hoff_errors(3), norton_hoff_errors(6)
     assert math.log2(u1 / u2) > 2.6
     assert math.log2(p1 / p2) > 1.8
+
+
+def test_a_field_of_its_own_in_each_layer_is_linear_in_z_between_them():
+    """[hand] P2 fields f_k = (1 + k^2) g in the layers z_k (g a P2 field of the 2D mesh): the
+    3D field is f_k on each layer and, between two, their linear interpolation in z, at
+    points inside the prisms (exact: a layer's shape functions are the triangle's times the
+    layer's hat in z); ``take`` reads each layer back."""
+    import ngsolve as ng
+
+    from hotroll.fem.extruded_mesh import LayerCopy
+    from hotroll.fem.reproducible import fe_space
+
+    m2 = structured_triangle_mesh(np.linspace(0.0, 2.0, 5), np.linspace(0.0, 1.0, 3))
+    z = np.array([0.0, 0.3, 0.5])
+    m3 = extrude(m2, z)
+    s2, s3 = fe_space(ng.H1, m2, order=2), fe_space(ng.H1, m3, order=2)
+    g = ng.GridFunction(s2)
+    g.Set(ng.sin(ng.x) * ng.y * ng.y + ng.x * ng.y)
+    f = [(1.0 + k * k) * g.vec.FV().NumPy() for k in range(3)]
+    copy = LayerCopy(m2, m3)
+    h = ng.GridFunction(s3)
+    copy.per_layer(s2, f, s3, h.vec.FV().NumPy())
+    for px, py in ((0.3, 0.2), (1.7, 0.65)):
+        gv = g(m2(px, py))
+        for k, zk in enumerate(z):
+            assert h(m3(px, py, zk)) == pytest.approx((1.0 + k * k) * gv, rel=1e-12, abs=1e-14)
+        zm = 0.4                                   # 1/2 of the way from z_1 to z_2
+        assert h(m3(px, py, zm)) == pytest.approx(0.5 * (2.0 + 5.0) * gv, rel=1e-12, abs=1e-14)
+    back = np.zeros(s2.ndof)
+    for k in range(3):
+        copy.take(k, s3, h.vec.FV().NumPy(), s2, back)
+        assert back == pytest.approx(f[k], rel=1e-14, abs=1e-15)
+    with pytest.raises(ValueError, match="2 fields for 3 layers"):
+        copy.per_layer(s2, f[:2], s3, h.vec.FV().NumPy())
