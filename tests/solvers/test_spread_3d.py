@@ -18,7 +18,7 @@ B0 = 0.005       # m, the stock's half width
 
 
 @pytest.fixture(scope="module")
-def passes():
+def solved():
     case, problem, st = _setup()
     run = SteadyRun(problem, st, case.plate.length)
     assert run.run().status == "steady"
@@ -26,6 +26,12 @@ def passes():
     held.solve()
     free = Spread3D(run, B0, edge=0.5 * B0)
     free.solve()
+    return run, held, free
+
+
+@pytest.fixture(scope="module")
+def passes(solved):
+    run, held, free = solved
     return run.state.history[-1], held.figures(), free.figures()
 
 
@@ -117,3 +123,46 @@ def test_the_3d_pass_keeps_the_exact_scaling_in_k():
     assert b["exit_half_width_profile"] == pytest.approx(a["exit_half_width_profile"], rel=1e-9)
     for key in ("roll_force", "roll_torque"):
         assert b[key] == pytest.approx(1000.0 * a[key], rel=1e-9)
+
+
+def test_the_exit_width_is_the_outlet_faces_area_over_its_height(solved, passes):
+    """[identity, independent of B's evaluation] the quarter's outlet face, as the deformed
+    mesh has it, has the area int_0^H B(y) dy over the 2D outlet's height H: its mean half
+    width is the figures' (their 40-point mean of B, 1e-4), and the spread twice its excess
+    over b0 (1e-3)."""
+    import ngsolve as ng
+
+    from hotroll.fem.reproducible import integrate
+
+    run, _, free_run = solved
+    _, _, free = passes
+    out3 = free_run.mesh.Boundaries("out")
+    area = integrate(ng.CF(1.0), free_run.mesh, ng.BND, definedon=out3)
+    height = integrate(ng.CF(1.0), run.mesh, ng.BND, definedon=run.mesh.Boundaries("out"))
+    assert free["exit_half_width"] == pytest.approx(area / height, rel=1e-4)
+    assert free["spread"] == pytest.approx(2.0 * (area / height - B0), rel=1e-3)
+
+
+def test_the_mid_width_deviation_by_hand(solved):
+    """[hand] the mid-width plane's deviation from the 2D pass: the 3D pressure and velocity
+    set to (1 + c) times the 2D pass's in every layer give a pressure deviation c (largest
+    and root mean square) and a velocity deviation c max|u_2D| / U (over its coefficients)."""
+    run, held, _ = solved
+    g2, g3 = run.form.nonlinear.gf, held.form.nonlinear.gf
+    keep = g3.vec.FV().NumPy().copy()
+    c = 0.03
+    try:
+        held.copy.vector(g2.components[0], g3.components[0])
+        P2, P3 = g2.components[1], g3.components[1]
+        held.copy.copy(P2.space, P2.vec.FV().NumPy(), P3.space, P3.vec.FV().NumPy())
+        nv = g3.components[0].space.ndof + P3.space.ndof
+        g3.vec.FV().NumPy()[:nv] *= 1.0 + c
+        dev = held.midplane_deviation()
+    finally:
+        g3.vec.FV().NumPy()[:] = keep
+    # the velocity's: its largest coefficient (vertex values and edge bubbles) times c
+    peak = abs(g2.components[0].vec.FV().NumPy()).max()
+    assert dev["midplane_pressure_deviation"] == pytest.approx(c, rel=1e-9)
+    assert dev["midplane_pressure_rms_deviation"] == pytest.approx(c, rel=1e-9)
+    assert dev["midplane_velocity_deviation"] == pytest.approx(c * peak / run.problem.rp.u_roll,
+                                                               rel=1e-9)
