@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from hotroll.fem.mesh import mesh_triangles
+
 #: layer-to-layer growth from the free edge towards mid-width (3d-steady.md: 1.2)
 WIDTH_GROWTH = 1.2
 
@@ -54,7 +56,7 @@ def extrude(mesh2d, z: np.ndarray, region: str = "strip"):
     if nv != mesh2d.nv:
         raise ValueError(f"extrude: the 2D mesh has {nv} points but {mesh2d.nv} vertices "
                          "(a curved, second-order mesh): extrude its straight-sided one")
-    tri = np.asarray(ng2.Elements2D().NumPy()["nodes"][:, :3], dtype=np.int64) - 1
+    tri = mesh_triangles(mesh2d).astype(np.int64)
     seg = ng2.Elements1D().NumPy()
     seg_nodes = np.asarray(seg["nodes"][:, :2], dtype=np.int64) - 1
     seg_index = np.asarray(seg["index"], dtype=np.int64)
@@ -98,7 +100,10 @@ class LayerCopy:
             raise ValueError(f"LayerCopy: {mesh3d.nv} 3D vertices are not layers of the 2D "
                              f"mesh's {nv}")
         self.nv2, self.layers = nv, mesh3d.nv // nv - 1
-        flat = {tuple(sorted(v.nr for v in e.vertices)): e.nr for e in mesh2d.edges}
+        #: the 2D mesh's edges by their (sorted) vertex numbers
+        self._flat = flat = {tuple(sorted(v.nr for v in e.vertices)): e.nr
+                             for e in mesh2d.edges}
+        self._mesh3 = mesh3d
         #: (layer, 3D node, 2D node) of every vertex and every edge inside a layer
         self.nodes = [(v // nv, NodeId(VERTEX, v), NodeId(VERTEX, v % nv))
                       for v in range(mesh3d.nv)]
@@ -146,6 +151,16 @@ class LayerCopy:
         on = k == layer
         vec2d[d2[on]] = vec3d[d3[on]]
 
+    def take_vector(self, layer: int, gf3d, space2d, vec2d: np.ndarray, ncomp: int) -> None:
+        """The first ``ncomp`` components of a 3D VectorH1 GridFunction in ``layer`` into
+        ``vec2d`` (the blocks of ``ncomp`` copies of the scalar ``space2d``)."""
+        s3, n2 = gf3d.space, space2d.ndof
+        n3 = s3.ndof // 3
+        v3 = gf3d.vec.FV().NumPy()
+        for c in range(ncomp):
+            self.take(layer, s3.components[c], v3[c * n3:(c + 1) * n3], space2d,
+                      vec2d[c * n2:(c + 1) * n2])
+
     def vector(self, gf2d, gf3d) -> None:
         """A 2D VectorH1 GridFunction (x, y) onto a 3D one (x, y, 0)."""
         s2, s3 = gf2d.space, gf3d.space
@@ -156,25 +171,17 @@ class LayerCopy:
             self.copy(s2.components[c], v2[c * n2:(c + 1) * n2], s3.components[c],
                       v3[c * n3:(c + 1) * n3])
 
-    def facets(self, mesh2d, mesh3d, space2d, vec2d, space3d, vec3d) -> None:
+    def facets(self, space2d, vec2d, space3d, vec3d) -> None:
         """A facet field of order 0 (one value per edge, as the contact indicator chi) onto
         the extrusion: every quadrilateral boundary face takes the value of the 2D boundary
         edge it is extruded from; every other face 0."""
-        from ngsolve import BND
+        from ngsolve import BND, EDGE, NodeId
 
         nv = self.nv2
-        flat = {tuple(sorted(v.nr for v in e.vertices)): e.nr for e in mesh2d.edges}
         vec3d[:] = 0.0
-        for el in mesh3d.Elements(BND):
+        for el in self._mesh3.Elements(BND):
             vs = sorted(v.nr for v in el.vertices)
             low = [v % nv for v in vs if v // nv == vs[0] // nv]
             if len(vs) == 4 and len(low) == 2:
-                edge = flat[tuple(sorted(low))]
-                vec3d[space3d.GetDofNrs(el)[0]] = vec2d[space2d.GetDofNrs(
-                    _edge_id(edge))[0]]
-
-
-def _edge_id(nr: int):
-    from ngsolve import EDGE, NodeId
-
-    return NodeId(EDGE, nr)
+                edge = NodeId(EDGE, self._flat[tuple(sorted(low))])
+                vec3d[space3d.GetDofNrs(el)[0]] = vec2d[space2d.GetDofNrs(edge)[0]]

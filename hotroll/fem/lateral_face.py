@@ -31,7 +31,6 @@ class LateralFace:
         self.face = ng.Mesh(mesh2d.ngmesh.Copy())
         d = ng.GridFunction(fe_space(ng.VectorH1, self.face, order=2))
         d.vec.FV().NumPy()[:] = disp2d
-        self._d = d
         self.face.SetDeformation(d)
         self.z, self.b0, self.copy = np.asarray(z, dtype=float), float(z[-1]), copy
         self.S = fe_space(ng.H1, self.face, order=2, dirichlet=inflow)
@@ -53,13 +52,8 @@ class LateralFace:
     def update(self, velocity3d) -> float:
         """Solve for B with the 3D velocity ``velocity3d`` (a VectorH1 GridFunction of the
         extruded mesh) on the face; the largest change of B (m)."""
-        V3, n = velocity3d.space, self._scalar.ndof
-        n3 = V3.ndof // 3
-        u3, vel = velocity3d.vec.FV().NumPy(), self.velocity.vec.FV().NumPy()
-        last = len(self.z) - 1
-        for c in range(3):
-            self.copy.take(last, V3.components[c], u3[c * n3:(c + 1) * n3], self._scalar,
-                           vel[c * n:(c + 1) * n])
+        self.copy.take_vector(len(self.z) - 1, velocity3d, self._scalar,
+                              self.velocity.vec.FV().NumPy(), 3)
         self._a.Assemble()
         self._f.Assemble()
         r = self._f.vec.CreateVector()
