@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from hotroll.fem.mesh import mesh_triangles
+from hotroll.fem.reproducible import fe_space
 
 #: layer-to-layer growth from the free edge towards mid-width (3d-steady.md: 1.2)
 WIDTH_GROWTH = 1.2
@@ -160,6 +161,29 @@ class LayerCopy:
         for c in range(ncomp):
             self.take(layer, s3.components[c], v3[c * n3:(c + 1) * n3], space2d,
                       vec2d[c * n2:(c + 1) * n2])
+
+    def elements(self, vec2d: np.ndarray) -> np.ndarray:
+        """One value per 2D triangle onto its prisms (an L2 field of order 0): prism
+        k * n_triangles + t is triangle t's in layer k (``extrude``'s order)."""
+        return np.tile(np.asarray(vec2d, dtype=float), self.layers)
+
+    def scalar(self, gf2d):
+        """A new 3D GridFunction equal to the scalar 2D one ``gf2d`` in every layer: H1 of
+        order <= 2 (``copy``) or L2 of order 0 (``elements``)."""
+        import ngsolve as ng
+
+        space, v2 = gf2d.space, gf2d.vec.FV().NumPy()
+        order = space.globalorder
+        if isinstance(space, ng.L2) and order == 0:
+            out = ng.GridFunction(fe_space(ng.L2, self._mesh3, order=0))
+            out.vec.FV().NumPy()[:] = self.elements(v2)
+        elif isinstance(space, ng.H1) and order <= 2:
+            out = ng.GridFunction(fe_space(ng.H1, self._mesh3, order=order))
+            self.copy(space, v2, out.space, out.vec.FV().NumPy())
+        else:
+            raise ValueError(f"LayerCopy.scalar: {type(space).__name__} of order {order} "
+                             "(H1 of order <= 2 or L2 of order 0)")
+        return out
 
     def vector(self, gf2d, gf3d) -> None:
         """A 2D VectorH1 GridFunction (x, y) onto a 3D one (x, y, 0)."""

@@ -345,16 +345,23 @@ class RollingForm(FrictionTerms):
         """The strip's elastic surface rate in the constraint, s c_e (u.t) dp/ds w (``depth``:
         c_e's half thickness, a CF; w the test function upwinded along t; ``u_w``, ``lam_w``:
         the Jacobian at that iterate along (u, lam))."""
-        from ngsolve import grad, specialcf
+        from ngsolve import grad
 
         c = self.compliance * depth * self._lam       # c_e K s: per unit lambda~
-        w = xi + 0.5 * specialcf.mesh_size * (xi.Trace().Deriv() * t)
+        w = xi + 0.5 * self.arc_step() * (xi.Trace().Deriv() * t)
         ds_lam = lam.Trace().Deriv() * t
         if u_w is None:
             rate = (u * t) * ds_lam
         else:
             rate = (u * t) * (grad(lam_w) * t) + (u_w * t) * ds_lam
         return self._lam * c * rate * w
+
+    def arc_step(self):
+        """The contact element's length along t (the elastic rate's upwinding): the arc
+        segment's, ``mesh_size``."""
+        from ngsolve import specialcf
+
+        return specialcf.mesh_size
 
     def jacobian(self, w, u, p, v, q, lam=None, xi=None, lam_w=None):
         """Newton's Jacobian of (3.6) at w: the Norton-Hoff tangent and the friction tangent

@@ -25,13 +25,36 @@ class RollingForm3D(RollingForm):
 
     def __init__(self, mesh, rp, material, friction, penalties, free_surface: str = "traced",
                  tensions: tuple = (0.0, 0.0), contact: str = "multiplier",
-                 edge_held: bool = False, consistency=1.0, primal_dual: bool = True):
+                 edge_held: bool = False, consistency=1.0, rate_offset=None,
+                 primal_dual: bool = True, strip_compliance: float | None = None,
+                 strip_depth: float | None = None):
         if rp.shape is not None:
             raise NotImplementedError("a flattened roll on the 3D strip")
         self.edge_held = bool(edge_held)
+        self._layer_width = None
         super().__init__(mesh, rp, material, friction, penalties, free_surface, tensions,
-                         consistency=consistency, contact=contact, contact_regions="arc",
-                         primal_dual=primal_dual)
+                         consistency=consistency, rate_offset=rate_offset, contact=contact,
+                         contact_regions="arc", primal_dual=primal_dual,
+                         strip_compliance=strip_compliance, strip_depth=strip_depth)
+
+    def arc_step(self):
+        """The contact face's length along t: mesh_size (the square root of the quadrilateral's
+        area) squared over its layer's width across the strip (the reference one: exact with
+        the edge held, a stabilisation weight off by the face's stretch B / b0 <= 1.2 where the
+        strip spreads)."""
+        import numpy as np
+        from ngsolve import BND, FacetFESpace, GridFunction, specialcf
+
+        from hotroll.fem.reproducible import fe_space
+
+        if self._layer_width is None:
+            g = self._layer_width = GridFunction(fe_space(FacetFESpace, self.mesh, order=0))
+            vec = g.vec.FV().NumPy()
+            for el in self.mesh.Elements(BND):
+                z = [self.mesh[v].point[2] for v in el.vertices]
+                if len(z) == 4:
+                    vec[g.space.GetDofNrs(el)[0]] = np.ptp(z)
+        return specialcf.mesh_size ** 2 / self._layer_width
 
     def _spaces(self, multiplier_on: str | None):
         """Taylor-Hood with v_y = 0 on ``sym``, v_z = 0 on ``zsym`` (and on ``edge`` if held)."""

@@ -1,15 +1,16 @@
 """A steady 3D pass with spread from a solved 2D pass (issue 53 stage 2).
 
-The quarter strip (mid-thickness and mid-width symmetry) is the solved 2D pass's mesh
-extruded across the stock's half width b0 (``fem/extruded_mesh.py``), its form the 2D one in
-3D (``fem/rolling_form_3d.py``), its start the 2D solution in every layer. The strip's top
-shape, the contact's extent along x, the friction parameter and the tensions stay as the 2D
-pass left them (the top is the roll's over the contact and the strip is rigid after it; how
-the top and the contact change near the edge is the next stage); the lateral face is a free
-stream surface (``fem/lateral_face.py``). Newton on the current shape and the face's update
-alternate until the face settles (its largest move below ``surface_tol`` h, the 2D pass's
-tolerance of its traced tops). With ``edge_held`` the face is held (u_z = 0): plane strain,
-the 2D answer.
+The quarter strip (mid-thickness and mid-width symmetry) is the solved 2D pass's mesh extruded
+across the stock's half width b0 (``fem/extruded_mesh.py``), its form the 2D one in 3D
+(``fem/rolling_form_3d.py``), its start the 2D solution in every layer. The strip's top shape,
+the contact's extent along x, the friction parameter and the tensions stay as the 2D pass left
+them (the top is the roll's over the contact and the strip is rigid after it; how the top and
+the contact change near the edge is the next stage), and so do the strain and the temperature a
+flow stress takes (``solvers/spread_fields.py``: frozen across the width); the lateral face is
+a free stream surface (``fem/lateral_face.py``). Newton on the current shape and the face's
+update alternate until the face settles (its largest move below ``surface_tol`` h, the 2D
+pass's tolerance of its traced tops). With ``edge_held`` the face is held (u_z = 0): plane
+strain, the 2D answer.
 """
 from __future__ import annotations
 
@@ -24,6 +25,7 @@ from hotroll.fem.penalties import PenaltyTable
 from hotroll.fem.reproducible import integrate
 from hotroll.fem.rolling_form_3d import RollingForm3D
 from hotroll.model.material import NortonHoff
+from hotroll.solvers.spread_fields import frozen_flow_stress
 
 
 class Spread3D:
@@ -40,9 +42,6 @@ class Spread3D:
             raise ValueError(f"half_width = {half_width!r} m: must be > 0")
         problem, f2 = run.problem, run.form
         missing = [what for what, on in (
-            ("a strain or temperature field (a flow stress of the strain or the temperature: "
-             "use Norton-Hoff)", run.strain is not None or run.thermal is not None),
-            ("the strip's elasticity (contact.strip_youngs_modulus)", bool(f2.compliance)),
             ("a flattening roll (roll.model)", problem.rp.shape is not None),
             ("the constrained free surface (plate.free_surface)",
              run.s.free_surface != "traced"),
@@ -56,11 +55,14 @@ class Spread3D:
         ref2 = ng.Mesh(run.mesh.ngmesh.Copy())          # the 2D reference (undeformed)
         self.mesh = extrude(ref2, self.z)
         mat = problem.material
+        copy = self.copy = LayerCopy(ref2, self.mesh)
+        consistency, rate_offset = frozen_flow_stress(run, copy)
         self.form = RollingForm3D(self.mesh, problem.rp, NortonHoff(1.0, mat.m, mat.eps0),
                                   problem.friction, PenaltyTable(h),
-                                  tensions=problem.reduced_tensions, edge_held=edge_held)
+                                  tensions=problem.reduced_tensions, edge_held=edge_held,
+                                  consistency=consistency, rate_offset=rate_offset,
+                                  strip_compliance=f2.compliance, strip_depth=f2.strip_depth)
         f3 = self.form
-        copy = self.copy = LayerCopy(ref2, self.mesh)
         self.disp = ng.GridFunction(f3.fes.components[0])
         copy.vector(run.disp, self.disp)
         self.mesh.SetDeformation(self.disp)

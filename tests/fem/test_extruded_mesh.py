@@ -219,3 +219,28 @@ def test_a_field_of_its_own_in_each_layer_is_linear_in_z_between_them():
         assert back == pytest.approx(f[k], rel=1e-14, abs=1e-15)
     with pytest.raises(ValueError, match="2 fields for 3 layers"):
         copy.per_layer(s2, f[:2], s3, h.vec.FV().NumPy())
+
+
+def test_a_scalar_field_is_the_same_in_every_layer_h1_and_per_element():
+    """[hand] ``LayerCopy.scalar``: a P2 field and a P0 one (each triangle its own value) carried
+    onto the extrusion equal the 2D field at the same (x, y) in every layer (the prisms of
+    layer k are numbered k * n_triangles + t); an H1 field of order 3 is refused by name."""
+    import ngsolve as ng
+
+    from hotroll.fem.extruded_mesh import LayerCopy
+    from hotroll.fem.reproducible import fe_space
+
+    m2 = structured_triangle_mesh(np.linspace(0.0, 2.0, 5), np.linspace(0.0, 1.0, 3))
+    m3 = extrude(m2, np.array([0.0, 0.3, 0.5, 1.1]))
+    copy = LayerCopy(m2, m3)
+    p2 = ng.GridFunction(fe_space(ng.H1, m2, order=2))
+    p2.Set(ng.sin(ng.x) * ng.y * ng.y + ng.x * ng.y)
+    p0 = ng.GridFunction(fe_space(ng.L2, m2, order=0))
+    p0.vec.FV().NumPy()[:] = 1.0 + np.arange(m2.ne) ** 2
+    for g in (p2, p0):
+        g3 = copy.scalar(g)
+        for px, py in ((0.3, 0.2), (1.7, 0.65), (0.95, 0.9)):
+            for pz in (0.1, 0.45, 0.8):
+                assert g3(m3(px, py, pz)) == pytest.approx(g(m2(px, py)), rel=1e-12)
+    with pytest.raises(ValueError, match="H1 of order 3"):
+        copy.scalar(ng.GridFunction(fe_space(ng.H1, m2, order=3)))

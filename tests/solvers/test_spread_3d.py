@@ -89,16 +89,43 @@ def test_the_spread_lies_inside_the_empirical_formulas_band(passes):
 
 
 def test_what_the_3d_strip_does_not_carry_is_refused_by_name():
-    """[plumb] a 2D pass with a strain field (Hensel-Spittel) or the strip's elasticity is
-    refused before any 3D work, naming what is missing."""
-    case, problem, st = _setup(**{"material.law": "hensel-spittel", "material.grade": "C45",
-                                  "material.m": None, "material.K": None,
-                                  "contact.strip_youngs_modulus": 2.0e11,
-                                  "plate.free_surface": "constrained"})
+    """[plumb] a 2D pass with the constrained free surface or the penalty contact is refused
+    before any 3D work, naming what is missing."""
+    case, problem, st = _setup(**{"plate.free_surface": "constrained",
+                                  "contact.method": "penalty"})
     run = SteadyRun(problem, st, case.plate.length)
-    with pytest.raises(ValueError, match="strain or temperature field.*elasticity.*"
-                                         "constrained free surface"):
+    with pytest.raises(ValueError, match="constrained free surface.*penalty contact"):
         Spread3D(run, B0)
+
+
+#: a Hensel-Spittel grade (a strain field; the strip's elasticity from its family), and the
+#: same with [thermal] (the elements' temperature, its rate exponent m(T))
+_THERMAL = {"thermal.htc_contact": 2.0e4, "thermal.roll_temperature": 400.0,
+            "thermal.htc_air": 20.0, "thermal.emissivity": 0.8, "material.density": 7800.0,
+            "material.specific_heat": 650.0, "material.conductivity": 30.0}
+
+
+@pytest.mark.parametrize("extra", [{}, _THERMAL], ids=["strain", "strain-thermal"])
+def test_the_held_edge_keeps_a_strain_law_its_temperature_and_the_elastic_strip(extra):
+    """[identity] the strain and the temperature frozen across the width
+    (solvers/spread_fields.py) and the strip's elasticity in the contact's constraint (its
+    upwinding along the arc, ``RollingForm3D.arc_step``): with the edge held the 2D pass in
+    every layer solves the 3D form, one Newton step, force and torque per width the 2D pass's
+    to 1e-10 (the flow stress read as mid-width's everywhere would be off by the hardening;
+    the elastic rate upwinded over the face's mesh_size by 2e-3)."""
+    case, problem, st = _setup(**{"material.law": "hensel-spittel", "material.grade": "C45",
+                                  "material.m": None, "material.K": None, **extra})
+    run = SteadyRun(problem, st, case.plate.length)
+    assert run.run().status == "steady"
+    assert run.strain is not None and run.form.compliance
+    assert (run.thermal is not None) == bool(extra)
+    two = run.state.history[-1]
+    held = Spread3D(run, B0, edge=B0, edge_held=True)
+    assert held.solve() and held.iterations == 1
+    f = held.figures()
+    assert f["roll_force_per_width"] == pytest.approx(two["roll_force"], rel=1e-10)
+    assert f["roll_torque"] / (2.0 * B0) == pytest.approx(two["roll_torque"], rel=1e-10)
+    assert f["midplane_velocity_deviation"] <= 1e-10
 
 
 def test_the_3d_pass_keeps_the_exact_scaling_in_k():
