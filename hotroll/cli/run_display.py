@@ -34,6 +34,12 @@ GAP_KEYS = ["speed_ratio", "cross_shear_length", "exit_curvature", "exit_angle",
             "entry_guide_force_y"]
 ROLL_KEYS = ["surface_speed", "roll_force", "roll_torque", "roll_power", "forward_slip",
              "neutral_angle", "contact_length", "min_contact_pressure"]
+#: With [spread]: the 3D pass's width figures (its whole-width force and torque replace plane
+#: strain x width in roll_force_total, roll_torque_total).
+SPREAD_KEYS = ["exit_width", "spread", "spread_hill", "spread_sparling", "spread_wusatowski",
+               "edge_bulge", "plane_strain_roll_force_total", "spread_mass_flux_error",
+               "spread_power_balance_error",
+               "spread_settled", "spread_dofs", "spread_wall_time"]
 #: With [thermal]: shown after the mechanics' figures (units from summary.json's ``units``).
 THERMAL_KEYS = ["exit_temperature_mean", "exit_temperature_surface", "plastic_heat",
                 "friction_heat_to_strip", "heat_to_roll", "heat_to_air", "heat_balance_error"]
@@ -114,7 +120,8 @@ def summary_table(case: Case, summary: dict) -> ResultTable:
     mill = [k for k in MILL_KEYS if k != "contact_length" or summary.get("roll_model")]
     rolls = summary.get("rolls") or []
     gap = GAP_KEYS if rolls else []
-    keys = SUMMARY_KEYS[:-4] + mill + gap + thermal + SUMMARY_KEYS[-4:]  # before the run's own
+    spread = SPREAD_KEYS if summary.get("spread") is not None else []
+    keys = SUMMARY_KEYS[:-4] + mill + gap + spread + thermal + SUMMARY_KEYS[-4:]  # before the run's own
     units = summary.get("units", {})
 
     def row(name: str, key: str, value, si: str | None) -> None:

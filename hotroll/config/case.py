@@ -36,6 +36,8 @@ from hotroll.config.sections import (  # noqa: F401 (re-exported)
     SolverConfig,
     check_profile,
 )
+from hotroll.config.spread import SpreadConfig
+from hotroll.config.spread import problems as spread_problems
 from hotroll.config.thermal import ThermalConfig
 from hotroll.config.units import ENGINEERING, UnitError, shown
 from hotroll.model.geometry import auto_contact_size
@@ -64,6 +66,9 @@ class Case(Section):
     output: OutputConfig = Field(default_factory=OutputConfig, description="output switches")
     roll: RollConfig = Field(default_factory=RollConfig,
                              description="the work roll: rigid, Hitchcock's flattening or elastic")
+    spread: SpreadConfig | None = Field(
+        None, description="the 3D pass across the width (needs pass.width); present: the "
+        "spread, the exit width and the whole width's force from it, absent: plane strain")
     thermal: ThermalConfig | None = Field(
         None, description="heat sources and losses; present: the coupled thermo-mechanical "
         "problem, absent: isothermal at plate.temperature")
@@ -139,6 +144,7 @@ class Case(Section):
         if self.plate.temperature_profile is not None and self.thermal is None:
             problems.append("plate.temperature_profile: needs a [thermal] section (an isothermal "
                             "run has one temperature, plate.temperature)")
+        problems += spread_problems(self)
         if not problems and not self.solver.force:
             problems += [f"{line} (solver.force = true or --force runs it anyway)"
                          for line in plausibility.refusals(self)]

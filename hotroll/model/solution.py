@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from hotroll.model.geometry import RollPass
+from hotroll.model.spread_result import SpreadResult
 
 
 @dataclass(frozen=True)
@@ -123,7 +124,9 @@ class Solution:
       ``fixed_point_settled``, ``surface_residual_h`` (steady) or ``dt`` (s, transient);
       ``dofs``: the flow's unknowns; ``nonlinear``: ``"newton"`` or ``"picard"``;
     - ``write_vtk(path, shift)``: writes the ParaView file(s), positions moved by ``shift``
-      (m); None where no FE objects are at hand.
+      (m); None where no FE objects are at hand;
+    - ``spread``: the 3D pass across the width (``[spread]``, ``model/spread_result.py``) or
+      None.
     """
 
     step: int = 0
@@ -146,3 +149,4 @@ class Solution:
     dofs: int | None = None
     nonlinear: str | None = None
     write_vtk: Callable[[Path, float], Path] | None = field(default=None, repr=False)
+    spread: SpreadResult | None = None

@@ -23,13 +23,16 @@ def exit_code(summary: dict) -> int:
     whose mass flux or power balance is off by more than its tolerance (``not_conserved``,
     the reason in ``failure``; ``CONSERVATION_TOL`` below); 10: contact not resolved, a run
     that converged with its strip inside a roll past a contact's end or a contact's end held
-    at the end of its range (``contact_unresolved``, ``contact_problem`` below)."""
+    at the end of its range (``contact_unresolved``, ``contact_problem`` below); 5 also when
+    the ``[spread]`` section's 3D pass did not settle (``spread_settled`` false)."""
     if summary.get("converged"):
         return 0
     if summary.get("not_conserved"):
         return 7
     if summary.get("contact_unresolved"):
         return 10
+    if summary.get("spread_settled") is False:
+        return 5
     status = summary.get("status")
     if status == "failed" and summary.get("failure"):
         return 3
@@ -65,6 +68,7 @@ def _finite(value) -> bool:
 #: the physics; exact contact has none on the roll, the inlet/outlet ones are inactive unless the
 #: strip skids).
 CONSERVATION_TOL = {"mass_flux_error": 0.02, "power_balance_error": 0.02, "leak_to_slip": 0.2,
+                    "spread_mass_flux_error": 0.02, "spread_power_balance_error": 0.02,
                     "penalty_share": 0.02}
 
 

@@ -31,6 +31,7 @@ from hotroll.results.neutral import decide
 from hotroll.results.outcome import conservation_problem, contact_problem, exit_code, leak_to_slip
 from hotroll.results.output import write_csv, write_json, write_npz
 from hotroll.results.roll_figures import roll_figures
+from hotroll.results.spread_summary import spread_figures, unsettled, write_spread_files
 from hotroll.results.summary import Summary
 from hotroll.results.units import UNITS
 
@@ -153,6 +154,9 @@ def write_results(case: Case, sol: Solution, out: Path, wall: float,
     else:
         summary = summarise(case, sol, prof, wall) | (extra or {})
     shift_positions(summary, shift)
+    if sol.spread is not None:          # the 3D pass across the width ([spread])
+        summary.update(spread_figures(case, sol.spread, summary["roll_force"]))
+        write_spread_files(out, sol.spread, shift, case.output.vtk)
     summary["leak_to_slip"] = leak_to_slip(summary)
     overlaps = [c.overlap for c in sol.contacts if c.overlap is not None]
     summary["roll_overlap"] = max(overlaps) if overlaps else None
@@ -160,6 +164,9 @@ def write_results(case: Case, sol: Solution, out: Path, wall: float,
     summary["not_conserved"] = problem is not None
     if problem:
         summary["converged"], summary["failure"] = False, problem
+    late = unsettled(sol.spread, case.spread.max_rounds) if sol.spread is not None else None
+    if late and summary["converged"]:
+        summary["converged"], summary["failure"] = False, late
     unresolved = contact_problem(summary) if summary["converged"] else None
     summary["contact_unresolved"] = unresolved is not None
     if unresolved:
@@ -170,7 +177,10 @@ def write_results(case: Case, sol: Solution, out: Path, wall: float,
     summary.update(sol.quantities)      # the means over the roll gap (the solver's)
     summary["mean_pressure"] = (summary["roll_force"] / summary["contact_length"]
                                 if summary.get("contact_length") else None)
-    summary.update(width_totals(summary, case.pass_.width))
+    if sol.spread is None:
+        summary.update(width_totals(summary, case.pass_.width))
+    else:
+        summary["width"] = case.pass_.width
     summary.update(mill_setup(summary, case.pass_.exit_thickness, case.pass_.mill_modulus))
     summary["warnings"] = solved_warnings(case, _solved_state(case, summary),
                                           summary.get("warnings") or [])

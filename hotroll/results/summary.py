@@ -91,6 +91,7 @@ class Summary(SummaryKeys, Mapping):
     def reference_rows(cls) -> list[tuple[str, str, str, str]]:
         """(key, unit, label, meaning with its condition) for docs/reference/summary.md."""
         note = {"thermal": "with `[thermal]`", "width": "with `[pass] width`",
+                "spread": "with `[spread]` (the 3D pass across the width)",
                 "roll": "with `[roll] model` hitchcock or elastic",
                 "mill": "with `[pass] mill_modulus`",
                 "gap": "with `[pass] roll_gap`",

@@ -5,20 +5,11 @@ under (``when``); an asymmetric pass's per-roll entry (``ROLL_ENTRY``) beside th
 from them."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import Any
+from dataclasses import dataclass
 
+from hotroll.results.spread_keys import SpreadKeys
+from hotroll.results.summary_fields import ABSENT, GROUPS, _f  # noqa: F401 (re-exported)
 
-class _Absent:
-    """The value of a key the summary does not have (written nowhere, not even as null)."""
-
-    def __repr__(self) -> str:
-        return "ABSENT"
-
-
-ABSENT: Any = _Absent()
-#: The groups of the HTML page's table (in this order; the rest under "Other").
-GROUPS = ("Pass", "Temperature and heat", "Checks", "Solver")
 #: An asymmetric pass's ``rolls`` entry (one per roll, the upper's first): key -> (SI unit or
 #: None, meaning). Each figure is that roll's history column (``upper_<key>``, ``lower_<key>``:
 #: solvers/gap_measure.py), the window's mean; x positions where the case puts the roll axes.
@@ -62,18 +53,10 @@ _ASYM = "; an asymmetric pass: "
 _WHOLE = _ASYM + "the whole strip"
 
 
-def _f(unit: str | None, label: str, meaning: str = "", *, group: str | None = None,
-       when: str | None = None):
-    """A summary field: SI ``unit`` (None: a name, flag, count or list without one), ``label``
-    for a person, ``meaning`` for the reference, the page's ``group``, and ``when`` it exists
-    (None: always; "thermal", "width", "run")."""
-    return field(default=ABSENT, metadata={"unit": unit, "label": label, "meaning": meaning,
-                                           "group": group, "when": when})
-
 
 @dataclass(eq=False)
-class SummaryKeys:
-    """Every key of summary.json, ABSENT until set (``Summary`` holds the values)."""
+class _CoreKeys:
+    """The keys of every pass (``SummaryKeys``)."""
 
     # --- the run ------------------------------------------------------------------------------
     case_name: str = _f(None, "case", "the case's name")
@@ -88,15 +71,17 @@ class SummaryKeys:
     roll_force: float = _f("N/m", "roll force, one roll", "per m of width, one roll" + _ASYM
                            + "the mean of the two rolls' (each in `rolls`)", group="Pass")
     roll_force_total: float = _f("N", "roll force, whole width", "one roll's force over the whole "
-                                 "width", group="Pass", when="width")
+                                 "width: `roll_force` x `width`, with `[spread]` the 3D "
+                                 "pass's", group="Pass", when="width")
     roll_torque: float = _f("N m/m", "roll torque, one roll", "per m of width, one roll"
                             + _ASYM + "the mean of the two rolls' (each in `rolls`)",
                             group="Pass")
-    roll_torque_total: float = _f("N m", "roll torque, whole width", "one roll's torque",
-                                  group="Pass", when="width")
+    roll_torque_total: float = _f("N m", "roll torque, whole width", "one roll's torque (with "
+                                  "`[spread]` the 3D pass's)", group="Pass", when="width")
     roll_power: float = _f("W/m", "roll power, one roll", "per m of width, one roll" + _ASYM
                            + "the mean of the two rolls' (each in `rolls`)", group="Pass")
-    roll_power_total: float = _f("W", "roll power, whole width", "one roll's power", group="Pass",
+    roll_power_total: float = _f("W", "roll power, whole width", "one roll's power (with "
+                                 "`[spread]` the 3D pass's)", group="Pass",
                                  when="width")
     mill_power: float = _f("W", "mill power, both rolls", "both rolls' power",
                            group="Pass", when="width")
@@ -380,3 +365,9 @@ class SummaryKeys:
                                    "the shear strain gamma_xy (`shear_strain`)")
     units: dict = _f(None, "units", "each figure's SI unit")
     exit_code: int = _f(None, "exit code", "see cli.md#exit-codes")
+
+
+@dataclass(eq=False)
+class SummaryKeys(SpreadKeys, _CoreKeys):
+    """Every key of summary.json, ABSENT until set (``Summary`` holds the values): the core
+    keys first, then the 3D pass's (``results/spread_keys.py``)."""

@@ -134,6 +134,7 @@ class Spread3D:
                "newton_iterations": self.iterations, "dofs": f.fes.ndof,
                "wall_time": self.setup_time + self.solve_time, "settled": self.settled}
         out["roll_force_per_width"] = out["roll_force"] / (2.0 * b0)
+        out.update(self.power_balance(K * torque))
         out.update(self.midplane_deviation())
         if self.face is not None:
             # at the outlet, over the reference cross-section's heights: the strip there is
@@ -147,6 +148,35 @@ class Spread3D:
             out["exit_half_width_profile"] = half.tolist()
             out["spread"] = 2.0 * (out["exit_half_width"] - b0)
         return out
+
+    def power_balance(self, torque: float) -> dict:
+        """The power balance of (3.6) tested with the velocity itself, of the quarter (W): the
+        roll's power, the quarter's torque ``torque`` (N m) times omega (the shear's power at
+        the rim's speed), and the tensions' on the cut faces against the plastic power
+        int mu eps:eps dV and the friction's int k_f |v_s|^2 dA; the error |roll + tension -
+        plastic - friction| / roll (the penalties, inactive in a pass the roll drives, and the
+        multiplier's p u.n, zero to round-off, left out)."""
+        import ngsolve as ng
+
+        from hotroll.fem.forms import strain_rate
+        from hotroll.model.material import edot_squared
+
+        f, mesh, K = self.form, self.mesh, self.problem.material.K
+        u = f.nonlinear.velocity
+        eps = strain_rate(u)
+        mu = f.material.viscosity(edot_squared(eps), m=f.m_material, K=f.consistency)
+        s, kf = f.slip(u), f.friction_coefficient(u)
+        nn = ng.specialcf.normal(3)
+        plastic = K * integrate(mu * ng.InnerProduct(eps, eps), mesh, ng.VOL)
+        friction = K * f.integrate_friction(f.chi * kf * (s * s))
+        roll = torque * self.problem.rp.omega
+        tension = K * (integrate(f.tension_back * (u * nn), mesh, ng.BND,
+                                 definedon=mesh.Boundaries("in"))
+                       + integrate(f.tension_front * (u * nn), mesh, ng.BND,
+                                   definedon=mesh.Boundaries("out")))
+        return {"plastic_power": plastic, "friction_power": friction, "roll_power": roll,
+                "tension_power": tension, "power_balance_error":
+                    abs(roll + tension - plastic - friction) / max(abs(roll), 1e-300)}
 
     def midplane_deviation(self) -> dict:
         """How far the mid-width plane (z = 0) is from the 2D pass: the largest difference of

@@ -33,6 +33,7 @@ from hotroll.workflows.build import (  # noqa: F401  (runner's API)
 )
 from hotroll.workflows.estimate import check
 from hotroll.workflows.gauge import run_gap_case
+from hotroll.workflows.spread import solve_spread
 
 #: Solver keys that do not change the computed fields (a run may resume with other values).
 _NOT_PHYSICS = ("wall_time_limit", "threads", "checkpoint_every", "memory_limit", "force")
@@ -84,7 +85,7 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
             model, settings = build_model(case)
         extra = {"estimated_dofs": est.dofs, "estimated_memory": est.memory_bytes,
                  "estimated_seconds": est.seconds, "warnings": case.warnings()}
-        shift = 0.0
+        shift, spread = 0.0, None
         if case.solver.method == "steady":
             # solved in the roll's frame (axis at x = 0), written where the case puts the axis:
             # the numbers do not depend on roll_axis_x (issue 30)
@@ -108,6 +109,8 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
                 near, warm = sweep.nearest(case, run)
             run.mass_flux = mass_flux
             run.run(progress, warm=warm)
+            if case.spread is not None and run.state.status == "steady":
+                spread = solve_spread(case, run)        # the 3D pass across the width
             omega = run.problem.rp.omega
             if model.gap is None and omega != case.pass_.roll_angular_velocity:      # a tandem speed found in the solve
                 case = case.with_overrides(**{"pass.roll_angular_velocity": omega})
@@ -125,6 +128,7 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
             # the solved pass as data (solvers/record.py): all the results read
             record = (full_record(run, frame_shift=shift) if model.gap is not None
                       else run.solution_record(frame_shift=shift))
+            record.spread = spread
             summary = write_results(case, record, out, wall, extra)
     if case.output.figures:
         from hotroll.results.figures import plot_all  # matplotlib only when drawing

@@ -81,6 +81,8 @@ BASE: dict = {
                 "roll_temperature": 350.0, "htc_air": 20.0, "emissivity": 0.8,
                 "ambient_temperature": 293.15, "mesh_refinement": 1.0},
 }
+#: the [spread] section, in the base of its own keys only (it refuses an asymmetric pass)
+SPREAD = {"edge_layer": 0.02, "growth": 1.2, "largest_layer": 0.08, "max_rounds": 30}
 HS_MATERIAL = {"law": "hensel-spittel", "A": 1e8, "m1": -0.003, "m2": 0.1, "m3": 0.15,
                "m4": -0.001, "m5": 1e-4, "m7": -0.1, "m8": 1e-5, "m9": 0.01}
 #: Keys active only under another law: the base the key is broken in.
@@ -91,6 +93,8 @@ LAW_OF = {("friction", "a_f"): {"law": "viscoplastic", "a_f": 5.0},
 def base_for(section: str, key: str) -> dict:
     """A valid case in which ``section.key`` is in force."""
     d = copy.deepcopy(BASE)
+    if section == "spread":
+        d["spread"] = dict(SPREAD)
     if (section, key) in LAW_OF:
         d["friction"] = {**LAW_OF[section, key], "v_reg": 1e-4, "a_f_max": 1e6}
     if section.startswith("friction.") and ("friction", key) in LAW_OF:   # a roll's own

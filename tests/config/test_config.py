@@ -353,11 +353,11 @@ def test_the_case_reference_page_is_the_schema():
     assert with_generated(page) == page, "run: python scripts/reference_docs.py"
     block = case_keys_markdown()
     for section in ("pass", "plate", "material", "friction", "mesh", "solver", "contact",
-                    "roll", "output", "thermal"):
+                    "roll", "output", "thermal", "spread"):
         assert f"## [{section}]" in block
     assert "| `carbon` | none | wt % | in [0, 1.2] |" in block
     assert all(f"| `{key}` |" in block for key in fields_of(MaterialConfig))
-    assert len(fields_of(Case)) == 11
+    assert len(fields_of(Case)) == 12
 
 
 def test_cli_example_options_reach_the_case(tmp_path, monkeypatch):

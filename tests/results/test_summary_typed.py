@@ -96,7 +96,8 @@ def test_the_declaration_helpers_at_call_time():
     assert labels["roll_force"] == "roll force, one roll" and labels["K"] == "consistency K"
     assert len(labels) == len(Summary.keys_declared())
     groups = Summary.groups()
-    assert list(groups) == ["Pass", "Temperature and heat", "Checks", "Solver"]
+    assert list(groups) == ["Pass", "Width and spread", "Temperature and heat", "Checks", "Solver"]
+    assert groups["Width and spread"][:3] == ("exit_width", "spread", "edge_bulge")
     assert groups["Solver"] == ("h_contact", "dofs", "steps", "time", "dt", "newton_solves",
                                 "coupling_updates", "nonlinear_iterations",
                                 "iterations_per_step", "averaged_over_steps", "wall_time_s",
@@ -104,7 +105,10 @@ def test_the_declaration_helpers_at_call_time():
     assert groups["Pass"][:3] == ("roll_force", "roll_force_total", "roll_torque")
     rows = {r[0]: r for r in Summary.reference_rows()}
     assert rows["roll_force_total"] == ("roll_force_total", "N", "roll force, whole width",
-                                        "one roll's force over the whole width; with "
-                                        "`[pass] width`")
+                                        "one roll's force over the whole width: "
+                                        "`roll_force` x `width`, with `[spread]` the 3D "
+                                        "pass's; with `[pass] width`")
+    assert rows["spread"] == ("spread", "m", "spread", "exit width - `width`; with `[spread]` "
+                              "(the 3D pass across the width)")
     assert rows["case_name"] == ("case_name", "", "case", "the case's name")
     assert "_other" not in rows

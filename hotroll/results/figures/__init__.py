@@ -35,6 +35,7 @@ from hotroll.results.figures.profiles import fig_contact, fig_contact_angle, fig
 from hotroll.results.figures.roll import fig_roll  # noqa: E402
 from hotroll.results.figures.rolls import fig_rolls  # noqa: E402
 from hotroll.results.figures.run_files import RunFiles  # noqa: E402
+from hotroll.results.figures.spread import fig_spread  # noqa: E402
 from hotroll.results.figures.thermal import fig_temperature  # noqa: E402
 
 __all__ = ["FIGURES", "RunFiles", "plot_all", "plot_compare"]
@@ -52,6 +53,7 @@ FIGURES: tuple[tuple[str, Callable[[RunFiles, Path], Path | None]], ...] = (
     ("fig_roll.png", fig_roll),                 # a flattening roll's (None for a rigid one)
     ("fig_rolls.png", fig_rolls),               # an asymmetric pass's two rolls (else None)
     ("fig_exit_profile.png", fig_exit_profile),  # the outlet through the thickness (a profile)
+    ("fig_spread.png", fig_spread),             # the 3D pass across the width ([spread])
 )
 
 

@@ -1,0 +1,77 @@
+"""The 3D pass with spread as data (issue 53): what ``solvers/spread_3d.py`` ends in and the
+results layer reads (numpy only, as ``model/solution.py``). SI units; forces, torques and
+powers of one roll over the strip's whole width; positions in the solver's frame (the roll
+axis at x = 0; ``Solution.frame_shift`` moves them)."""
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class SpreadResult:
+    """The 3D quarter strip's pass (``solvers/spread_3d.Spread3D.record``):
+
+    - ``stock_width``, ``exit_width`` (m): the strip's width at entry and its mean at exit
+      (over the exit thickness), ``spread`` their difference;
+    - ``exit_section``: ``y`` (m, from the mid-plane) and ``half_width`` (m) at the outlet;
+    - ``width_along``: ``x`` (m) and the half width there at mid-thickness (``centre``) and on
+      the strip's surface (``surface``), m;
+    - ``contact_map``: the contact pressure (Pa) over the arc, ``pressure`` (layers x arc
+      vertices), at ``x``, ``angle`` (rad from the roll's vertical centre line, the arc
+      vertices from entry to exit) and ``z`` (m, across the width, layers x arc vertices);
+    - ``roll_force``, ``roll_torque`` (N, N m): one roll over the whole width; ``roll_power``
+      (W) torque times the roll's angular velocity;
+    - ``flux_in``, ``flux_out``, ``flux_edge`` (m^3/s of the whole strip) through the entry,
+      the exit and the lateral faces;
+    - ``power_balance_error`` (-): |roll + tension power - plastic - friction power| / roll
+      power of the 3D pass (torque x omega: an identity of any converged solution that checks
+      the torque);
+    - ``midplane``: the mid-width plane's deviations from the plane-strain pass (-: pressure
+      largest and RMS over the 2D pressure's, velocity over the roll speed);
+    - ``settled``, ``rounds``, ``newton_iterations``, ``dofs``, ``layers`` (width layers of the
+      quarter), ``edge_layer`` (m), ``wall_time`` (s);
+    - ``write_vtk(path, shift)``: the 3D fields for ParaView, positions moved by ``shift`` (m).
+    """
+
+    stock_width: float
+    exit_width: float
+    exit_section: Mapping[str, np.ndarray]
+    width_along: Mapping[str, np.ndarray]
+    contact_map: Mapping[str, np.ndarray]
+    roll_force: float
+    roll_torque: float
+    roll_power: float
+    flux_in: float
+    flux_out: float
+    flux_edge: float
+    midplane: Mapping[str, float]
+    power_balance_error: float
+    settled: bool
+    rounds: int
+    newton_iterations: int
+    dofs: int
+    layers: int
+    edge_layer: float
+    wall_time: float
+    write_vtk: Callable[[Path, float], Path] | None = field(default=None, repr=False)
+
+    @property
+    def spread(self) -> float:
+        """Exit width minus stock width (m)."""
+        return self.exit_width - self.stock_width
+
+    @property
+    def edge_bulge(self) -> float:
+        """How far the exit edge bulges: its largest half width over the thickness minus its
+        smallest (m, one edge; the barrelling)."""
+        half = np.asarray(self.exit_section["half_width"], dtype=float)
+        return float(half.max() - half.min())
+
+    @property
+    def mass_flux_error(self) -> float:
+        """(flux out + flux through the lateral faces - flux in) / flux in (-)."""
+        return (self.flux_out + self.flux_edge - self.flux_in) / self.flux_in

@@ -1,0 +1,57 @@
+"""The ``[spread]`` section's figures and files (issue 53): from the 3D pass's record
+(``model/spread_result.SpreadResult``) to summary keys (``results/spread_keys.py``) and to
+``exit_section.csv``, ``width_along.csv``, ``contact_map.npz`` and ``fields_3d.vtu``."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from hotroll.model.spread_result import SpreadResult
+from hotroll.results.output import write_csv, write_npz
+from hotroll.theory.spread import hill, sparling, wusatowski
+
+
+def spread_figures(case, sp: SpreadResult, roll_force: float) -> dict:
+    """The summary keys of the 3D pass ``sp`` of ``case`` (``roll_force``: the plane-strain
+    pass's, N/m): its spread and widths, the whole width's force, torque and powers (these
+    replace plane strain x width), the formulas' spreads, its checks and costs."""
+    p = case.pass_
+    b0, h0, h1, R = p.width, p.entry_thickness, p.exit_thickness, p.roll_radius
+    return {
+        "exit_width": sp.exit_width, "spread": sp.spread, "edge_bulge": sp.edge_bulge,
+        "spread_hill": float(hill(b0, h0, h1, R)) - b0,
+        "spread_sparling": float(sparling(b0, h0, h1, R)) - b0,
+        "spread_wusatowski": float(wusatowski(b0, h0, h1, R)) - b0,
+        "roll_force_total": sp.roll_force, "roll_torque_total": sp.roll_torque,
+        "roll_power_total": sp.roll_power, "mill_power": 2.0 * sp.roll_power,
+        "plane_strain_roll_force_total": roll_force * b0,
+        "spread_mass_flux_error": sp.mass_flux_error,
+        "spread_power_balance_error": sp.power_balance_error,
+        "midplane_pressure_rms_deviation": sp.midplane["midplane_pressure_rms_deviation"],
+        "spread_settled": sp.settled, "spread_rounds": sp.rounds,
+        "spread_newton_iterations": sp.newton_iterations, "spread_dofs": sp.dofs,
+        "spread_layers": sp.layers, "spread_edge_layer": sp.edge_layer,
+        "spread_wall_time": sp.wall_time}
+
+
+def unsettled(sp: SpreadResult, max_rounds: int) -> str | None:
+    """Why the 3D pass's figures are not an answer, or None."""
+    if sp.settled:
+        return None
+    return (f"not settled: the 3D pass across the width did not settle in {sp.rounds} rounds "
+            f"(spread.max_rounds = {max_rounds}): its Newton or its lateral face's update "
+            "did not converge")
+
+
+def write_spread_files(out: Path, sp: SpreadResult, shift: float, vtk: bool) -> None:
+    """exit_section.csv (y m, half width m), width_along.csv (x m, half width at mid-thickness
+    and on the surface, m), contact_map.npz (x, angle rad, z m, pressure Pa) and, with ``vtk``,
+    fields_3d.vtu; x where the case puts the roll axis (``shift``)."""
+    write_csv(out / "exit_section.csv", dict(sp.exit_section))
+    along = dict(sp.width_along)
+    write_csv(out / "width_along.csv", {**along, "x": np.asarray(along["x"]) + shift})
+    cmap = dict(sp.contact_map)
+    write_npz(out / "contact_map.npz", **{**cmap, "x": np.asarray(cmap["x"]) + shift})
+    if vtk and sp.write_vtk is not None:
+        sp.write_vtk(out / "fields_3d.vtu", shift)

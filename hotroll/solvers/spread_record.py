@@ -1,0 +1,103 @@
+"""The solved 3D pass as data (``model/spread_result.SpreadResult``, issue 53): its figures,
+the exit cross-section, the width along the bite, the contact pressure over the arc and width,
+and its ParaView writer. The quarter's figures are made the whole strip's here (forces and
+torques of one roll x 2, fluxes x 4)."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from hotroll.files import atomic
+from hotroll.model.spread_result import SpreadResult
+
+#: the exit cross-section's sample heights: this many equal steps through the half thickness
+SECTION_POINTS = 40
+
+
+def spread_record(s3) -> SpreadResult:
+    """The ``SpreadResult`` of a solved ``Spread3D`` ``s3`` (with a free edge)."""
+    if s3.face is None:
+        raise ValueError("spread_record: the 3D pass has its edge held (no spread)")
+    fig = s3.figures()
+    run, rp, K = s3.run2d, s3.problem.rp, s3.problem.material.K
+    nv = run.mesh.nv
+    P = np.array([v.point for v in run.mesh.vertices])[:, :2]          # reference (x, y)
+    d2 = run.disp.vec.FV().NumPy()
+    n2 = d2.size // 2
+    X = P + np.stack([d2[:nv], d2[n2:n2 + nv]], axis=1)                 # deformed (x, y)
+    # the exit section: the reference outlet's heights (rp.half_exit) scaled to the deformed
+    # outlet's
+    out = np.isclose(P[:, 0], P[:, 0].max())
+    scale = X[out, 1].max() / P[out, 1].max()
+    step = rp.half_exit / SECTION_POINTS
+    y_ref = np.linspace(0.0, rp.half_exit, SECTION_POINTS + 1)[:-1] + 0.5 * step
+    section = {"y": y_ref * scale, "half_width": np.asarray(fig["exit_half_width_profile"])}
+    # the half width along x at mid-thickness (the sym line) and on the strip's surface (B's
+    # vertex values, the surface's interpolated to the sym line's x)
+    B = s3.face.B.vec.FV().NumPy()[:nv]
+    sym, surface = _boundary_vertices(run.mesh, ("sym",)), _boundary_vertices(
+        run.mesh, ("arc", "top", "exit"))
+    sym, surface = (i[np.argsort(X[i, 0])] for i in (sym, surface))
+    along = {"x": X[sym, 0], "centre": B[sym],
+             "surface": np.interp(X[sym, 0], X[surface, 0], B[surface])}
+    # the contact pressure at the arc's vertices in every layer
+    verts2 = run.form.multiplier_vertices()[0]
+    verts2 = verts2[np.argsort(X[verts2, 0])]
+    layers = len(s3.z)
+    p3 = K * s3.form.vertex_pressure()
+    d3 = s3.disp.vec.FV().NumPy()
+    n3 = d3.size // 3
+    idx3 = (np.arange(layers)[:, None] * nv + verts2[None, :])
+    zref = np.repeat(s3.z[:, None], len(verts2), axis=1)
+    cmap = {"x": X[verts2, 0], "angle": rp.angle(X[verts2]), "z": zref + d3[2 * n3 + idx3],
+            "pressure": p3[idx3]}
+    omega = rp.omega
+    return SpreadResult(
+        stock_width=2.0 * fig["stock_half_width"], exit_width=2.0 * fig["exit_half_width"],
+        exit_section=section, width_along=along, contact_map=cmap,
+        roll_force=fig["roll_force"], roll_torque=fig["roll_torque"],
+        roll_power=fig["roll_torque"] * omega,
+        flux_in=4.0 * fig["flux_in"], flux_out=4.0 * fig["flux_out"],
+        flux_edge=4.0 * fig["flux_edge"],
+        midplane={k: fig[k] for k in ("midplane_pressure_deviation",
+                                      "midplane_pressure_rms_deviation",
+                                      "midplane_velocity_deviation")},
+        power_balance_error=fig["power_balance_error"], settled=bool(fig["settled"]), rounds=int(fig["rounds"]),
+        newton_iterations=int(fig["newton_iterations"]), dofs=int(fig["dofs"]),
+        layers=layers - 1, edge_layer=float(s3.z[-1] - s3.z[-2]), wall_time=fig["wall_time"],
+        write_vtk=lambda path, shift=0.0: write_vtk_3d(s3, path, shift))
+
+
+def _boundary_vertices(mesh, names) -> np.ndarray:
+    """The vertex numbers of the boundary elements named ``names``."""
+    from ngsolve import BND
+
+    return np.array(sorted({v.nr for el in mesh.Elements(BND) if el.mat in names
+                            for v in el.vertices}), dtype=int)
+
+
+def write_vtk_3d(s3, path: Path, shift: float = 0.0) -> Path:
+    """ParaView file (.vtu) of the 3D quarter strip: velocity (m/s), pressure (Pa), equivalent
+    strain rate (1/s) on the deformed mesh, moved by ``shift`` in x."""
+    import ngsolve
+
+    from hotroll.fem.forms import strain_rate
+    from hotroll.model.material import edot_squared
+
+    f, K = s3.form, s3.problem.material.K
+    u = f.nonlinear.velocity
+    d = s3.disp.vec.FV().NumPy()
+    nv = s3.mesh.nv
+    d[:nv] += shift                      # the x displacement's vertex DOFs (bubbles unmoved)
+    try:
+        s3.mesh.SetDeformation(s3.disp)
+        edot = ngsolve.sqrt(edot_squared(strain_rate(u)) + 1e-300)
+        with atomic(Path(path).with_suffix(".vtu")) as tmp:     # NGSolve appends .vtu
+            ngsolve.VTKOutput(s3.mesh, coefs=[u, K * f.nonlinear.pressure, edot],
+                              names=["velocity", "pressure", "edot"],
+                              filename=str(tmp.with_suffix("")), subdivision=0).Do()
+    finally:
+        d[:nv] -= shift
+        s3.mesh.SetDeformation(s3.disp)
+    return Path(path).with_suffix(".vtu")

@@ -1,0 +1,19 @@
+"""The ``[spread]`` section's 3D pass (issue 53): after the plane-strain pass, the same pass on
+the 3D quarter strip across the case's width (``solvers/spread_3d.py``), its record for the
+results (``model/spread_result.py``)."""
+from __future__ import annotations
+
+from hotroll.config.case import Case
+from hotroll.model.spread_result import SpreadResult
+from hotroll.solvers.spread_3d import Spread3D
+from hotroll.solvers.spread_record import spread_record
+
+
+def solve_spread(case: Case, run) -> SpreadResult:
+    """The 3D pass of the solved half-strip ``SteadyRun`` ``run`` over ``case.pass_.width``,
+    its width layers and rounds from ``case.spread``."""
+    half = 0.5 * case.pass_.width
+    edge, growth, largest = case.spread.layers(half, case.mesh.h)
+    s3 = Spread3D(run, half, edge=edge, growth=growth, largest=largest)
+    s3.solve(max_rounds=case.spread.max_rounds)
+    return spread_record(s3)

@@ -1,0 +1,62 @@
+"""The 3D pass's record to summary keys and outcome (results/spread_summary.py,
+model/spread_result.py), without FE: a record made by hand."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hotroll.config.case import load_case
+from hotroll.model.spread_result import SpreadResult
+from hotroll.results.outcome import conservation_problem, exit_code
+from hotroll.results.spread_summary import spread_figures, unsettled
+
+CASE = {"pass.roll_radius": 0.25, "pass.entry_thickness": 0.01, "pass.exit_thickness": 0.008,
+        "pass.roll_angular_velocity": 4.0, "mesh.h_contact": 1e-3, "solver.method": "steady",
+        "plate.length": 0.2, "pass.width": 0.01, "spread.max_rounds": 7}
+
+
+def record(**kw) -> SpreadResult:
+    base = dict(stock_width=0.01, exit_width=0.0112,
+                exit_section={"y": np.array([0.001, 0.003]), "half_width": np.array([0.0057, 0.0055])},
+                width_along={"x": np.zeros(2), "centre": np.zeros(2), "surface": np.zeros(2)},
+                contact_map={}, roll_force=8.0e4, roll_torque=900.0, roll_power=3600.0,
+                flux_in=2.0e-4, flux_out=1.99e-4, flux_edge=0.5e-6, midplane={
+                    "midplane_pressure_rms_deviation": 0.1}, power_balance_error=1e-4,
+                settled=True, rounds=3, newton_iterations=17, dofs=18000, layers=2,
+                edge_layer=0.0025, wall_time=9.0)
+    return SpreadResult(**{**base, **kw})
+
+
+def test_the_records_figures_by_hand():
+    """[hand] spread = exit - stock width; the edge bulge the section's largest minus smallest
+    half width; the mass flux error (out + edge - in) / in; the summary's whole-width force,
+    torque and power the 3D pass's, plane strain x width beside them, the mill both rolls'."""
+    case = load_case("hotroll/examples/cases/example1.toml", CASE)
+    r = record()
+    assert r.spread == pytest.approx(0.0012, rel=1e-12)
+    assert r.edge_bulge == pytest.approx(0.0002, rel=1e-9)
+    assert r.mass_flux_error == pytest.approx((1.99e-4 + 0.5e-6 - 2.0e-4) / 2.0e-4, rel=1e-12)
+    s = spread_figures(case, r, roll_force=9.0e6)
+    assert s["roll_force_total"] == 8.0e4 and s["roll_torque_total"] == 900.0
+    assert s["plane_strain_roll_force_total"] == pytest.approx(9.0e4, rel=1e-12)
+    assert s["mill_power"] == 7200.0 and s["spread"] == r.spread
+    assert unsettled(r, 7) is None
+
+
+def test_an_unsettled_or_leaking_3d_pass_is_not_an_answer():
+    """[plumb] an unsettled 3D pass: its reason names spread.max_rounds and the exit code is 5
+    (not settled) even where the plane-strain pass converged; a 3D mass flux error of 5 % is
+    not conserved (exit code 7)."""
+    r = record(settled=False, rounds=7)
+    why = unsettled(r, 7)
+    assert "did not settle in 7 rounds (spread.max_rounds = 7)" in why
+    assert exit_code({"converged": False, "status": "steady", "spread_settled": False,
+                      "roll_force": 1.0, "roll_torque": 1.0}) == 5
+    leak = conservation_problem({"spread_mass_flux_error": 0.05, "contact_method": "multiplier"})
+    assert "spread_mass_flux_error = 0.05 above 0.02" in leak
+    assert exit_code({"converged": False, "not_conserved": True}) == 7
+    assert conservation_problem({"spread_power_balance_error": 0.03,
+                                 "contact_method": "multiplier"}) is not None
+    assert conservation_problem({"spread_mass_flux_error": 0.01,
+                                 "spread_power_balance_error": 0.01,
+                                 "contact_method": "multiplier"}) is None
