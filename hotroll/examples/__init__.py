@@ -22,6 +22,7 @@ EXAMPLES: dict[str, list[str]] = {
     "thin_strip": ["thin_strip"],
     "asymmetric_plate": ["asymmetric_plate"],
     "asymmetric_radii": ["asymmetric_radii"],
+    "narrow_bar": ["narrow_bar"],
 }
 
 

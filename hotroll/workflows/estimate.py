@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hotroll.fem.extruded_mesh import width_axis
 from hotroll.fem.mesh import MeshSpec, plate_fine_length, plate_zone, steady_zone, top_height
 from hotroll.solvers.settling import default_end_time
 from hotroll.solvers.steady_settings import SteadySettings
@@ -37,6 +38,17 @@ BYTES_PER_DOF = 2.5e3
 #: shared): 0.046 s at 2.3e3 unknowns, 0.22 s at 1.2e4, 0.97 s at 4.7e4, 2.9 s at 1.2e5,
 #: 9.9 s at 2.7e5; iterations per steady solve: 20-43 measured
 SECONDS_A, SECONDS_B, STEADY_ITERATIONS = 1.35e-5, 4.3e-8, 30
+#: the 3D pass of [spread] (issue 53) on the extruded prism mesh: Taylor-Hood unknowns per 2D
+#: triangle, per width level (the layer's vertices and edges: 3 x 2T + T/2) and per layer (the
+#: edges across it and its quadrilaterals: 3 x 2T); 41,538 against 41,145 counted on the
+#: bundled narrow_bar (5 layers)
+DOFS_PER_LEVEL, DOFS_PER_LAYER = 6.5, 6.0
+#: ... its memory per unknown (the 3D factorisation's fill) and its wall seconds, c N^1.5 for
+#: the whole 3D pass: fits of the narrow-bar benchmark (1.2 GB at 4.7e4 unknowns,
+#: benchmarks/bench_3d.py at d7372d1) and the bundled narrow_bar (49 s at 4.1e4, the machine
+#: shared); beyond 5e4 unknowns an extrapolation, not measured
+BYTES_PER_DOF_3D = 2.2e4
+SECONDS_3D = 6e-6
 #: the report's scheme: seconds per step and unknown on one core (0.49 s per step with 2
 #: threads on C2, 6.8e4 unknowns, docs/results.md; 1.6 x for one thread); the steps: end
 #: time / dt (an upper bound: the run stops at the steady state, often a third of it)
@@ -102,7 +114,8 @@ def triangles(rp, h: float, h_far: float, x0: float, x1: float, fine_lo: float, 
 
 def estimate(case) -> Estimate:
     """The estimate for a validated case (its method's mesh; the temperature's own mesh of a
-    [thermal] case is small beside it and not counted)."""
+    [thermal] case is small beside it and not counted; with [spread] the 3D pass's unknowns,
+    memory and time added)."""
     rp, h = case.pass_.roll_pass(), case.mesh.h
     spec = MeshSpec(h=h, fine_length=0.0, h_far=case.mesh.h_far, grading=case.mesh.grading)
     far = max(spec.far(rp), h)
@@ -123,9 +136,16 @@ def estimate(case) -> Estimate:
         seconds = STEADY_ITERATIONS * (SECONDS_A * dofs + SECONDS_B * dofs**1.5)
     else:
         seconds = max(1.0, end / case.dt) * STEP_SECONDS_PER_DOF * dofs
+    memory = BASE_BYTES + BYTES_PER_DOF * dofs
+    if case.spread is not None:           # the 3D pass across the width after the 2D one
+        half = 0.5 * case.pass_.width
+        layers = len(width_axis(half, *case.spread.layers(half, h))) - 1
+        dofs3 = ((layers + 1) * DOFS_PER_LEVEL + layers * DOFS_PER_LAYER) * tri
+        memory += BYTES_PER_DOF_3D * dofs3
+        seconds += SECONDS_3D * dofs3**1.5
+        dofs += dofs3
     limit = case.solver.memory_limit or available_bytes()
-    return Estimate(int(tri), int(dofs), BASE_BYTES + BYTES_PER_DOF * dofs, seconds,
-                    float(limit))
+    return Estimate(int(tri), int(dofs), memory, seconds, float(limit))
 
 
 class ResourceError(Exception):
