@@ -29,9 +29,8 @@ class LateralFace:
         import ngsolve as ng
 
         self.face = ng.Mesh(mesh2d.ngmesh.Copy())
-        d = ng.GridFunction(fe_space(ng.VectorH1, self.face, order=2))
-        d.vec.FV().NumPy()[:] = disp2d
-        self.face.SetDeformation(d)
+        self._d = ng.GridFunction(fe_space(ng.VectorH1, self.face, order=2))
+        self.set_shape(disp2d)
         self.z, self.b0, self.copy = np.asarray(z, dtype=float), float(z[-1]), copy
         self.S = fe_space(ng.H1, self.face, order=2, dirichlet=inflow)
         self.B = ng.GridFunction(self.S)
@@ -48,6 +47,12 @@ class LateralFace:
         self._f += self.velocity[2] * test * ng.dx
         self._dB = ng.GridFunction(self.S)
         self._nodes = P2Nodes(self.face, self.S.ndof)
+
+    def set_shape(self, disp2d: np.ndarray) -> None:
+        """The cross-section's (x, y) shape at the edge: the 2D displacement's coefficient
+        vector ``disp2d`` (the edge level's, where the top is traced per level)."""
+        self._d.vec.FV().NumPy()[:] = disp2d
+        self.face.SetDeformation(self._d)
 
     def update(self, velocity3d) -> float:
         """Solve for B with the 3D velocity ``velocity3d`` (a VectorH1 GridFunction of the

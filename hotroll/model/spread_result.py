@@ -20,9 +20,10 @@ class SpreadResult:
     - ``exit_section``: ``y`` (m, from the mid-plane) and ``half_width`` (m) at the outlet;
     - ``width_along``: ``x`` (m) and the half width there at mid-thickness (``centre``) and on
       the strip's surface (``surface``), m;
-    - ``contact_map``: the contact pressure (Pa) over the arc, ``pressure`` (layers x arc
-      vertices), at ``x``, ``angle`` (rad from the roll's vertical centre line, the arc
-      vertices from entry to exit) and ``z`` (m, across the width, layers x arc vertices);
+    - ``contact_map``: the contact pressure (Pa) over the arc, ``pressure`` (width levels x
+      arc vertices, from entry to exit), at ``x`` (m), ``angle`` (rad from the roll's vertical
+      centre line) and ``z`` (m, across the width), each of the same shape (the contact's
+      start differs from level to level);
     - ``roll_force``, ``roll_torque`` (N, N m): one roll over the whole width; ``roll_power``
       (W) torque times the roll's angular velocity;
     - ``flux_in``, ``flux_out``, ``flux_edge`` (m^3/s of the whole strip) through the entry,

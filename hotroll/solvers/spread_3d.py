@@ -1,15 +1,15 @@
-"""A steady 3D pass with spread from a solved 2D pass (issue 53 stage 2).
+"""A steady 3D pass with spread from a solved 2D pass (issue 53).
 
 The quarter strip (mid-thickness and mid-width symmetry) is the solved 2D pass's mesh extruded
 across the stock's half width b0 (``fem/extruded_mesh.py``), its form the 2D one in 3D
-(``fem/rolling_form_3d.py``), its start the 2D solution in every layer. The strip's top shape,
-the contact's extent along x, the friction parameter and the tensions stay as the 2D pass left
-them (the top is the roll's over the contact and the strip is rigid after it; how the top and
-the contact change near the edge is the next stage), and so do the strain and the temperature a
-flow stress takes (``solvers/spread_fields.py``: frozen across the width); the lateral face is
-a free stream surface (``fem/lateral_face.py``). Newton on the current shape and the face's
-update alternate until the face settles (its largest move below ``surface_tol`` h, the 2D
-pass's tolerance of its traced tops). With ``edge_held`` the face is held (u_z = 0): plane
+(``fem/rolling_form_3d.py``), its start the 2D solution in every layer. Its free surfaces are
+stream surfaces of the 3D flow: the lateral face z = B(x, y) (``fem/lateral_face.py``) and the
+top, traced per width level with the contact's start x_c(z) (``solvers/spread_tops.py``; with
+``tops=False`` the 2D pass's in every level). The contact's end, the friction parameter, the
+tensions and the strain and temperature a flow stress takes (``solvers/spread_fields.py``:
+frozen across the width) stay as the 2D pass left them. Newton on the current shape and the
+surfaces' update alternate until they settle (their largest move below ``surface_tol`` h, the
+2D pass's tolerance of its traced tops). With ``edge_held`` the face is held (u_z = 0): plane
 strain, the 2D answer.
 """
 from __future__ import annotations
@@ -26,6 +26,7 @@ from hotroll.fem.reproducible import integrate
 from hotroll.fem.rolling_form_3d import RollingForm3D
 from hotroll.model.material import NortonHoff
 from hotroll.solvers.spread_fields import frozen_flow_stress
+from hotroll.solvers.spread_tops import LevelTops
 
 
 class Spread3D:
@@ -34,7 +35,7 @@ class Spread3D:
     mesh size), growing by ``growth`` inwards up to ``largest`` (default 4 edge layers)."""
 
     def __init__(self, run, half_width: float, edge: float | None = None, growth: float = 1.2,
-                 largest: float | None = None, edge_held: bool = False):
+                 largest: float | None = None, edge_held: bool = False, tops: bool = True):
         import ngsolve as ng
 
         t0 = time.perf_counter()
@@ -79,6 +80,8 @@ class Spread3D:
         self.face = None if edge_held else LateralFace(ref2, run.disp.vec.FV().NumPy(),
                                                        self.z, copy)
         self.edge_held = edge_held
+        #: the top per width level (solvers/spread_tops.py), or None: the 2D pass's
+        self.tops = LevelTops(self) if tops and not edge_held else None
         self.rounds, self.iterations, self.settled = 0, 0, False
         self.setup_time, self.solve_time = time.perf_counter() - t0, 0.0
 
@@ -95,7 +98,12 @@ class Spread3D:
             if self.face is None:
                 self.settled = st.converged
                 break
-            change = self.face.update(self.form.nonlinear.velocity)
+            change = 0.0
+            if self.tops is not None:         # the tops first: the face is solved on them
+                change = self.tops.update()
+                self.tops.displace(self.disp)
+                self.face.set_shape(self.tops.d2[-1])
+            change = max(change, self.face.update(self.form.nonlinear.velocity))
             self.face.displace(self.disp)
             self.mesh.SetDeformation(self.disp)
             if st.converged and change <= tol_face:

@@ -21,36 +21,35 @@ def spread_record(s3) -> SpreadResult:
         raise ValueError("spread_record: the 3D pass has its edge held (no spread)")
     fig = s3.figures()
     run, rp, K = s3.run2d, s3.problem.rp, s3.problem.material.K
-    nv = run.mesh.nv
+    nv, levels = run.mesh.nv, len(s3.z)
+    # the 3D mesh's deformed vertices, level k's the rows k nv ... (k + 1) nv
+    d3 = s3.disp.vec.FV().NumPy()
+    n3, nv3 = d3.size // 3, s3.mesh.nv
+    X3 = np.array([v.point for v in s3.mesh.vertices]) + np.stack(
+        [d3[c * n3:c * n3 + nv3] for c in range(3)], axis=1)
     P = np.array([v.point for v in run.mesh.vertices])[:, :2]          # reference (x, y)
-    d2 = run.disp.vec.FV().NumPy()
-    n2 = d2.size // 2
-    X = P + np.stack([d2[:nv], d2[n2:n2 + nv]], axis=1)                 # deformed (x, y)
+    X = X3[(levels - 1) * nv:, :2]                                      # the edge level's
     # the exit section: the reference outlet's heights (rp.half_exit) scaled to the deformed
-    # outlet's
+    # outlet's, at the edge
     out = np.isclose(P[:, 0], P[:, 0].max())
     scale = X[out, 1].max() / P[out, 1].max()
     step = rp.half_exit / SECTION_POINTS
     y_ref = np.linspace(0.0, rp.half_exit, SECTION_POINTS + 1)[:-1] + 0.5 * step
     section = {"y": y_ref * scale, "half_width": np.asarray(fig["exit_half_width_profile"])}
     # the half width along x at mid-thickness (the sym line) and on the strip's surface (B's
-    # vertex values, the surface's interpolated to the sym line's x)
+    # vertex values at the edge level's x, the surface's interpolated to the sym line's x)
     B = s3.face.B.vec.FV().NumPy()[:nv]
     sym, surface = _boundary_vertices(run.mesh, ("sym",)), _boundary_vertices(
         run.mesh, ("arc", "top", "exit"))
     sym, surface = (i[np.argsort(X[i, 0])] for i in (sym, surface))
     along = {"x": X[sym, 0], "centre": B[sym],
              "surface": np.interp(X[sym, 0], X[surface, 0], B[surface])}
-    # the contact pressure at the arc's vertices in every layer
+    # the contact pressure at the arc's vertices in every level (x, angle, z of each)
     verts2 = run.form.multiplier_vertices()[0]
-    verts2 = verts2[np.argsort(X[verts2, 0])]
-    layers = len(s3.z)
+    verts2 = verts2[np.argsort(P[verts2, 0])]
     p3 = K * s3.form.vertex_pressure()
-    d3 = s3.disp.vec.FV().NumPy()
-    n3 = d3.size // 3
-    idx3 = (np.arange(layers)[:, None] * nv + verts2[None, :])
-    zref = np.repeat(s3.z[:, None], len(verts2), axis=1)
-    cmap = {"x": X[verts2, 0], "angle": rp.angle(X[verts2]), "z": zref + d3[2 * n3 + idx3],
+    idx3 = np.arange(levels)[:, None] * nv + verts2[None, :]
+    cmap = {"x": X3[idx3, 0], "angle": rp.angle(X3[idx3, :2]), "z": X3[idx3, 2],
             "pressure": p3[idx3]}
     omega = rp.omega
     return SpreadResult(
@@ -63,9 +62,9 @@ def spread_record(s3) -> SpreadResult:
         midplane={k: fig[k] for k in ("midplane_pressure_deviation",
                                       "midplane_pressure_rms_deviation",
                                       "midplane_velocity_deviation")},
-        power_balance_error=fig["power_balance_error"], settled=bool(fig["settled"]), rounds=int(fig["rounds"]),
-        newton_iterations=int(fig["newton_iterations"]), dofs=int(fig["dofs"]),
-        layers=layers - 1, edge_layer=float(s3.z[-1] - s3.z[-2]), wall_time=fig["wall_time"],
+        power_balance_error=fig["power_balance_error"], settled=bool(fig["settled"]),
+        rounds=int(fig["rounds"]), newton_iterations=int(fig["newton_iterations"]),
+        dofs=int(fig["dofs"]), layers=levels - 1, edge_layer=float(s3.z[-1] - s3.z[-2]), wall_time=fig["wall_time"],
         write_vtk=lambda path, shift=0.0: write_vtk_3d(s3, path, shift))
 
 
