@@ -51,6 +51,7 @@ from hotroll.config.microstructure import MicrostructureConfig, check_schedule
 from hotroll.config.roll_sides import RollSideConfig
 from hotroll.config.schedule_rolls import asymmetric_problems, pass_rolls
 from hotroll.config.sections import preloaded_gap
+from hotroll.config.spread import SpreadConfig
 from hotroll.config.thermal import ThermalConfig
 from hotroll.model.profile import ThicknessProfile
 
@@ -192,6 +193,9 @@ class Schedule(Section):
     solver: SolverConfig = Field(default_factory=SolverConfig)
     output: OutputConfig = Field(default_factory=OutputConfig)
     microstructure: MicrostructureConfig = Field(default_factory=MicrostructureConfig)
+    spread: SpreadConfig | None = Field(
+        None, description="each pass also on the 3D strip across its width (needs "
+        "strip.width): the spread per pass, each pass's exit width the next one's entry width")
     passes: list[PassEntry] = Field(..., alias="pass", min_length=1)
 
     @model_validator(mode="after")
@@ -249,10 +253,12 @@ class Schedule(Section):
     def pass_case(self, k: int, entry_thickness: float, temperature: float,
                   temperature_profile=None, strain: float = 0.0, strain_profile=None,
                   angular_velocity: float | None = None,
-                  tensions: tuple[float, float] | None = None) -> Case:
+                  tensions: tuple[float, float] | None = None,
+                  width: float | None = None) -> Case:
         """The k-th pass (from 0) as a validated case entering with this state (profiles:
         ``process.profile.ThicknessProfile`` or None); ``tensions``: (back, front) in Pa
-        (None: the pass's own)."""
+        (None: the pass's own); ``width`` (m): the strip's entering this pass (None:
+        strip.width; with [spread] the last pass's exit width)."""
         p = self.passes[k]
         back, front = tensions if tensions is not None else (p.back_tension, p.front_tension)
         omega = angular_velocity if angular_velocity is not None else p.angular_velocity()
@@ -275,8 +281,11 @@ class Schedule(Section):
         for key in ("exit_thickness", "roll_gap", "mill_modulus"):
             if getattr(p, key) is not None:
                 d["pass"][key] = getattr(p, key)
-        if self.strip.width is not None:
-            d["pass"]["width"] = self.strip.width
+        width = self.strip.width if width is None else width
+        if width is not None:
+            d["pass"]["width"] = width
+        if self.spread is not None:          # each pass's 3D pass across the width
+            d["spread"] = self.spread.model_dump(exclude_none=True)
         d["pass"].update(pass_rolls(p))
         if not p.isothermal:
             d["thermal"] = self.thermal.model_dump(exclude_none=True)

@@ -11,7 +11,7 @@ UNITS: dict[str, str] = {
     # history: the temperature's own iterations
     "thermal_iterations": "-",
     # the schedule table (schedule.csv)
-    "entry_thickness": "m", "reduction": "-", "roll_angular_velocity": "rad/s",
+    "entry_thickness": "m", "entry_width": "m", "reduction": "-", "roll_angular_velocity": "rad/s",
     "mill_power_total": "W", "mass_flux": "m^2/s", "entry_temperature_mean": "K",
     "outlet_temperature_mean": "K", "entry_strain_mean": "-", "exit_strain_mean": "-",
     "newton_iterations": "-", "fe_solves": "-", "wall_time": "s", "transport_duration": "s",

@@ -60,7 +60,7 @@ def pass_case(sch: Schedule, k: int, state: StripState, omega: float | None = No
     T, e = state.temperature, state.strain
     return sch.pass_case(k, state.thickness, _enthalpy_mean(sch, T),
                          None if T.is_uniform else T, e.mean(),
-                         None if e.is_uniform else e, omega, tensions)
+                         None if e.is_uniform else e, omega, tensions, width=state.width)
 
 
 def _enthalpy_mean(sch: Schedule, T: ThicknessProfile) -> float:
@@ -94,10 +94,11 @@ def transport(sch: Schedule, k: int, state: StripState, exit_velocity: float,
     T_new = ThicknessProfile(tuple(eta), tuple(res.temperature))
     soft = None
     if deformed is None:
-        new = StripState(state.thickness, T_new, state.strain.scaled(tr.strain_retained))
+        new = StripState(state.thickness, T_new, state.strain.scaled(tr.strain_retained),
+                         width=state.width)
     else:
         soft = MS.after_transport(sch, deformed, res, f"pass[{k + 1}].transport")
-        new = StripState(state.thickness, T_new, *MS.handed_on(soft))
+        new = StripState(state.thickness, T_new, *MS.handed_on(soft), width=state.width)
     row = {"transport_duration": duration, "transport_heat_lost": res.heat_lost,
            "transport_balance_error": res.balance_error,
            "next_entry_temperature_mean": res.mean,
@@ -296,6 +297,9 @@ def _pass_row(sch, k, case, s, entry_T, entry_e, solves, iterations, wall) -> di
                                         "gap_setting")
                 if key in s})
     row.update(curl_columns(s))
+    if "spread" in s:                     # the pass's 3D pass ([spread])
+        row.update({"entry_width": s["width"], "exit_width": s["exit_width"],
+                    "spread": s["spread"]})
     if sch.strip.width is not None:
         row.update({"roll_force_total": s.get("roll_force_total"),
                     "roll_torque_total": s.get("roll_torque_total"),

@@ -14,19 +14,23 @@ from hotroll.workflows.schedule_rolls import asymmetric_exit
 
 
 class StripState:
-    """The strip between passes: full thickness (m), temperature and strain profiles, and
-    with a microstructure model the austenite grain size (m)."""
+    """The strip between passes: full thickness (m), temperature and strain profiles, with a
+    microstructure model the austenite grain size (m), and its width (m; None: per unit width;
+    with [spread] each pass's exit width is the next one's)."""
 
     def __init__(self, thickness: float, temperature: ThicknessProfile,
-                 strain: ThicknessProfile, grain: ThicknessProfile | None = None):
+                 strain: ThicknessProfile, grain: ThicknessProfile | None = None,
+                 width: float | None = None):
         self.thickness, self.temperature, self.strain = thickness, temperature, strain
-        self.grain = grain
+        self.grain, self.width = grain, width
 
     def to_dict(self) -> dict:
         d = {"thickness": self.thickness, "temperature_profile": self.temperature.pairs(),
              "strain_profile": self.strain.pairs()}
         if self.grain is not None:
             d["grain_size_profile"] = self.grain.pairs()
+        if self.width is not None:
+            d["width"] = self.width
         return d
 
 
@@ -36,7 +40,8 @@ def entry_state(sch: Schedule) -> StripState:
     return StripState(sch.strip.thickness,
                       t_prof or ThicknessProfile.uniform(sch.strip.temperature),
                       e_prof or ThicknessProfile.uniform(sch.strip.strain),
-                      None if mic.kinetics is None else ThicknessProfile.uniform(mic.grain_size))
+                      None if mic.kinetics is None else ThicknessProfile.uniform(mic.grain_size),
+                      sch.strip.width)
 
 
 def exit_state(sch: Schedule, case, summary: dict,
@@ -47,15 +52,19 @@ def exit_state(sch: Schedule, case, summary: dict,
     size entering the pass (it changes in the transport after it). ``entry``: the state the
     pass entered with; an isothermal pass (no [thermal] in its case) hands on its temperature
     profile unchanged, and a pass without a temperature or strain profile (an isothermal one
-    whose law ignores the strain) its strain profile raised by the pass's mean strain
+    whose law ignores the strain) its strain profile raised by the pass's mean strain; its width
+    the pass's exit width where a [spread] pass has one
     (``asymmetric_exit``). An asymmetric pass's profile (the whole thickness) is folded about
     the middle (``ThicknessProfile.fold``: the mean of the two halves, the next pass's half
     thickness; its through-thickness shear is not handed on)."""
     prof = folded(summary.get("exit_profile"))
+    # the width: the 3D pass's exit width ([spread]), else the pass's own (or None)
+    width = summary.get("exit_width") or case.pass_.width
     if entry is not None and (prof is None or (prof["temperature"] is None
                                                and prof["strain"] is None)):
         return StripState(exit_thickness(case, summary),
-                          *asymmetric_exit(summary, entry.temperature, entry.strain), grain)
+                          *asymmetric_exit(summary, entry.temperature, entry.strain), grain,
+                          width)
     T = (entry.temperature if case.thermal is None and entry is not None
          else ThicknessProfile(tuple(prof["eta"]), tuple(prof["temperature"])))
     if prof.get("strain") is not None:
@@ -63,7 +72,7 @@ def exit_state(sch: Schedule, case, summary: dict,
         e = ThicknessProfile(strain.eta, tuple(np.maximum(strain.values, 0.0)))
     else:
         e = ThicknessProfile.uniform(summary["homogeneous_exit_strain"])
-    return StripState(exit_thickness(case, summary), T, e, grain)
+    return StripState(exit_thickness(case, summary), T, e, grain, width)
 
 
 

@@ -10,7 +10,7 @@ import pytest
 from hotroll.model.profile import ThicknessProfile
 from hotroll.workflows.strip_state import StripState, exit_state
 
-CASE = SimpleNamespace(thermal=object(), pass_=SimpleNamespace(exit_thickness=0.05))
+CASE = SimpleNamespace(thermal=object(), pass_=SimpleNamespace(exit_thickness=0.05, width=None))
 
 
 def test_a_state_is_its_dict():
