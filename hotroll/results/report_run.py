@@ -262,6 +262,8 @@ FIGURE_CAPTIONS = {
     "fig_rolls.png": "Both rolls' contact pressure and shear against their angles "
                      "(an asymmetric pass)",
     "fig_exit_profile.png": "The outlet through the thickness: temperature, strain, shear",
+    "fig_spread.png": "The 3D pass across the width: the exit section, the width along the "
+                      "bite, the contact pressure over the arc and the width",
     "compare.png": "FE and slab theory: contact pressure and shear",
     "schedule.png": "The schedule pass by pass",
 }
@@ -323,7 +325,7 @@ def run_context(d: Path) -> dict:
 
 #: The page's key figures (those the summary has), then the neutral point's card.
 HEADLINE = ("roll_force", "roll_force_total", "roll_torque", "roll_power", "forward_slip",
-            "contact_length", "exit_temperature_mean")
+            "contact_length", "spread", "exit_width", "exit_temperature_mean")
 
 
 def neutral_card(s: dict) -> dict:

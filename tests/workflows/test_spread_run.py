@@ -125,3 +125,14 @@ def test_the_spread_figure_is_drawn(ran):
     _, _, out = ran
     path = fig_spread(RunFiles(out), out / "fig_spread.png")
     assert path is not None and path.stat().st_size > 10_000
+
+
+def test_the_html_page_shows_the_width_and_spread(ran):
+    """[plumb] report.html: the "Width and spread" group, the spread's key figure, the [spread]
+    inputs."""
+    from hotroll.results.report import write_report
+
+    _, s, out = ran
+    html = write_report(out).read_text()
+    assert "Width and spread" in html and "edge_layer" in html
+    assert "spread" in html and f"{1e3 * s['spread']:.4g}" in html
