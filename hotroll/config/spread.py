@@ -15,8 +15,8 @@ from hotroll.config.roll_sides import UPPER
 
 #: b0/h0 the 3D pass takes: below, a bar narrower than a quarter of its thickness (an edger's
 #: pass, not flat rolling); above, a plate whose quarter needs more width layers than a laptop
-#: holds and whose mid-width is plane strain (the force per width within 1 % of it from
-#: b0/h0 = 8 on, docs/validation/spread_3d.md)
+#: holds and whose mid-width is plane strain: wider plates take the edge-zone model
+#: (``edge_zone``, its modelled width up to the same bound)
 WIDTH_RATIO = (0.25, 16.0)
 
 
@@ -31,12 +31,21 @@ class SpreadConfig(Section):
     largest_layer: Literal["auto"] | PosFloat = field(
         "auto", "the thickest width layer, at least edge_layer (auto: 4 edge layers)", "m",
         '"auto" or a number > 0')
+    edge_zone: PosFloat | None = field(
+        None, "the edge-zone model of a wide strip: only this outer part of the half width in "
+        "3D, plane strain on its cut and the plane-strain pass's figures inside it, at most "
+        "pass.width / 2 (omit: the whole half width)", "m", "> 0")
     max_rounds: int = field(30, "the 3D pass's rounds of Newton and the lateral face's update",
                             "", "an integer in [1, 200]", ge=1, le=200)
 
+    def modelled(self, half_width: float) -> float:
+        """The width the 3D strip models from its edge (m): the edge zone or the half width."""
+        return half_width if self.edge_zone is None else min(self.edge_zone, half_width)
+
     def layers(self, half_width: float, h_contact: float) -> tuple[float, float, float]:
         """(edge layer, growth, largest layer), m, with "auto" resolved."""
-        edge = min(h_contact, half_width) if self.edge_layer == "auto" else self.edge_layer
+        edge = (min(h_contact, self.modelled(half_width)) if self.edge_layer == "auto"
+                else self.edge_layer)
         largest = 4.0 * edge if self.largest_layer == "auto" else self.largest_layer
         return float(edge), float(self.growth), float(largest)
 
@@ -55,15 +64,27 @@ def problems(case) -> list[str]:
     if width is None:
         out.append("pass.width: [spread] needs the strip's width (m)")
     else:
-        ratio = width / case.pass_.entry_thickness
+        h0 = case.pass_.entry_thickness
+        ratio = width / h0
         lo, hi = WIDTH_RATIO
-        if not lo <= ratio <= hi:
-            out.append(f"pass.width: [spread] takes width / entry thickness in [{lo:g}, "
-                       f"{hi:g}] (narrower: an edger's pass; wider: plane strain at mid-width, "
-                       f"run without [spread]), got {width:g} m / "
-                       f"{case.pass_.entry_thickness:g} m = {ratio:.3g}")
-        if s.edge_layer != "auto" and s.edge_layer > width / 2:
-            out.append(f"spread.edge_layer: must be <= pass.width / 2 = {width / 2:g} m, got "
+        if ratio < lo:
+            out.append(f"pass.width: [spread] takes width / entry thickness >= {lo:g} "
+                       f"(narrower: an edger's pass), got {width:g} m / {h0:g} m = "
+                       f"{ratio:.3g}")
+        elif s.edge_zone is None and ratio > hi:
+            out.append(f"pass.width: [spread] models the whole width up to width / entry "
+                       f"thickness = {hi:g}, got {width:g} m / {h0:g} m = {ratio:.3g}: give "
+                       f"spread.edge_zone (m, the outer part of the half width in 3D, up to "
+                       f"{hi / 2:g} x entry thickness)")
+        if s.edge_zone is not None and s.edge_zone > width / 2:
+            out.append(f"spread.edge_zone: must be <= pass.width / 2 = {width / 2:g} m, got "
+                       f"{s.edge_zone:g} m")
+        elif s.edge_zone is not None and 2.0 * s.edge_zone / h0 > hi:
+            out.append(f"spread.edge_zone: at most {hi / 2:g} x entry thickness = "
+                       f"{hi / 2 * h0:g} m (the 3D strip's width), got {s.edge_zone:g} m")
+        if s.edge_layer != "auto" and s.edge_layer > s.modelled(width / 2):
+            out.append(f"spread.edge_layer: must be <= the modelled width (pass.width / 2 or "
+                       f"spread.edge_zone) = {s.modelled(width / 2):g} m, got "
                        f"{s.edge_layer:g} m")
     if s.edge_layer != "auto" and s.largest_layer != "auto" and s.largest_layer < s.edge_layer:
         out.append(f"spread.largest_layer: must be >= spread.edge_layer ({s.edge_layer:g} m), "
@@ -81,7 +102,7 @@ def problems(case) -> list[str]:
     if case.plate.free_surface != "traced":
         out.append('plate.free_surface: [spread] needs "traced" (the 3D strip\'s free '
                    'surfaces are stream surfaces)')
-    if case.contact.resolved(case.solver.method) != "multiplier":
+    if case.solver.method == "steady" and case.contact.resolved("steady") != "multiplier":
         out.append('contact.method: [spread] needs the exact contact ("auto" or '
                    f'"multiplier"), got "{case.contact.method}" (the penalty)')
     return out

@@ -9,7 +9,8 @@ strip's (x, y) shape). In a steady flow it is a stream surface: u.n = 0, that is
 a linear transport equation along the face's own streamlines (u_x > 0 in a steady pass). It is
 solved for a P2 field B by streamline-upwind Petrov-Galerkin (SUPG: the test function w +
 tau u.grad w, tau = h / 2|u|), the velocity the 3D solution's on the face. Every layer of the
-extruded mesh then moves along its spine, z = Z (B / b0) (``displace``; the note: moving only
+extruded mesh then moves along its spine, z = z_0 + (Z - z_0) (B - z_0) / (b0 - z_0), z_0 = 0 or an edge
+zone's cut (``displace``; the note: moving only
 the edge layer folds it on narrow bars). The exit width and the spread are read off B.
 """
 from __future__ import annotations
@@ -72,7 +73,8 @@ class LateralFace:
 
     def displace(self, disp3d) -> None:
         """The z part of the extruded mesh's displacement (a VectorH1 GridFunction, order 2):
-        (Z / b0) (B - b0) at every node of layer Z (x, y from the 2D shape, untouched)."""
+        (Z - z_0) / (b0 - z_0) (B - b0) at every node of layer Z, z_0 the first layer's (0, the
+        mid-width plane, or an edge zone's cut; x, y from the 2D shape, untouched)."""
         import ngsolve as ng
 
         V3 = disp3d.space
@@ -80,7 +82,8 @@ class LateralFace:
         excess = ng.GridFunction(self.S)
         excess.Set(self.B - self.b0)            # exact: B - b0 is P2
         self.copy.copy(self.S, excess.vec.FV().NumPy(), V3.components[2],
-                       disp3d.vec.FV().NumPy()[2 * n3:], scale=self.z / self.b0)
+                       disp3d.vec.FV().NumPy()[2 * n3:],
+                       scale=(self.z - self.z[0]) / (self.b0 - self.z[0]))
 
     def half_width(self, x: float, y: np.ndarray) -> np.ndarray:
         """B (m) at the strip's points whose reference (undeformed 2D mesh) coordinates are

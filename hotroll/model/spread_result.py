@@ -13,7 +13,7 @@ import numpy as np
 
 @dataclass(frozen=True)
 class SpreadResult:
-    """The 3D quarter strip's pass (``solvers/spread_3d.Spread3D.record``):
+    """The 3D quarter strip's pass (``solvers/spread_record.spread_record``):
 
     - ``stock_width``, ``exit_width`` (m): the strip's width at entry and its mean at exit
       (over the exit thickness), ``spread`` their difference;
@@ -34,7 +34,9 @@ class SpreadResult:
     - ``midplane``: the mid-width plane's deviations from the plane-strain pass (-: pressure
       largest and RMS over the 2D pressure's, velocity over the roll speed);
     - ``settled``, ``rounds``, ``newton_iterations``, ``dofs``, ``layers`` (width layers of the
-      quarter), ``edge_layer`` (m), ``wall_time`` (s);
+      quarter), ``edge_layer`` (m), ``wall_time`` (s); ``zone_cut`` (m): where an edge zone's
+      3D strip begins (0: the whole half width; the plane-strain pass's figures inside it);
+      ``failure``: why its solve stopped (a linear solve failed), or "";
     - ``write_vtk(path, shift)``: the 3D fields for ParaView, positions moved by ``shift`` (m).
     """
 
@@ -58,6 +60,8 @@ class SpreadResult:
     layers: int
     edge_layer: float
     wall_time: float
+    zone_cut: float = 0.0
+    failure: str = ""
     write_vtk: Callable[[Path, float], Path] | None = field(default=None, repr=False)
 
     @property

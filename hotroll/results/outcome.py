@@ -31,13 +31,13 @@ def exit_code(summary: dict) -> int:
         return 7
     if summary.get("contact_unresolved"):
         return 10
-    if summary.get("spread_settled") is False:
-        return 5
     status = summary.get("status")
     if status == "failed" and summary.get("failure"):
         return 3
     if summary.get("outlet_driven"):
         return 6
+    if summary.get("spread_settled") is False:
+        return 5
     if status in ("failed", "steady") or not all(
             _finite(summary.get(k)) for k in ("roll_force", "roll_torque")):
         return 4

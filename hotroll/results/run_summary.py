@@ -31,7 +31,7 @@ from hotroll.results.neutral import decide
 from hotroll.results.outcome import conservation_problem, contact_problem, exit_code, leak_to_slip
 from hotroll.results.output import write_csv, write_json, write_npz
 from hotroll.results.roll_figures import roll_figures
-from hotroll.results.spread_summary import spread_figures, unsettled, write_spread_files
+from hotroll.results.spread_summary import spread_figures, unsettled, write_spread_files, zone_warning
 from hotroll.results.summary import Summary
 from hotroll.results.units import UNITS
 
@@ -156,17 +156,23 @@ def write_results(case: Case, sol: Solution, out: Path, wall: float,
     shift_positions(summary, shift)
     if sol.spread is not None:          # the 3D pass across the width ([spread])
         summary.update(spread_figures(case, sol.spread, summary["roll_force"]))
+        cut = zone_warning(sol.spread)
+        if cut:
+            summary["warnings"] = [*(summary.get("warnings") or []), cut]
         write_spread_files(out, sol.spread, shift, case.output.vtk)
     summary["leak_to_slip"] = leak_to_slip(summary)
     overlaps = [c.overlap for c in sol.contacts if c.overlap is not None]
     summary["roll_overlap"] = max(overlaps) if overlaps else None
+    # the 3D pass of a converged plane-strain pass: unsettled, the run is not an answer (its
+    # conservation then not the reason)
+    late = (unsettled(sol.spread, case.spread.max_rounds)
+            if sol.spread is not None and summary["converged"] else None)
+    if late:
+        summary["converged"], summary["failure"] = False, late
     problem = conservation_problem(summary) if summary["converged"] else None
     summary["not_conserved"] = problem is not None
     if problem:
         summary["converged"], summary["failure"] = False, problem
-    late = unsettled(sol.spread, case.spread.max_rounds) if sol.spread is not None else None
-    if late and summary["converged"]:
-        summary["converged"], summary["failure"] = False, late
     unresolved = contact_problem(summary) if summary["converged"] else None
     summary["contact_unresolved"] = unresolved is not None
     if unresolved:

@@ -49,5 +49,8 @@ class SpreadKeys:
     spread_layers: int = _f(None, "width layers", "of the quarter strip", group=_G, when=_W)
     spread_edge_layer: float = _f("m", "edge layer", "the width layer at the free edge",
                                   group=_G, when=_W)
+    spread_edge_zone: float | None = _f("m", "edge zone", "the outer part of the half width "
+                                        "the 3D pass models (`spread.edge_zone`); null: the "
+                                        "whole half width", group=_G, when=_W)
     spread_wall_time: float = _f("s", "3D wall time", "the 3D pass's set-up and solve",
                                  group=_G, when=_W)

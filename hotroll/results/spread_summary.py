@@ -32,16 +32,34 @@ def spread_figures(case, sp: SpreadResult, roll_force: float) -> dict:
         "spread_settled": sp.settled, "spread_rounds": sp.rounds,
         "spread_newton_iterations": sp.newton_iterations, "spread_dofs": sp.dofs,
         "spread_layers": sp.layers, "spread_edge_layer": sp.edge_layer,
+        "spread_edge_zone": (b0 / 2 - sp.zone_cut) if sp.zone_cut > 0.0 else None,
         "spread_wall_time": sp.wall_time}
+
+
+#: an edge zone's cut counts as plane strain while the 3D pressure on it lies within this RMS
+#: share of the plane-strain pass's (beyond: a wider zone; docs/validation/spread_3d.md)
+CUT_DEVIATION = 0.05
+
+
+def zone_warning(sp: SpreadResult) -> str | None:
+    """What an edge zone whose cut is not in plane strain says, or None."""
+    dev = sp.midplane["midplane_pressure_rms_deviation"]
+    if sp.zone_cut <= 0.0 or dev <= CUT_DEVIATION:
+        return None
+    return (f"spread.edge_zone: the cut is not in plane strain (the 3D pressure on it {dev:.3g} "
+            f"RMS off the plane-strain pass's, above {CUT_DEVIATION:g}): the spread and the "
+            "force depend on where the cut is; widen the zone")
 
 
 def unsettled(sp: SpreadResult, max_rounds: int) -> str | None:
     """Why the 3D pass's figures are not an answer, or None."""
     if sp.settled:
         return None
+    if sp.failure:
+        return f"not settled: the 3D pass across the width stopped in round {sp.rounds}: {sp.failure}"
     return (f"not settled: the 3D pass across the width did not settle in {sp.rounds} rounds "
-            f"(spread.max_rounds = {max_rounds}): its Newton or its lateral face's update "
-            "did not converge")
+            f"(spread.max_rounds = {max_rounds}): its Newton, its traced tops or its lateral "
+            "face did not converge")
 
 
 def write_spread_files(out: Path, sp: SpreadResult, shift: float, vtk: bool) -> None:

@@ -20,7 +20,7 @@ import numpy as np
 
 from hotroll.fem.extruded_mesh import LayerCopy, extrude, width_axis
 from hotroll.fem.lateral_face import LateralFace
-from hotroll.fem.nonlinear import newton
+from hotroll.fem.nonlinear import LinearSolveError, newton
 from hotroll.fem.penalties import PenaltyTable
 from hotroll.fem.reproducible import integrate
 from hotroll.fem.rolling_form_3d import RollingForm3D
@@ -32,10 +32,14 @@ from hotroll.solvers.spread_tops import LevelTops
 class Spread3D:
     """The 3D quarter strip of the solved 2D ``SteadyRun`` ``run`` for a stock of half width
     ``half_width`` (m): width layers ``edge`` thick at the free edge (default the 2D contact
-    mesh size), growing by ``growth`` inwards up to ``largest`` (default 4 edge layers)."""
+    mesh size), growing by ``growth`` inwards up to ``largest`` (default 4 edge layers).
+    ``zone`` (m): the edge-zone model of a wide strip, only the outer ``zone`` of the half
+    width, plane strain (u_z = 0, as on the mid-width plane) on the cut at half_width - zone
+    and the 2D pass's figures per width inside it (None: the whole half width)."""
 
     def __init__(self, run, half_width: float, edge: float | None = None, growth: float = 1.2,
-                 largest: float | None = None, edge_held: bool = False, tops: bool = True):
+                 largest: float | None = None, edge_held: bool = False, tops: bool = True,
+                 zone: float | None = None):
         import ngsolve as ng
 
         t0 = time.perf_counter()
@@ -51,8 +55,14 @@ class Spread3D:
             raise ValueError("the 3D strip does not yet carry: " + "; ".join(missing))
         self.run2d, self.problem = run, problem
         h = problem.h
-        edge = min(h, half_width) if edge is None else edge
-        self.z = width_axis(half_width, edge, growth, 4.0 * edge if largest is None else largest)
+        if zone is not None and not 0.0 < zone <= half_width:
+            raise ValueError(f"zone = {zone!r} m: must be in (0, half width = {half_width} m]")
+        modelled = half_width if zone is None else zone
+        edge = min(h, modelled) if edge is None else edge
+        # the width levels, from the mid-width plane (or the edge zone's cut) to the edge
+        self.z = (half_width - modelled) + width_axis(modelled, edge, growth,
+                                                      4.0 * edge if largest is None else largest)
+        self.z[-1] = half_width
         ref2 = ng.Mesh(run.mesh.ngmesh.Copy())          # the 2D reference (undeformed)
         self.mesh = extrude(ref2, self.z)
         mat = problem.material
@@ -82,7 +92,7 @@ class Spread3D:
         self.edge_held = edge_held
         #: the top per width level (solvers/spread_tops.py), or None: the 2D pass's
         self.tops = LevelTops(self) if tops and not edge_held else None
-        self.rounds, self.iterations, self.settled = 0, 0, False
+        self.rounds, self.iterations, self.settled, self.failure = 0, 0, False, ""
         self.setup_time, self.solve_time = time.perf_counter() - t0, 0.0
 
     def solve(self, max_rounds: int = 30) -> bool:
@@ -91,29 +101,33 @@ class Spread3D:
         t0 = time.perf_counter()
         s = self.run2d.s
         tol_face = s.surface_tol * self.problem.h
-        for _ in range(max_rounds):
-            st = newton(self.form.nonlinear, s.tol, s.max_it)
-            self.rounds += 1
-            self.iterations += st.iterations
-            if self.face is None:
-                self.settled = st.converged
-                break
-            change = 0.0
-            if self.tops is not None:         # the tops first: the face is solved on them
-                change = self.tops.update()
-                self.tops.displace(self.disp)
-                self.face.set_shape(self.tops.d2[-1])
-            change = max(change, self.face.update(self.form.nonlinear.velocity))
-            self.face.displace(self.disp)
-            self.mesh.SetDeformation(self.disp)
-            if st.converged and change <= tol_face:
-                self.settled = True
-                break
+        try:
+            for _ in range(max_rounds):
+                st = newton(self.form.nonlinear, s.tol, s.max_it)
+                self.rounds += 1
+                self.iterations += st.iterations
+                if self.face is None:
+                    self.settled = st.converged
+                    break
+                change = 0.0
+                if self.tops is not None:     # the tops first: the face is solved on them
+                    change = self.tops.update()
+                    self.tops.displace(self.disp)
+                    self.face.set_shape(self.tops.d2[-1])
+                change = max(change, self.face.update(self.form.nonlinear.velocity))
+                self.face.displace(self.disp)
+                self.mesh.SetDeformation(self.disp)
+                if st.converged and change <= tol_face:
+                    self.settled = True
+                    break
+        except LinearSolveError as e:         # the pass's record says why (settled False)
+            self.settled, self.failure = False, f"a linear solve failed: {e}"
         self.solve_time += time.perf_counter() - t0
         return self.settled
 
     def figures(self) -> dict:
-        """The pass's figures (SI, per roll and the whole strip): roll force (N) and per
+        """The pass's figures (SI, per roll and the whole strip; an edge zone's with the 2D
+        pass's per width inside its cut ``zone_cut``, m): roll force (N) and per
         width (N/m of the stock's width), roll torque (N m), the exit's mean half width and
         the spread (m), the exit half width over the thickness (m, at 40 equal steps of
         y / exit half thickness from the mid-plane), the mass fluxes through the cut faces and
@@ -136,11 +150,19 @@ class Spread3D:
         flux = {b: float(integrate(u * nn, mesh, ng.BND, definedon=mesh.Boundaries(b)))
                 for b in ("in", "out", "edge")}
         b0 = float(self.z[-1])
-        out = {"roll_force": 2.0 * K * force_y, "roll_torque": 2.0 * K * torque,
-               "stock_half_width": b0, "flux_in": -flux["in"], "flux_out": flux["out"],
+        inner = self.z[0]          # the width inside an edge zone's cut: the 2D pass's
+        two = self.run2d.state.history[-1] if inner > 0.0 else None
+        share = {k: 0.0 if two is None else two[k] * inner
+                 for k in ("roll_force", "roll_torque", "mass_flux_in", "mass_flux_out")}
+        out = {"roll_force": 2.0 * (K * force_y + share["roll_force"]),
+               "roll_torque": 2.0 * (K * torque + share["roll_torque"]),
+               "stock_half_width": b0, "zone_cut": float(inner),
+               "flux_in": -flux["in"] + share["mass_flux_in"],
+               "flux_out": flux["out"] + share["mass_flux_out"],
                "flux_edge": flux["edge"], "rounds": self.rounds,
                "newton_iterations": self.iterations, "dofs": f.fes.ndof,
-               "wall_time": self.setup_time + self.solve_time, "settled": self.settled}
+               "wall_time": self.setup_time + self.solve_time, "settled": self.settled,
+               "failure": self.failure}
         out["roll_force_per_width"] = out["roll_force"] / (2.0 * b0)
         out.update(self.power_balance(K * torque))
         out.update(self.midplane_deviation())
@@ -161,9 +183,9 @@ class Spread3D:
         """The power balance of (3.6) tested with the velocity itself, of the quarter (W): the
         roll's power, the quarter's torque ``torque`` (N m) times omega (the shear's power at
         the rim's speed), and the tensions' on the cut faces against the plastic power
-        int mu eps:eps dV and the friction's int k_f |v_s|^2 dA; the error |roll + tension -
-        plastic - friction| / roll (the penalties, inactive in a pass the roll drives, and the
-        multiplier's p u.n, zero to round-off, left out)."""
+        int mu eps:eps dV, the friction's int k_f |v_s|^2 dA and the contact pressure's
+        int p u.n dA; the error |roll + tension - plastic - friction - contact| / roll (the
+        penalties, inactive in a pass the roll drives, left out)."""
         import ngsolve as ng
 
         from hotroll.fem.forms import strain_rate
@@ -177,14 +199,20 @@ class Spread3D:
         nn = ng.specialcf.normal(3)
         plastic = K * integrate(mu * ng.InnerProduct(eps, eps), mesh, ng.VOL)
         friction = K * f.integrate_friction(f.chi * kf * (s * s))
+        # the contact pressure's power on the strip, p u.n: zero to round-off on a rigid-plastic
+        # strip (the constraint u.n = 0 against every P1 function), the elastic surface's rate
+        # with the strip's elasticity (fem/quantities.integrals, 2D, the same)
+        n, _ = f.roll_frame()
+        contact = K * integrate(f.pressure(u) * (u * n), mesh, ng.BND,
+                                definedon=mesh.Boundaries("arc"))
         roll = torque * self.problem.rp.omega
         tension = K * (integrate(f.tension_back * (u * nn), mesh, ng.BND,
                                  definedon=mesh.Boundaries("in"))
                        + integrate(f.tension_front * (u * nn), mesh, ng.BND,
                                    definedon=mesh.Boundaries("out")))
         return {"plastic_power": plastic, "friction_power": friction, "roll_power": roll,
-                "tension_power": tension, "power_balance_error":
-                    abs(roll + tension - plastic - friction) / max(abs(roll), 1e-300)}
+                "tension_power": tension, "contact_power": contact, "power_balance_error":
+                    abs(roll + tension - plastic - friction - contact) / max(abs(roll), 1e-300)}
 
     def midplane_deviation(self) -> dict:
         """How far the mid-width plane (z = 0) is from the 2D pass: the largest difference of

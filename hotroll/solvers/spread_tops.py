@@ -1,15 +1,15 @@
 """The 3D strip's top per width level (issue 53 stage 3; ../shared/notes/3d-steady.md, "Free
 surfaces in 3D").
 
-The top is y = Y(x, z). On its free parts (before the bite and after the contact's end) it is
-a stream surface: u_x Y_x + u_z Y_z = u_y. Each width level z_k of the extruded mesh carries
-its own 2D strip shape (``fem/free_surface.StripShape``: the traced tops and the contact's start
+The top is y = Y(x, z). On its free parts (before the bite and after the contact's end) it is a
+stream surface: u_x Y_x + u_z Y_z = u_y. Each width level z_k of the extruded mesh carries its
+own 2D strip shape (``fem/free_surface.StripShape``: the traced tops and the contact's start
 x_c(z_k)), traced by the 2D pass's own ``kinematic_update`` with the level's velocity, its u_y
-less the spreading's share u_z dY/dz (dY/dz upwind from the level inside it, towards
-mid-width; 0 on the mid-width plane); the 2D pass's ``StripMap`` maps the reference mesh onto
-each level's shape, and the 3D mesh's x and y displacement is each level's, linear in z between
-two (``LayerCopy.per_layer``). The contact is the reference arc in every level (the map
-stretches it between x_c(z) and the contact's end), its end the 2D pass's.
+less the share of the flow across the level, (u_z - u_x z_k') dY/dz (``LevelTops.update``); the
+2D pass's ``StripMap`` maps the reference mesh onto each level's shape, and the 3D mesh's x and
+y displacement is each level's, linear in z between two (``LayerCopy.per_layer``). The contact
+is the reference arc in every level (the map stretches it between x_c(z) and the contact's
+end), its end the 2D pass's.
 """
 from __future__ import annotations
 
@@ -51,42 +51,57 @@ class LevelTops:
         s3.copy.take_vector(k, s3.disp, self._V2.components[0], dz, 3)
         return vel, np.concatenate([w[2 * n2:], dz[2 * n2:]])
 
+    def _level(self, k: int):
+        """Level ``k``'s top nodes: positions (x, y), velocity (u_x, u_y), u_z and z (m), the
+        nodes in the top's order (vertices, then edge midpoints)."""
+        vel, wz = self._level_fields(k)
+        uz_z = self._nodes(wz)                       # (u_z, z displacement) at the nodes
+        return (self._positions(self.d2[k]), self._nodes(vel), uz_z[:, 0],
+                self.s3.z[k] + uz_z[:, 1])
+
     def update(self) -> float:
         """Trace every level's free tops with the 3D flow, map the mesh onto them; the largest
-        distance (m) between a level's traced top and its current one."""
+        distance (m) between a level's traced top and its current one.
+
+        A level's nodes move across the width with it (z_k(x) = Z_k B / b0), so the trace
+        along the level, dy/dx = Y_x + Y_z z_k', takes u_y less (u_z - u_x z_k') Y_z: the flow
+        across the level times the top's slope across the width, Y_z at fixed x (the levels'
+        x shift taken off with the level's own slope), upwind: from the level inside where
+        the flow crosses outwards, else from the one outside (its last shape); 0 on the first
+        level (the mid-width plane or an edge zone's cut)."""
         run, rp = self.run, self.run.problem.rp
         x_up = rp.x_touch - default_lengths(rp)[0]
-        part = None
-        residual, prev = 0.0, None
+        part, bounds = self.run._top_part, run.map.x_bounds()
+        residual, inside = 0.0, None
         for k in range(self.levels):
-            vel, wz = self._level_fields(k)
-            xy = self._positions(self.d2[k])
-            v = self._nodes(vel)
-            uz_z = self._nodes(wz)                   # (u_z, z displacement) at the nodes
-            z = self.s3.z[k] + uz_z[:, 1]
-            if prev is not None:                     # u_z dY/dz, upwind from inside
-                xy0, z0 = prev
-                order = np.argsort(xy[:, 0], kind="stable")
-                slope = np.gradient(xy[order, 1], xy[order, 0])
-                dydx = np.empty_like(slope)
-                dydx[order] = slope
-                dz = np.where(np.abs(z - z0) > 1e-300, z - z0, 1e-300)
-                dydz = ((xy[:, 1] - xy0[:, 1]) - dydx * (xy[:, 0] - xy0[:, 0])) / dz
-                v[:, 1] -= uz_z[:, 0] * dydz
-            prev = (xy, z)
+            xy, v, uz, z = self._level(k)
             order = np.argsort(xy[:, 0], kind="stable")
-            if part is None:
-                part = self._parts()
+            if inside is not None:
+                dydx, dzdx = (np.empty(len(order)) for _ in range(2))
+                dydx[order] = np.gradient(xy[order, 1], xy[order, 0])
+                dzdx[order] = np.gradient(z[order], xy[order, 0])
+                across = uz - v[:, 0] * dzdx             # the flow across the level
+                dydz = self._slope_across(xy, z, dydx, inside)
+                if k + 1 < self.levels:              # its last shape, this z
+                    xy_out, _, _, z_out = self._level(k + 1)
+                    dydz = np.where(across >= 0.0, dydz,
+                                    self._slope_across(xy, z, dydx, (xy_out, z_out)))
+                v[:, 1] -= across * dydz
+            inside = (xy, z)
             self.shapes[k], res = kinematic_update(rp, self.shapes[k], xy[order], v[order],
-                                                   part[order], x_up, run.map.x_bounds())
+                                                   part[order], x_up, bounds)
             self.d2[k] = run.map.displacement(self.shapes[k])
             residual = max(residual, res)
         return residual
 
-    def _parts(self) -> np.ndarray:
-        """The top nodes' parts (0 entry, 1 contact, 2 exit), as the 2D pass has them (the
-        contact is the reference arc in every level)."""
-        return self.run._top_part
+    @staticmethod
+    def _slope_across(xy, z, dydx, other) -> np.ndarray:
+        """dY/dz at fixed x between a level's nodes (``xy``, ``z``, their slope along x
+        ``dydx``) and another level's same nodes (``other``: their positions and z)."""
+        xy1, z1 = other
+        dz = z - z1
+        dz = np.where(np.abs(dz) > 1e-300, dz, 1e-300)
+        return ((xy[:, 1] - xy1[:, 1]) - dydx * (xy[:, 0] - xy1[:, 0])) / dz
 
     def displace(self, disp3d) -> None:
         """The x and y parts of the extruded mesh's displacement: each level's 2D one."""

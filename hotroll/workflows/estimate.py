@@ -139,7 +139,7 @@ def estimate(case) -> Estimate:
     memory = BASE_BYTES + BYTES_PER_DOF * dofs
     if case.spread is not None:           # the 3D pass across the width after the 2D one
         half = 0.5 * case.pass_.width
-        layers = len(width_axis(half, *case.spread.layers(half, h))) - 1
+        layers = len(width_axis(case.spread.modelled(half), *case.spread.layers(half, h))) - 1
         dofs3 = ((layers + 1) * DOFS_PER_LEVEL + layers * DOFS_PER_LAYER) * tri
         memory += BYTES_PER_DOF_3D * dofs3
         seconds += SECONDS_3D * dofs3**1.5

@@ -11,9 +11,10 @@ from hotroll.solvers.spread_record import spread_record
 
 def solve_spread(case: Case, run) -> SpreadResult:
     """The 3D pass of the solved half-strip ``SteadyRun`` ``run`` over ``case.pass_.width``,
-    its width layers and rounds from ``case.spread``."""
+    its width layers, edge zone and rounds from ``case.spread``."""
     half = 0.5 * case.pass_.width
     edge, growth, largest = case.spread.layers(half, case.mesh.h)
-    s3 = Spread3D(run, half, edge=edge, growth=growth, largest=largest)
+    s3 = Spread3D(run, half, edge=edge, growth=growth, largest=largest,
+                  zone=case.spread.edge_zone and case.spread.modelled(half))
     s3.solve(max_rounds=case.spread.max_rounds)
     return spread_record(s3)

@@ -26,19 +26,39 @@ def test_a_spread_case_loads_and_resolves_its_layers():
     given = load_case(BASE, {**STEADY, "spread.edge_layer": "2 mm", "spread.largest_layer": 0.003})
     assert given.spread.layers(0.005, 1e-3) == (2e-3, 1.2, 3e-3)
     assert load_case(BASE, {k: v for k, v in STEADY.items() if k != "spread.growth"}).spread is None
+    # a wide plate in the edge-zone model: the 3D strip 2 h0 wide at each edge
+    wide = load_case(BASE, {**STEADY, "pass.width": 0.5, "spread.edge_zone": 0.02})
+    assert wide.spread.modelled(0.25) == 0.02 and wide.spread.layers(0.25, 1e-3)[0] == 1e-3
+
+
+def test_a_transient_case_is_refused_once_for_its_method():
+    """[plumb] "auto" contact under the transient solver is the penalty: the method's refusal
+    says it, the contact's does not repeat it."""
+    with pytest.raises(CaseError) as e:
+        load_case(BASE, {**STEADY, "solver.method": "transient"})
+    lines = [p for p in str(e.value).splitlines() if "[spread]" in p]
+    assert len(lines) == 1 and lines[0].strip().startswith("solver.method:")
 
 
 @pytest.mark.parametrize("extra, message", [
     ({"solver.method": "transient"}, 'solver.method: \\[spread\\] needs "steady"'),
     ({"pass.width": None}, "pass.width: \\[spread\\] needs the strip's width"),
-    ({"pass.width": 0.002}, "pass.width: .* in \\[0.25, 16\\].* = 0.2$"),
-    ({"pass.width": 0.17}, "pass.width: .* in \\[0.25, 16\\].* = 17$"),
-    ({"spread.edge_layer": 0.006}, "spread.edge_layer: must be <= pass.width / 2 = 0.005 m"),
+    ({"pass.width": 0.002}, "pass.width: .* >= 0.25 .* = 0.2$"),
+    ({"spread.edge_layer": 0.006}, "spread.edge_layer: must be <= the modelled width .* = "
+                                   "0.005 m"),
+    ({"spread.edge_zone": 0.004, "spread.edge_layer": 0.0045},
+     "spread.edge_layer: must be <= the modelled width .* = 0.004 m"),
+    ({"spread.edge_zone": 0.006}, "spread.edge_zone: must be <= pass.width / 2 = 0.005 m"),
+    ({"pass.width": 0.5, "spread.edge_zone": 0.09},
+     "spread.edge_zone: at most 8 x entry thickness = 0.08 m"),
+    ({"pass.width": 0.5}, "pass.width: .* up to width / entry thickness = 16.*spread.edge_zone"),
     ({"spread.edge_layer": 0.002, "spread.largest_layer": 0.001},
      "spread.largest_layer: must be >= spread.edge_layer"),
     ({"spread.growth": 0.9}, "spread.growth: must be in \\[1, 2\\]"),
     ({"pass.speed_ratio": 1.1}, "pass: \\[spread\\] needs a symmetric pass"),
     ({"roll.model": "hitchcock"}, 'roll.model: \\[spread\\] needs "rigid"'),
+    ({"pass.roll_gap": 0.0079, "pass.mill_modulus": 5e9, "pass.exit_thickness": None},
+     "pass.roll_gap: not with \\[spread\\]"),
     ({"plate.free_surface": "constrained"}, 'plate.free_surface: \\[spread\\] needs "traced"'),
     ({"contact.method": "penalty"}, "contact.method: \\[spread\\] needs the exact contact"),
 ])

@@ -8,7 +8,7 @@ import pytest
 from hotroll.config.case import load_case
 from hotroll.model.spread_result import SpreadResult
 from hotroll.results.outcome import conservation_problem, exit_code
-from hotroll.results.spread_summary import spread_figures, unsettled
+from hotroll.results.spread_summary import spread_figures, unsettled, zone_warning
 
 CASE = {"pass.roll_radius": 0.25, "pass.entry_thickness": 0.01, "pass.exit_thickness": 0.008,
         "pass.roll_angular_velocity": 4.0, "mesh.h_contact": 1e-3, "solver.method": "steady",
@@ -52,6 +52,12 @@ def test_an_unsettled_or_leaking_3d_pass_is_not_an_answer():
     assert "did not settle in 7 rounds (spread.max_rounds = 7)" in why
     assert exit_code({"converged": False, "status": "steady", "spread_settled": False,
                       "roll_force": 1.0, "roll_torque": 1.0}) == 5
+    # a plane-strain pass that skids keeps its own code (6), whatever its 3D pass did
+    assert exit_code({"converged": False, "status": "steady", "spread_settled": False,
+                      "outlet_driven": True, "roll_force": 1.0, "roll_torque": 1.0}) == 6
+    failed = record(settled=False, rounds=2, failure="a linear solve failed: singular")
+    assert unsettled(failed, 7) == ("not settled: the 3D pass across the width stopped in "
+                                    "round 2: a linear solve failed: singular")
     leak = conservation_problem({"spread_mass_flux_error": 0.05, "contact_method": "multiplier"})
     assert "spread_mass_flux_error = 0.05 above 0.02" in leak
     assert exit_code({"converged": False, "not_conserved": True}) == 7
@@ -60,3 +66,15 @@ def test_an_unsettled_or_leaking_3d_pass_is_not_an_answer():
     assert conservation_problem({"spread_mass_flux_error": 0.01,
                                  "spread_power_balance_error": 0.01,
                                  "contact_method": "multiplier"}) is None
+
+
+def test_an_edge_zone_whose_cut_is_not_plane_strain_is_warned_about():
+    """[plumb] the cut's pressure 5 % RMS off plane strain or more: a warning naming
+    spread.edge_zone; a whole half width (no cut) or a cut within it: none."""
+    assert zone_warning(record()) is None
+    assert zone_warning(record(zone_cut=0.002, midplane={
+        "midplane_pressure_rms_deviation": 0.04})) is None
+    text = zone_warning(record(zone_cut=0.002, midplane={
+        "midplane_pressure_rms_deviation": 0.39}))
+    assert text.startswith("spread.edge_zone: the cut is not in plane strain (the 3D pressure "
+                           "on it 0.39 RMS")

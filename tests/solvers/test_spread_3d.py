@@ -214,3 +214,27 @@ def test_the_top_traced_per_level_leaks_what_the_2d_pass_leaks():
     assert abs(leak3) <= 1.5 * abs(leak2) + 1e-5
     shift = s3.tops.contact_starts() - run.shape.x_c
     assert shift[0] > 0.0 and shift[-1] == shift.max()
+
+
+def test_an_edge_zone_is_the_bar_as_wide_as_the_zone_plus_the_2d_pass_inside(passes, solved):
+    """[identity] the edge-zone model (``zone``: the outer part of the half width in 3D, u_z = 0
+    on the cut, the 2D pass's figures per width inside it): its cut is a symmetry plane, so a
+    zone b0 wide at the edge of a strip 2 b0 wide is the 3D problem of a bar b0 wide, moved
+    by b0: the same spread and edge; the whole width's force, torque and fluxes those of the
+    bar plus the 2D pass's per width over the 2 b0 inside the cuts (to 1e-9)."""
+    run, _, _ = solved
+    two, _, bar = passes
+    zone = Spread3D(run, 2.0 * B0, edge=0.5 * B0, zone=B0)
+    assert zone.solve()
+    z = zone.figures()
+    assert z["zone_cut"] == pytest.approx(B0, rel=1e-12)
+    assert z["spread"] == pytest.approx(bar["spread"], rel=1e-9)
+    assert z["exit_half_width"] - 2.0 * B0 == pytest.approx(bar["exit_half_width"] - B0,
+                                                           rel=1e-9)
+    for key, per_width in (("roll_force", "roll_force"), ("roll_torque", "roll_torque")):
+        assert z[key] == pytest.approx(bar[key] + 2.0 * two[per_width] * B0, rel=1e-9)
+    assert z["flux_in"] == pytest.approx(bar["flux_in"] + two["mass_flux_in"] * B0, rel=1e-9)
+    assert z["flux_out"] == pytest.approx(bar["flux_out"] + two["mass_flux_out"] * B0,
+                                          rel=1e-9)
+    assert z["midplane_pressure_rms_deviation"] == pytest.approx(
+        bar["midplane_pressure_rms_deviation"], rel=1e-9)

@@ -60,7 +60,8 @@ def test_the_free_edge_lowers_the_whole_widths_force(ran):
     assert 0.5 * s["plane_strain_roll_force_total"] < s["roll_force_total"] \
         < s["plane_strain_roll_force_total"]
     assert s["plane_strain_roll_force_total"] == pytest.approx(s["roll_force"] * 0.01, rel=1e-12)
-    assert s["roll_power_total"] == pytest.approx(4.0 * s["roll_torque_total"], rel=1e-12)
+    omega = CASE["pass.roll_angular_velocity"]
+    assert s["roll_power_total"] == pytest.approx(omega * s["roll_torque_total"], rel=1e-12)
     assert s["mill_power"] == pytest.approx(2.0 * s["roll_power_total"], rel=1e-12)
     assert 0.0 < s["edge_bulge"] < s["spread"]
     # the 3D pass's flux balance: in = out + through the lateral faces (the traced tops leak
@@ -68,7 +69,7 @@ def test_the_free_edge_lowers_the_whole_widths_force(ran):
     assert abs(s["spread_mass_flux_error"]) < 1e-3
     # [identity] the power balance of the 3D form tested with the velocity, its roll power
     # the torque x omega: 6.6e-5 measured (the 2D pass's 2.3e-4)
-    assert s["spread_power_balance_error"] < 1e-3
+    assert s["spread_power_balance_error"] < 3e-4
 
 
 def test_the_contact_map_carries_the_roll_force(ran):
@@ -112,8 +113,17 @@ def test_the_files_are_in_the_cases_frame(ran):
     assert angle.min() > -1e-6 and angle.max() < alpha + 1e-3
     assert p.shape == z.shape == x.shape == angle.shape == (3, x.shape[1]) and np.median(p) > 0.0
     assert z[0] == pytest.approx(0.0, abs=1e-12) and np.all(z[-1] >= 0.005 - 1e-12)
-    text = (out / "fields_3d.vtu").read_text(errors="replace")[:4000]
-    assert "UnstructuredGrid" in text
+    # fields_3d.vtu: NGSolve's raw appended points (a UInt32 byte count, then x, y, z), the
+    # quarter strip in the case's frame: x around the roll axis, z in [0, the exit half width]
+    raw = (out / "fields_3d.vtu").read_bytes()
+    head, data = raw.split(b'<AppendedData encoding="raw">')
+    n = int(head.split(b'NumberOfPoints="')[1].split(b'"')[0])
+    data = data[data.index(b"_") + 1:]
+    assert int(np.frombuffer(data[:4], dtype="<u4")[0]) == 24 * n
+    pts = np.frombuffer(data[4:4 + 24 * n], dtype="<f8").reshape(n, 3)
+    assert pts[:, 0].min() < AXIS - 0.01 and pts[:, 0].max() > AXIS + 0.01
+    assert pts[:, 2].min() == pytest.approx(0.0, abs=1e-12)
+    assert pts[:, 2].max() == pytest.approx(0.5 * s["exit_width"], rel=0.05)
     assert json.loads((out / "summary.json").read_text())["spread"] == s["spread"]
 
 
