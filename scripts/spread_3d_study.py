@@ -7,6 +7,8 @@ run already in OUT is skipped); a markdown table of OUT at the end.
     python scripts/spread_3d_study.py OUT [--ratios 0.5,1,2] [--h 1e-3]
         [--gradings coarse,fine]
     python scripts/spread_3d_study.py OUT --ratios 2,4,8,16 --gradings coarse   # the 1/W limit
+    python scripts/spread_3d_study.py OUT --ratios 8 --gradings coarse --zones 2,3,none
+        # the edge zone (its width in h0; none: the whole half width): moving the cut
 
 Gradings: ``coarse`` the edge layer h thick, x1.2 inwards up to 4h; ``fine`` h/2, up to 2h.
 """
@@ -26,34 +28,40 @@ from hotroll.theory.spread import hill, sparling, wusatowski
 GRADINGS = {"coarse": (1.0, 4.0), "fine": (0.5, 2.0)}     # (edge, largest) in h
 
 
-def one(ratio: float, h: float, grading: str, two_d: dict) -> dict:
+def one(ratio: float, h: float, grading: str, two_d: dict, zone: float | None = None) -> dict:
     b0 = ratio * H0
     edge, largest = GRADINGS[grading]
     run = two_d["run"]
     t0 = time.perf_counter()
-    s3 = Spread3D(run, 0.5 * b0, edge=min(edge * h, 0.5 * b0), largest=largest * h)
+    s3 = Spread3D(run, 0.5 * b0, edge=min(edge * h, 0.5 * b0), largest=largest * h,
+                  zone=None if zone is None else min(zone * H0, 0.5 * b0))
     s3.solve()
     fig = s3.figures()
     fig.pop("exit_half_width_profile", None)
-    return {"b0_over_h0": ratio, "h": h, "grading": grading, "layers": len(s3.z) - 1,
+    return {"b0_over_h0": ratio, "h": h, "grading": grading, "zone_h0": zone,
+            "layers": len(s3.z) - 1,
             "wall": time.perf_counter() - t0, "plane_strain_force": two_d["force"],
             "hill": hill(b0, H0, H1, R) - b0, "sparling": sparling(b0, H0, H1, R) - b0,
             "wusatowski": wusatowski(b0, H0, H1, R) - b0, **fig}
 
 
 def table(rows: list[dict]) -> str:
-    out = ["| b0/h0 | grading | layers | DOFs | spread mm | Hill | Sparling | Wusatowski | inside | "
-           "force/width / plane strain | (out-in)/in | Newton its | rounds | wall s |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    out = ["| b0/h0 | grading | zone h0 | layers | DOFs | spread mm | Hill | Sparling | Wusatowski | "
+           "inside | force/width / plane strain | (out-in)/in | cut/mid-width p RMS | Newton its | "
+           "rounds | wall s |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lo, hi = (min(r[k] for k in ("hill", "sparling", "wusatowski")),
                   max(r[k] for k in ("hill", "sparling", "wusatowski")))
         out.append(
-            f"| {r['b0_over_h0']:g} | {r['grading']} | {r['layers']} | {r['dofs']} | "
+            f"| {r['b0_over_h0']:g} | {r['grading']} | {r.get('zone_h0') or 'all'} | "
+            f"{r['layers']} | {r['dofs']} | "
             f"{r['spread'] * 1e3:.3f} | {r['hill'] * 1e3:.3f} | {r['sparling'] * 1e3:.3f} | "
             f"{r['wusatowski'] * 1e3:.3f} | {'yes' if lo <= r['spread'] <= hi else 'no'} | "
             f"{r['roll_force_per_width'] / r['plane_strain_force']:.4f} | "
-            f"{(r['flux_out'] - r['flux_in']) / r['flux_in']:.1e} | {r['newton_iterations']} | "
+            f"{(r['flux_out'] + r.get('flux_edge', 0.0) - r['flux_in']) / r['flux_in']:.1e} | "
+            f"{r.get('midplane_pressure_rms_deviation', float('nan')):.2e} | "
+            f"{r['newton_iterations']} | "
             f"{r['rounds']} | {r['wall']:.0f} |")
     return "\n".join(out)
 
@@ -67,7 +75,8 @@ def plane_strain_limit(rows: list[dict], grading: str = "coarse") -> str:
     pts = sorted((1.0 / r["b0_over_h0"], r["roll_force_per_width"] / r["plane_strain_force"],
                   r.get("midplane_pressure_deviation"), r["b0_over_h0"],
                   r.get("midplane_pressure_rms_deviation"))
-                 for r in rows if r["grading"] == grading and r["b0_over_h0"] >= 2.0)
+                 for r in rows if r["grading"] == grading and r["b0_over_h0"] >= 2.0
+                 and r.get("zone_h0") is None)
     if len(pts) < 2:
         return "(1/W: fewer than two widths with b0/h0 >= 2)"
     x, y = np.array([p[0] for p in pts]), np.array([p[1] for p in pts])
@@ -89,25 +98,29 @@ def main() -> None:
     ap.add_argument("--ratios", default="0.5,1,2")
     ap.add_argument("--h", type=float, default=1e-3)
     ap.add_argument("--gradings", default="coarse,fine")
+    ap.add_argument("--zones", default="none", help="edge zones in h0, comma separated "
+                    "(none: the whole half width)")
     a = ap.parse_args()
+    zones = [None if z == "none" else float(z) for z in a.zones.split(",")]
     done = set()
     if a.out.exists():
         for line in a.out.read_text().splitlines():
             r = json.loads(line)
-            done.add((r["b0_over_h0"], r["h"], r["grading"]))
+            done.add((r["b0_over_h0"], r["h"], r["grading"], r.get("zone_h0")))
     case, problem, st = case_r(0.05, a.h)
     run = SteadyRun(problem, st, case.plate.length)
     assert run.run().status == "steady"
     two_d = {"run": run, "force": run.state.history[-1]["roll_force"]}
     for ratio in map(float, a.ratios.split(",")):
         for grading in a.gradings.split(","):
-            if (ratio, a.h, grading) in done:
-                continue
-            row = one(ratio, a.h, grading, two_d)
-            with a.out.open("a") as fh:
-                fh.write(json.dumps(row) + "\n")
-            print(f"b0/h0 {ratio:g} {grading}: spread {row['spread'] * 1e3:.3f} mm, "
-                  f"{row['wall']:.0f} s", flush=True)
+            for zone in zones:
+                if (ratio, a.h, grading, zone) in done:
+                    continue
+                row = one(ratio, a.h, grading, two_d, zone)
+                with a.out.open("a") as fh:
+                    fh.write(json.dumps(row) + "\n")
+                print(f"b0/h0 {ratio:g} {grading} zone {zone}: spread "
+                      f"{row['spread'] * 1e3:.3f} mm, {row['wall']:.0f} s", flush=True)
     rows = [json.loads(line) for line in a.out.read_text().splitlines()]
     print(table(rows))
     print(plane_strain_limit(rows))

@@ -238,3 +238,25 @@ def test_an_edge_zone_is_the_bar_as_wide_as_the_zone_plus_the_2d_pass_inside(pas
                                           rel=1e-9)
     assert z["midplane_pressure_rms_deviation"] == pytest.approx(
         bar["midplane_pressure_rms_deviation"], rel=1e-9)
+
+
+def test_the_3d_pass_gives_the_same_bits_at_any_thread_count(solved, monkeypatch):
+    """[identity] 1 and 2 threads (the parallel regions take them whatever else runs): the
+    same spread, force and fluxes to the bit (coloured assembly, UMFPACK outside the parallel
+    regions; one width layer). The LDL^T-preconditioned GMRES (fem/krylov.py), 13 % faster on
+    a 46.7k-DOF pass, differs in the last bits between the two: not the 3D solver."""
+    from hotroll.fem import reproducible
+    from hotroll.solvers.threads import solver_threads
+
+    monkeypatch.setattr(reproducible, "others_running", lambda: 0)
+    run, _, _ = solved
+    out = []
+    for n in (1, 2):
+        with solver_threads(n):
+            s3 = Spread3D(run, B0, edge=B0)
+            assert s3.solve()
+            f = s3.figures()
+            out.append(tuple(f[k] for k in ("spread", "roll_force", "roll_torque", "flux_in",
+                                             "flux_out")))
+        assert reproducible.threads_used()[-1] == n or n > reproducible.cores()
+    assert out[0] == out[1]
