@@ -101,6 +101,10 @@ def test_the_files_are_in_the_cases_frame(ran):
     _, s, out = ran
     sec = np.genfromtxt(out / "exit_section.csv", delimiter=",", names=True)
     assert 2.0 * sec["half_width"].mean() == pytest.approx(s["exit_width"], rel=1e-12)
+    # the edge's bulge: the section's half width at mid-thickness over that at the surface
+    # (a barrel, the widest at mid-thickness), its range
+    assert sec["half_width"][0] == sec["half_width"].max() > sec["half_width"][-1]
+    assert s["edge_bulge"] == pytest.approx(np.ptp(sec["half_width"]), rel=1e-12)
     assert sec["y"].max() < 0.004 < sec["y"].max() + 0.004 / 40.0
     along = np.genfromtxt(out / "width_along.csv", delimiter=",", names=True)
     assert along["x"].min() < AXIS < along["x"].max()
