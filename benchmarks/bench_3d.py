@@ -5,8 +5,8 @@ quarter-model roughing pass in under 10 minutes cold and 6 GB), at three width g
 
 ``narrow``: Case R of ../shared/notes/asymmetric-rolling.md (R = 250 mm, 10 -> 8 mm, Tresca
 0.3, Norton-Hoff m = 0.05, h = 1 mm) with a stock 10 mm wide. ``roughing``: the bundled
-roughing_slab's geometry (R = 0.6 m, 200 -> 170 mm, Tresca 0.9) with the issue's width 1.5 m and
-a Norton-Hoff law (K = 150 MPa s^m, m = 0.15: the 3D strip carries no strain field yet).
+roughing_slab (R = 0.6 m, 200 -> 170 mm, its Hensel-Spittel grade and friction) with the
+issue's width 1.5 m (the 3D strip takes the 2D pass's strain frozen across the width).
 Each size is one process's run after the 2D pass: ``Spread3D`` set-up and solve
 (solvers/spread_3d.py), cold (the first 3D forms of the process are compiled in it). Sizes:
 the edge layer and the largest layer in units of the 2D contact mesh size h: coarse (2h, 8h),
@@ -41,9 +41,7 @@ def two_d(kind: str):
         case, problem, st = case_r(0.05, 1e-3)
         half_width = 0.005
     else:
-        over = {"material.law": "norton-hoff", "material.grade": None, "material.K": 1.5e8,
-                "material.m": 0.15, "output.figures": False}
-        case = load_case(example_path("roughing_slab"), over)
+        case = load_case(example_path("roughing_slab"), {"output.figures": False})
         problem, _ = build_model(case)
         st = steady_settings(case)
         half_width = 0.75
