@@ -43,12 +43,13 @@ SECONDS_A, SECONDS_B, STEADY_ITERATIONS = 1.35e-5, 4.3e-8, 30
 #: edges across it and its quadrilaterals: 3 x 2T); 41,538 against 41,145 counted on the
 #: bundled narrow_bar (5 layers)
 DOFS_PER_LEVEL, DOFS_PER_LAYER = 6.5, 6.0
-#: ... its memory per unknown (the 3D factorisation's fill) and its wall seconds, c N^1.5 for
-#: the whole 3D pass: fits of the narrow-bar benchmark (1.2 GB at 4.7e4 unknowns,
-#: benchmarks/bench_3d.py at d7372d1) and the bundled narrow_bar (49 s at 4.1e4, the machine
-#: shared); beyond 5e4 unknowns an extrapolation, not measured
-BYTES_PER_DOF_3D = 2.2e4
-SECONDS_3D = 6e-6
+#: ... its memory, a N^p (the 3D factorisation's fill grows faster than N), and its wall
+#: seconds, c N^q for the whole 3D pass: least-squares fits in log-log to the narrow-bar bench
+#: (1.2 GB at 4.7e4 unknowns, benchmarks/bench_3d.py at d7372d1), the bundled narrow_bar (49 s
+#: at 4.1e4, the machine shared) and the roughing bench (3.26 / 8.76 GB and 305 / 1131 s at
+#: 1.01e5 / 1.73e5, f6884ab, docs/validation/spread_3d.md): within 20 % of each
+BYTES_3D_COEF, BYTES_3D_EXP = 24.4, 1.63
+SECONDS_3D_COEF, SECONDS_3D_EXP = 4.8e-9, 2.17
 #: the report's scheme: seconds per step and unknown on one core (0.49 s per step with 2
 #: threads on C2, 6.8e4 unknowns, docs/results.md; 1.6 x for one thread); the steps: end
 #: time / dt (an upper bound: the run stops at the steady state, often a third of it)
@@ -141,8 +142,8 @@ def estimate(case) -> Estimate:
         half = 0.5 * case.pass_.width
         layers = len(width_axis(case.spread.modelled(half), *case.spread.layers(half, h))) - 1
         dofs3 = ((layers + 1) * DOFS_PER_LEVEL + layers * DOFS_PER_LAYER) * tri
-        memory += BYTES_PER_DOF_3D * dofs3
-        seconds += SECONDS_3D * dofs3**1.5
+        memory += BYTES_3D_COEF * dofs3**BYTES_3D_EXP
+        seconds += SECONDS_3D_COEF * dofs3**SECONDS_3D_EXP
         dofs += dofs3
     limit = case.solver.memory_limit or available_bytes()
     return Estimate(int(tri), int(dofs), memory, seconds, float(limit))
