@@ -17,7 +17,7 @@ def test_a_pass_without_a_strain_profile_hands_on_its_homogeneous_strain():
     summary = {"exit_profile": {"eta": [0.0, 0.5, 1.0], "temperature": [1300.0, 1290.0, 1250.0],
                                 "strain": None},
                "homogeneous_exit_strain": 0.3, "exit_thickness": 0.08}
-    case = SimpleNamespace(thermal=object(), pass_=SimpleNamespace(exit_thickness=0.08))
+    case = SimpleNamespace(thermal=object(), pass_=SimpleNamespace(exit_thickness=0.08, width=None))
     state = exit_state(None, case, summary)
     assert state.thickness == 0.08
     assert [state.strain(e) for e in (0.0, 0.7, 1.0)] == [0.3, 0.3, 0.3]
