@@ -128,6 +128,33 @@ def test_the_held_edge_keeps_a_strain_law_its_temperature_and_the_elastic_strip(
     assert f["midplane_velocity_deviation"] <= 1e-10
 
 
+def test_the_3d_pass_keeps_the_exact_scaling_in_the_roll_speed():
+    """[scaling] the roll speed, the law's eps0 and the friction's v_reg x 100 (time x 1/100):
+    the reduced problem is the same, so the spread and the exit half widths are the same (to
+    the surfaces' tolerance: 1e-7), the force and the torque x 100^m (Norton-Hoff), the fluxes
+    x 100 (one width layer)."""
+    from dataclasses import replace
+
+    out = []
+    for c in (1.0, 100.0):
+        case, problem, st = _setup()
+        problem = replace(problem, rp=replace(problem.rp, omega=c * problem.rp.omega),
+                          friction=replace(problem.friction, v_reg=c * problem.friction.v_reg),
+                          material=replace(problem.material, eps0=c * problem.material.eps0))
+        run = SteadyRun(problem, st, case.plate.length)
+        assert run.run().status == "steady"
+        s3 = Spread3D(run, B0, edge=B0)
+        assert s3.solve()
+        out.append(s3.figures())
+    a, b = out
+    m = 0.05
+    assert b["spread"] == pytest.approx(a["spread"], rel=1e-7)
+    for key in ("roll_force", "roll_torque"):
+        assert b[key] == pytest.approx(100.0**m * a[key], rel=1e-7)
+    for key in ("flux_in", "flux_out"):
+        assert b[key] == pytest.approx(100.0 * a[key], rel=1e-7)
+
+
 def test_the_3d_pass_keeps_the_exact_scaling_in_k():
     """[scaling] K x 1000 (every stress x 1000, the reduced problem the same): the spread,
     the exit half widths and the fluxes the same to 1e-9, the roll force and torque x 1000
