@@ -95,9 +95,10 @@ class Spread3D:
         self.rounds, self.iterations, self.settled, self.failure = 0, 0, False, ""
         self.setup_time, self.solve_time = time.perf_counter() - t0, 0.0
 
-    def solve(self, max_rounds: int = 30) -> bool:
+    def solve(self, max_rounds: int = 30, progress=None) -> bool:
         """Newton and the face's update in turn until the face moves less than surface_tol h
-        and Newton converged; True if settled."""
+        and Newton converged; True if settled. ``progress``: called with a report (its words in
+        ``message``) after each round."""
         t0 = time.perf_counter()
         s = self.run2d.s
         tol_face = s.surface_tol * self.problem.h
@@ -117,6 +118,12 @@ class Spread3D:
                 change = max(change, self.face.update(self.form.nonlinear.velocity))
                 self.face.displace(self.disp)
                 self.mesh.SetDeformation(self.disp)
+                if progress is not None:
+                    progress({"stage": "spread", "spread_round": self.rounds, "message": (
+                        f"3D pass round {self.rounds} ({self.form.fes.ndof} unknowns): Newton "
+                        f"{'converged' if st.converged else 'NOT converged'} after "
+                        f"{st.iterations} iterations, the free surfaces moved "
+                        f"{change / self.problem.h:.3g} h (tolerance {s.surface_tol:g} h)")})
                 if st.converged and change <= tol_face:
                     self.settled = True
                     break

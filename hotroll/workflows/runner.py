@@ -110,7 +110,7 @@ def run_case(case: Case, out: Path, *, resume: bool = True,
             run.mass_flux = mass_flux
             run.run(progress, warm=warm)
             if case.spread is not None and run.state.status == "steady":
-                spread = solve_spread(case, run)        # the 3D pass across the width
+                spread = solve_spread(case, run, progress)   # the 3D pass across the width
             omega = run.problem.rp.omega
             if model.gap is None and omega != case.pass_.roll_angular_velocity:      # a tandem speed found in the solve
                 case = case.with_overrides(**{"pass.roll_angular_velocity": omega})

@@ -9,12 +9,13 @@ from hotroll.solvers.spread_3d import Spread3D
 from hotroll.solvers.spread_record import spread_record
 
 
-def solve_spread(case: Case, run) -> SpreadResult:
+def solve_spread(case: Case, run, progress=None) -> SpreadResult:
     """The 3D pass of the solved half-strip ``SteadyRun`` ``run`` over ``case.pass_.width``,
-    its width layers, edge zone and rounds from ``case.spread``."""
+    its width layers, edge zone and rounds from ``case.spread``; ``progress`` gets a report
+    per round."""
     half = 0.5 * case.pass_.width
     edge, growth, largest = case.spread.layers(half, case.mesh.h)
     s3 = Spread3D(run, half, edge=edge, growth=growth, largest=largest,
                   zone=case.spread.edge_zone and case.spread.modelled(half))
-    s3.solve(max_rounds=case.spread.max_rounds)
+    s3.solve(max_rounds=case.spread.max_rounds, progress=progress)
     return spread_record(s3)

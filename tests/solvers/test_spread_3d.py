@@ -25,7 +25,8 @@ def solved():
     held = Spread3D(run, B0, edge=B0, edge_held=True)
     held.solve()
     free = Spread3D(run, B0, edge=0.5 * B0)
-    free.solve()
+    free.reports = []
+    free.solve(progress=free.reports.append)
     return run, held, free
 
 
@@ -62,6 +63,18 @@ def test_a_free_edge_settles_as_a_stream_surface(passes):
     assert free["settled"] and free["rounds"] >= 2
     assert abs(free["flux_edge"]) <= 1e-10 * free["flux_in"]
     assert free["flux_out"] == pytest.approx(free["flux_in"], rel=1e-3)
+
+
+def test_each_round_is_reported(solved):
+    """[plumb] a progress report per round, its words naming the round, the unknowns, Newton
+    and the free surfaces' move in h against the tolerance; the last one's move within it."""
+    _, _, free = solved
+    assert [r["spread_round"] for r in free.reports] == list(range(1, free.rounds + 1))
+    last = free.reports[-1]["message"]
+    assert last.startswith(f"3D pass round {free.rounds} ({free.form.fes.ndof} unknowns): "
+                           "Newton converged after ")
+    moved = float(last.split("moved ")[1].split(" h")[0])
+    assert moved <= free.run2d.s.surface_tol
 
 
 def test_the_strip_spreads_and_the_force_per_width_falls(passes):
