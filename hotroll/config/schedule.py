@@ -202,6 +202,13 @@ class Schedule(Section):
     def _check(self) -> Schedule:
         problems = []
         h = self.strip.thickness
+        # a tandem's flux is per unit width: with [spread] the width changes from stand to
+        # stand and the next stand's flux per width with it (not carried yet)
+        for key, tandem in (("speeds", "mass_flow"), ("tensions", "from_speeds")):
+            if self.spread is not None and getattr(self.mill, key) == tandem:
+                problems.append(f'mill.{key}: "{tandem}" not with [spread] (the stands\' mass '
+                                f"flux is matched per unit width, and the spread changes the "
+                                f'width from stand to stand); "given" with [spread]')
         for k, p in enumerate(self.passes, 1):
             if (p.exit_thickness is None) == (p.roll_gap is None):
                 problems.append(f"pass[{k}]: give exactly one of exit_thickness (m) and "

@@ -15,8 +15,9 @@ from hotroll.config.roll_sides import UPPER
 
 #: b0/h0 the 3D pass takes: below, a bar narrower than a quarter of its thickness (an edger's
 #: pass, not flat rolling); above, a plate whose quarter needs more width layers than a laptop
-#: holds and whose mid-width is plane strain: wider plates take the edge-zone model
-#: (``edge_zone``, its modelled width up to the same bound)
+#: holds: wider plates take the edge-zone model (``edge_zone``, its modelled width up to the
+#: same bound; not validated: on Case R at b0/h0 = 8 no cut was in plane strain,
+#: docs/validation/spread_3d.md)
 WIDTH_RATIO = (0.25, 16.0)
 
 

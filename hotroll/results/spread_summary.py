@@ -56,7 +56,8 @@ def unsettled(sp: SpreadResult, max_rounds: int) -> str | None:
     if sp.settled:
         return None
     if sp.failure:
-        return f"not settled: the 3D pass across the width stopped in round {sp.rounds}: {sp.failure}"
+        return (f"not settled: the 3D pass across the width stopped after {sp.rounds} "
+                f"rounds: {sp.failure}")
     return (f"not settled: the 3D pass across the width did not settle in {sp.rounds} rounds "
             f"(spread.max_rounds = {max_rounds}): its Newton, its traced tops or its lateral "
             "face did not converge")

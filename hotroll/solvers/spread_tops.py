@@ -63,12 +63,14 @@ class LevelTops:
         """Trace every level's free tops with the 3D flow, map the mesh onto them; the largest
         distance (m) between a level's traced top and its current one.
 
-        A level's nodes move across the width with it (z_k(x) = Z_k B / b0), so the trace
+        A level's nodes move across the width with it (z_k(x) = z_0 + (Z_k - z_0)(B - z_0) /
+        (b0 - z_0), z_0 the first level's), so the trace
         along the level, dy/dx = Y_x + Y_z z_k', takes u_y less (u_z - u_x z_k') Y_z: the flow
         across the level times the top's slope across the width, Y_z at fixed x (the levels'
         x shift taken off with the level's own slope), upwind: from the level inside where
-        the flow crosses outwards, else from the one outside (its last shape); 0 on the first
-        level (the mid-width plane or an edge zone's cut)."""
+        the flow crosses outwards, else from the one outside (its last shape; the edge level,
+        which has none, takes the inside's either way); 0 on the first level (the mid-width
+        plane or an edge zone's cut)."""
         run, rp = self.run, self.run.problem.rp
         x_up = rp.x_touch - default_lengths(rp)[0]
         part, bounds = self.run._top_part, run.map.x_bounds()

@@ -56,8 +56,8 @@ def test_an_unsettled_or_leaking_3d_pass_is_not_an_answer():
     assert exit_code({"converged": False, "status": "steady", "spread_settled": False,
                       "outlet_driven": True, "roll_force": 1.0, "roll_torque": 1.0}) == 6
     failed = record(settled=False, rounds=2, failure="a linear solve failed: singular")
-    assert unsettled(failed, 7) == ("not settled: the 3D pass across the width stopped in "
-                                    "round 2: a linear solve failed: singular")
+    assert unsettled(failed, 7) == ("not settled: the 3D pass across the width stopped after "
+                                    "2 rounds: a linear solve failed: singular")
     leak = conservation_problem({"spread_mass_flux_error": 0.05, "contact_method": "multiplier"})
     assert "spread_mass_flux_error = 0.05 above 0.02" in leak
     assert exit_code({"converged": False, "not_conserved": True}) == 7

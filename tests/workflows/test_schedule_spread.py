@@ -57,3 +57,18 @@ def test_the_schedule_table_has_the_width_columns_with_units(rolled):
         assert key in table.dtype.names
     units = json.loads((out / "schedule.json").read_text())["units"]
     assert units["entry_width"] == units["exit_width"] == units["spread"] == "m"
+
+
+@pytest.mark.parametrize("key, value", [("speeds", "mass_flow"), ("tensions", "from_speeds")])
+def test_a_tandem_matched_by_flux_is_refused_with_spread(key, value):
+    """[plumb] a tandem's stands matched by their flux per unit width: refused with [spread]
+    (the width changes from stand to stand), naming the key, before any computation."""
+    import tomllib
+
+    from hotroll.config.case import CaseError
+    from hotroll.config.schedule import schedule_from_dict
+
+    data = tomllib.loads(DATA.read_text())
+    data["mill"] = {key: value}
+    with pytest.raises(CaseError, match=f'mill.{key}: "{value}" not with \\[spread\\]'):
+        schedule_from_dict(data)
