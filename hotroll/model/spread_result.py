@@ -18,6 +18,8 @@ class SpreadResult:
     - ``stock_width``, ``exit_width`` (m): the strip's width at entry and its mean at exit
       (over the exit thickness), ``spread`` their difference;
     - ``exit_section``: ``y`` (m, from the mid-plane) and ``half_width`` (m) at the outlet;
+    - ``exit_thickness``: ``z`` (m, from mid-width to the edge, one per width level) and the
+      strip's full ``thickness`` (m) at the outlet there;
     - ``width_along``: ``x`` (m) and the half width there at mid-thickness (``centre``) and on
       the strip's surface (``surface``), m;
     - ``contact_map``: the contact pressure (Pa) over the arc, ``pressure`` (width levels x
@@ -43,6 +45,7 @@ class SpreadResult:
     stock_width: float
     exit_width: float
     exit_section: Mapping[str, np.ndarray]
+    exit_thickness: Mapping[str, np.ndarray]
     width_along: Mapping[str, np.ndarray]
     contact_map: Mapping[str, np.ndarray]
     roll_force: float
@@ -75,6 +78,12 @@ class SpreadResult:
         smallest (m, one edge; the barrelling)."""
         half = np.asarray(self.exit_section["half_width"], dtype=float)
         return float(half.max() - half.min())
+
+    @property
+    def edge_drop(self) -> float:
+        """The exit thickness at mid-width (or an edge zone's cut) minus at the edge (m)."""
+        t = np.asarray(self.exit_thickness["thickness"], dtype=float)
+        return float(t[0] - t[-1])
 
     @property
     def mass_flux_error(self) -> float:

@@ -19,6 +19,8 @@ class SpreadKeys:
     edge_bulge: float = _f("m", "edge bulge", "the exit edge's largest half width over the "
                            "thickness minus its smallest (one edge: the barrelling)", group=_G,
                            when=_W)
+    edge_drop: float = _f("m", "edge drop", "the exit thickness at mid-width minus at the edge "
+                          "(exit_thickness.csv: each width level's)", group=_G, when=_W)
     spread_hill: float = _f("m", "spread, Hill", "Hill's formula as PyRolL has it "
                             "(theory/spread.py, correction factors 1)", group=_G, when=_W)
     spread_sparling: float = _f("m", "spread, Sparling", "Sparling's formula (theory/spread.py)",

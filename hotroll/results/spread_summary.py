@@ -1,6 +1,6 @@
 """The ``[spread]`` section's figures and files (issue 53): from the 3D pass's record
 (``model/spread_result.SpreadResult``) to summary keys (``results/spread_keys.py``) and to
-``exit_section.csv``, ``width_along.csv``, ``contact_map.npz`` and ``fields_3d.vtu``."""
+``exit_section.csv``, ``exit_thickness.csv``, ``width_along.csv``, ``contact_map.npz`` and ``fields_3d.vtu``."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -20,6 +20,7 @@ def spread_figures(case, sp: SpreadResult, roll_force: float) -> dict:
     b0, h0, h1, R = p.width, p.entry_thickness, p.exit_thickness, p.roll_radius
     return {
         "exit_width": sp.exit_width, "spread": sp.spread, "edge_bulge": sp.edge_bulge,
+        "edge_drop": sp.edge_drop,
         "spread_hill": float(hill(b0, h0, h1, R)) - b0,
         "spread_sparling": float(sparling(b0, h0, h1, R)) - b0,
         "spread_wusatowski": float(wusatowski(b0, h0, h1, R)) - b0,
@@ -64,10 +65,12 @@ def unsettled(sp: SpreadResult, max_rounds: int) -> str | None:
 
 
 def write_spread_files(out: Path, sp: SpreadResult, shift: float, vtk: bool) -> None:
-    """exit_section.csv (y m, half width m), width_along.csv (x m, half width at mid-thickness
+    """exit_section.csv (y m, half width m), exit_thickness.csv (z m, thickness m),
+    width_along.csv (x m, half width at mid-thickness
     and on the surface, m), contact_map.npz (x, angle rad, z m, pressure Pa) and, with ``vtk``,
     fields_3d.vtu; x where the case puts the roll axis (``shift``)."""
     write_csv(out / "exit_section.csv", dict(sp.exit_section))
+    write_csv(out / "exit_thickness.csv", dict(sp.exit_thickness))
     along = dict(sp.width_along)
     write_csv(out / "width_along.csv", {**along, "x": np.asarray(along["x"]) + shift})
     cmap = dict(sp.contact_map)

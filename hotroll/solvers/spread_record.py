@@ -36,6 +36,11 @@ def spread_record(s3) -> SpreadResult:
     step = rp.half_exit / SECTION_POINTS
     y_ref = np.linspace(0.0, rp.half_exit, SECTION_POINTS + 1)[:-1] + 0.5 * step
     section = {"y": y_ref * scale, "half_width": np.asarray(fig["exit_half_width_profile"])}
+    # the exit thickness across the width: each level's outlet top (its highest outlet vertex)
+    # at that level's z, twice (the full thickness)
+    top_out = np.nonzero(out)[0][np.argmax(P[out, 1])]
+    rows = np.arange(levels) * nv + top_out
+    section_z = {"z": X3[rows, 2], "thickness": 2.0 * X3[rows, 1]}
     # the half width along x at mid-thickness (the sym line) and on the strip's surface (B's
     # vertex values at the edge level's x, the surface's interpolated to the sym line's x)
     B = s3.face.B.vec.FV().NumPy()[:nv]
@@ -54,7 +59,7 @@ def spread_record(s3) -> SpreadResult:
     omega = rp.omega
     return SpreadResult(
         stock_width=2.0 * fig["stock_half_width"], exit_width=2.0 * fig["exit_half_width"],
-        exit_section=section, width_along=along, contact_map=cmap,
+        exit_section=section, exit_thickness=section_z, width_along=along, contact_map=cmap,
         roll_force=fig["roll_force"], roll_torque=fig["roll_torque"],
         roll_power=fig["roll_torque"] * omega,
         flux_in=4.0 * fig["flux_in"], flux_out=4.0 * fig["flux_out"],

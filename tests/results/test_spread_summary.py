@@ -18,6 +18,7 @@ CASE = {"pass.roll_radius": 0.25, "pass.entry_thickness": 0.01, "pass.exit_thick
 def record(**kw) -> SpreadResult:
     base = dict(stock_width=0.01, exit_width=0.0112,
                 exit_section={"y": np.array([0.001, 0.003]), "half_width": np.array([0.0057, 0.0055])},
+                exit_thickness={"z": np.array([0.0, 0.005]), "thickness": np.array([0.008, 0.0079])},
                 width_along={"x": np.zeros(2), "centre": np.zeros(2), "surface": np.zeros(2)},
                 contact_map={}, roll_force=8.0e4, roll_torque=900.0, roll_power=3600.0,
                 flux_in=2.0e-4, flux_out=1.99e-4, flux_edge=0.5e-6, midplane={
@@ -35,6 +36,7 @@ def test_the_records_figures_by_hand():
     r = record()
     assert r.spread == pytest.approx(0.0012, rel=1e-12)
     assert r.edge_bulge == pytest.approx(0.0002, rel=1e-9)
+    assert r.edge_drop == pytest.approx(0.0001, rel=1e-9)
     assert r.mass_flux_error == pytest.approx((1.99e-4 + 0.5e-6 - 2.0e-4) / 2.0e-4, rel=1e-12)
     s = spread_figures(case, r, roll_force=9.0e6)
     assert s["roll_force_total"] == 8.0e4 and s["roll_torque_total"] == 900.0

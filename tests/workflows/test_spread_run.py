@@ -106,6 +106,14 @@ def test_the_files_are_in_the_cases_frame(ran):
     assert sec["half_width"][0] == sec["half_width"].max() > sec["half_width"][-1]
     assert s["edge_bulge"] == pytest.approx(np.ptp(sec["half_width"]), rel=1e-12)
     assert sec["y"].max() < 0.004 < sec["y"].max() + 0.004 / 40.0
+    # the exit thickness across the width: rigid rolls and the contact to the gap, so the
+    # roll gap (8 mm) at every width level to the top tracing's tolerance [hand]; the edge
+    # drop its difference mid-width to edge [identity]
+    thick = np.genfromtxt(out / "exit_thickness.csv", delimiter=",", names=True)
+    assert thick["z"][0] == pytest.approx(0.0, abs=1e-12) and np.all(np.diff(thick["z"]) > 0)
+    assert thick["thickness"] == pytest.approx(np.full(thick.size, 0.008), rel=2e-3)
+    assert s["edge_drop"] == pytest.approx(thick["thickness"][0] - thick["thickness"][-1],
+                                           rel=1e-12, abs=1e-15)
     along = np.genfromtxt(out / "width_along.csv", delimiter=",", names=True)
     assert along["x"].min() < AXIS < along["x"].max()
     assert along["centre"][0] == pytest.approx(0.005, rel=1e-9)
