@@ -44,8 +44,7 @@ def spread_record(s3) -> SpreadResult:
     # the half width along x at mid-thickness (the sym line) and on the strip's surface (B's
     # vertex values at the edge level's x, the surface's interpolated to the sym line's x)
     B = s3.face.B.vec.FV().NumPy()[:nv]
-    sym, surface = _boundary_vertices(run.mesh, ("sym",)), _boundary_vertices(
-        run.mesh, ("arc", "top", "exit"))
+    sym, surface = _boundary_vertices(run.mesh, ("sym",)), run.top.verts
     sym, surface = (i[np.argsort(X[i, 0])] for i in (sym, surface))
     along = {"x": X[sym, 0], "centre": B[sym],
              "surface": np.interp(X[sym, 0], X[surface, 0], B[surface])}

@@ -42,14 +42,14 @@ class LevelTops:
 
     def _level_fields(self, k: int) -> tuple[np.ndarray, np.ndarray]:
         """(u_x, u_y) and (u_z, the z displacement) of level ``k`` in the 2D layout."""
-        s3, n2 = self.s3, self._n2
-        vel = np.zeros(2 * n2)
-        self.s3.copy.take_vector(k, s3.form.nonlinear.velocity, self._V2.components[0], vel, 2)
+        s3, n2, S2 = self.s3, self._n2, self._V2.components[0]
         w = np.zeros(3 * n2)
-        s3.copy.take_vector(k, s3.form.nonlinear.velocity, self._V2.components[0], w, 3)
-        dz = np.zeros(3 * n2)
-        s3.copy.take_vector(k, s3.disp, self._V2.components[0], dz, 3)
-        return vel, np.concatenate([w[2 * n2:], dz[2 * n2:]])
+        s3.copy.take_vector(k, s3.form.nonlinear.velocity, S2, w, 3)
+        dz = np.zeros(n2)
+        V3 = s3.disp.space
+        n3 = V3.ndof // 3
+        s3.copy.take(k, V3.components[2], s3.disp.vec.FV().NumPy()[2 * n3:], S2, dz)
+        return w[:2 * n2], np.concatenate([w[2 * n2:], dz])
 
     def _level(self, k: int):
         """Level ``k``'s top nodes: positions (x, y), velocity (u_x, u_y), u_z and z (m), the
@@ -74,9 +74,12 @@ class LevelTops:
         run, rp = self.run, self.run.problem.rp
         x_up = rp.x_touch - default_lengths(rp)[0]
         part, bounds = self.run._top_part, run.map.x_bounds()
-        residual, inside = 0.0, None
+        residual, inside, nxt = 0.0, None, self._level(0)
         for k in range(self.levels):
-            xy, v, uz, z = self._level(k)
+            # each level read once: level k + 1's (its last shape, this z) is the outside of
+            # level k and then level k + 1 itself
+            xy, v, uz, z = nxt
+            nxt = self._level(k + 1) if k + 1 < self.levels else None
             order = np.argsort(xy[:, 0], kind="stable")
             if inside is not None:
                 dydx, dzdx = (np.empty(len(order)) for _ in range(2))
@@ -84,8 +87,8 @@ class LevelTops:
                 dzdx[order] = np.gradient(z[order], xy[order, 0])
                 across = uz - v[:, 0] * dzdx             # the flow across the level
                 dydz = self._slope_across(xy, z, dydx, inside)
-                if k + 1 < self.levels:              # its last shape, this z
-                    xy_out, _, _, z_out = self._level(k + 1)
+                if nxt is not None:
+                    xy_out, _, _, z_out = nxt
                     dydz = np.where(across >= 0.0, dydz,
                                     self._slope_across(xy, z, dydx, (xy_out, z_out)))
                 v[:, 1] -= across * dydz

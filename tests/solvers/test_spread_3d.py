@@ -141,6 +141,17 @@ def test_the_held_edge_keeps_a_strain_law_its_temperature_and_the_elastic_strip(
     assert f["midplane_velocity_deviation"] <= 1e-10
 
 
+def _scaled_pass(change) -> dict:
+    """The figures of Case R's 3D pass (one width layer: the cheapest free edge) with its
+    ``Problem`` changed by ``change`` (a function of the problem)."""
+    case, problem, st = _setup()
+    run = SteadyRun(change(problem), st, case.plate.length)
+    assert run.run().status == "steady"
+    s3 = Spread3D(run, B0, edge=B0)
+    assert s3.solve()
+    return s3.figures()
+
+
 def test_the_3d_pass_keeps_the_exact_scaling_in_the_roll_speed():
     """[scaling] the roll speed, the law's eps0 and the friction's v_reg x 100 (time x 1/100):
     the reduced problem is the same, so the spread and the exit half widths are the same (to
@@ -148,18 +159,12 @@ def test_the_3d_pass_keeps_the_exact_scaling_in_the_roll_speed():
     x 100 (one width layer)."""
     from dataclasses import replace
 
-    out = []
-    for c in (1.0, 100.0):
-        case, problem, st = _setup()
-        problem = replace(problem, rp=replace(problem.rp, omega=c * problem.rp.omega),
-                          friction=replace(problem.friction, v_reg=c * problem.friction.v_reg),
-                          material=replace(problem.material, eps0=c * problem.material.eps0))
-        run = SteadyRun(problem, st, case.plate.length)
-        assert run.run().status == "steady"
-        s3 = Spread3D(run, B0, edge=B0)
-        assert s3.solve()
-        out.append(s3.figures())
-    a, b = out
+    def faster(p, c=100.0):
+        return replace(p, rp=replace(p.rp, omega=c * p.rp.omega),
+                       friction=replace(p.friction, v_reg=c * p.friction.v_reg),
+                       material=replace(p.material, eps0=c * p.material.eps0))
+
+    a, b = _scaled_pass(lambda p: p), _scaled_pass(faster)
     m = 0.05
     assert b["spread"] == pytest.approx(a["spread"], rel=1e-7)
     for key in ("roll_force", "roll_torque"):
@@ -174,17 +179,8 @@ def test_the_3d_pass_keeps_the_exact_scaling_in_k():
     (one width layer: the cheapest free edge)."""
     from dataclasses import replace
 
-    out = []
-    for k in (1.0, 1000.0):
-        case, problem, st = _setup()
-        problem = replace(problem, material=replace(problem.material,
-                                                    K=k * problem.material.K))
-        run = SteadyRun(problem, st, case.plate.length)
-        assert run.run().status == "steady"
-        s3 = Spread3D(run, B0, edge=B0)
-        assert s3.solve()
-        out.append(s3.figures())
-    a, b = out
+    a = _scaled_pass(lambda p: p)
+    b = _scaled_pass(lambda p: replace(p, material=replace(p.material, K=1000.0 * p.material.K)))
     for key in ("spread", "flux_in", "flux_out"):
         assert b[key] == pytest.approx(a[key], rel=1e-9)
     assert b["exit_half_width_profile"] == pytest.approx(a["exit_half_width_profile"], rel=1e-9)
