@@ -2,6 +2,7 @@
 quarter-model roughing pass in under 10 minutes cold and 6 GB), at three width gradings.
 
     python benchmarks/bench_3d.py [--case narrow|roughing] [--sizes coarse,medium,fine]
+                                  [--solver umfpack|sparsecholesky+gmres]
 
 ``narrow``: Case R of ../shared/notes/asymmetric-rolling.md (R = 250 mm, 10 -> 8 mm, Tresca
 0.3, Norton-Hoff m = 0.05, h = 1 mm) with a stock 10 mm wide. ``roughing``: the bundled
@@ -12,7 +13,8 @@ Each size is one process's run after the 2D pass: ``Spread3D`` set-up and solve
 the edge layer and the largest layer in units of the 2D contact mesh size h: coarse (2h, 8h),
 medium (h, 4h), fine (h/2, 2h). Prints a table: DOFs, layers, Newton iterations, rounds, wall
 s (2D, 3D set-up, 3D solve), peak resident memory of the process (GB), spread. The linear
-solver is UMFPACK (fem/forms.py: LINEAR_SOLVERS). Time on 2 cores with nothing else running.
+solver: UMFPACK by default, or ``--solver`` (fem/forms.py: LINEAR_SOLVERS). Time on 2 cores
+with nothing else running.
 """
 from __future__ import annotations
 
@@ -29,6 +31,7 @@ from asymmetric_case_r import case_r  # noqa: E402
 
 from hotroll.config.case import load_case  # noqa: E402
 from hotroll.examples import example_path  # noqa: E402
+from hotroll.fem.forms import LINEAR_SOLVERS  # noqa: E402
 from hotroll.solvers.spread_3d import Spread3D  # noqa: E402
 from hotroll.solvers.steady import SteadyRun  # noqa: E402
 from hotroll.workflows.build import build_model, steady_settings  # noqa: E402
@@ -55,17 +58,21 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--case", default="narrow", choices=("narrow", "roughing"))
     ap.add_argument("--sizes", default="coarse,medium,fine")
+    ap.add_argument("--solver", default="umfpack", choices=LINEAR_SOLVERS,
+                    help="the 3D Newton's linear solver (fem/forms.py: LINEAR_SOLVERS)")
     a = ap.parse_args()
     run, half_width, status, wall2 = two_d(a.case)
     h = run.problem.h
-    print(f"{a.case}: 2D pass {status}, {run.form.fes.ndof} DOFs, h = {h * 1e3:.3g} mm, "
+    print(f"{a.case}: 3D linear solver {a.solver}; 2D pass {status}, {run.form.fes.ndof} DOFs, "
+          f"h = {h * 1e3:.3g} mm, "
           f"{wall2:.1f} s")
     print("| size | layers | DOFs | Newton its | rounds | 3D set-up s | 3D solve s | peak GB | "
           "spread mm |")
     print("|---|---|---|---|---|---|---|---|---|")
     for size in a.sizes.split(","):
         edge, largest = SIZES[size]
-        s3 = Spread3D(run, half_width, edge=min(edge * h, half_width), largest=largest * h)
+        s3 = Spread3D(run, half_width, edge=min(edge * h, half_width), largest=largest * h,
+                      linear_solver=a.solver)
         s3.solve()
         fig = s3.figures()
         peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2

@@ -14,6 +14,8 @@ direct solver is taken.
 """
 from __future__ import annotations
 
+from hotroll.fem.reproducible import one_thread
+
 #: GMRES's relative residual (of the system, in the rows' weighted norm) where the caller
 #: names none: the solution then 1e-10 from a direct solve's
 TOL = 1e-10
@@ -44,7 +46,8 @@ class PreconditionedGMRES:
         import numpy as np
 
         self.mat = mat
-        self.pre = mat.Inverse(freedofs, inverse="sparsecholesky")
+        with one_thread():
+            self.pre = mat.Inverse(freedofs, inverse="sparsecholesky")
         self.iterations = 0
         self.direct = False           # try the factors alone first (the last solve's hint)
         self._freedofs = freedofs
@@ -52,7 +55,8 @@ class PreconditionedGMRES:
         self._res = None
 
     def Update(self) -> None:                      # noqa: N802 - NGSolve's inverse interface
-        self.pre.Update()
+        with one_thread():
+            self.pre.Update()
 
     def _direct(self, r, out, rtol: float, w) -> bool:
         """out = the factors applied to r; True if A out = r to ``rtol`` (weighted rows)."""
@@ -67,7 +71,12 @@ class PreconditionedGMRES:
 
     def solve(self, r, out, rtol: float = TOL, weights=None) -> None:
         """out = A^{-1} r to the relative residual ``rtol`` in the norm of the row ``weights``
-        (a numpy array over all DOFs; default 1 on the free rows)."""
+        (a numpy array over all DOFs; default 1 on the free rows), in one thread
+        (``one_thread``: the factors' solves are sequential only there)."""
+        with one_thread():
+            self._solve(r, out, rtol, weights)
+
+    def _solve(self, r, out, rtol: float, weights) -> None:
         import numpy as np
         from ngsolve.krylovspace import GMResSolver
 

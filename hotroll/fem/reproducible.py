@@ -24,9 +24,10 @@ calls, 10 of 10 factor+solves, on 2 threads). Hence:
   in every run. ``sparsecholesky`` is not with 2 threads: with no task manager it starts one of
   its own (``SparseCholeskyTM::FactorSPD1``: ``RunWithTaskManager``) with ``SetNumThreads``'s
   count (a Taylor-Hood Stokes matrix: 8 distinct solutions of 8 with 2 threads, 1 of 8 with
-  one). ``threaded`` sets that count to 1 and only ``parallel`` raises it. The flow's fallback
-  ``sparsecholesky+gmres`` (when UMFPACK fails) runs inside a Newton step's region, so with 2
-  threads its last bits may differ from run to run, as before issue 51.
+  one). ``threaded`` sets that count to 1 and only ``parallel`` raises it. The flow's
+  ``sparsecholesky+gmres`` (the 2D fallback when UMFPACK fails, a choice of the 3D strip) runs
+  inside a Newton step's region but factorises and solves in ``one_thread``: the same bits at
+  any thread count (``tests/solvers/test_spread_3d.py``; 2 threads' runs differed before).
 """
 from __future__ import annotations
 
@@ -197,6 +198,24 @@ def serial():
     finally:
         tm.__enter__()
         _running.append(tm)
+
+
+@contextmanager
+def one_thread():
+    """``with one_thread():`` the code inside runs in this thread alone: out of the task manager
+    (``serial``) and with NGSolve's thread count 1, so that ``sparsecholesky``, which starts a
+    task manager of its own with that count, factorises and solves sequentially: the same bits
+    in every run (2 threads: 8 distinct solutions of 8; its factorisation is no faster with 2,
+    ``../shared/notes/3d-steady.md``)."""
+    import ngsolve
+
+    count = ngsolve.GetNumThreads()
+    with serial():
+        ngsolve.SetNumThreads(1)
+        try:
+            yield
+        finally:
+            ngsolve.SetNumThreads(count)
 
 
 def fe_space(make, *args, **kwargs):

@@ -19,6 +19,7 @@ import time
 import numpy as np
 
 from hotroll.fem.extruded_mesh import LayerCopy, extrude, width_axis
+from hotroll.fem.forms import LINEAR_SOLVERS
 from hotroll.fem.lateral_face import LateralFace
 from hotroll.fem.nonlinear import LinearSolveError, newton
 from hotroll.fem.penalties import PenaltyTable
@@ -35,16 +36,20 @@ class Spread3D:
     mesh size), growing by ``growth`` inwards up to ``largest`` (default 4 edge layers).
     ``zone`` (m): the edge-zone model of a wide strip, only the outer ``zone`` of the half
     width, plane strain (u_z = 0, as on the mid-width plane) on the cut at half_width - zone
-    and the 2D pass's figures per width inside it (None: the whole half width)."""
+    and the 2D pass's figures per width inside it (None: the whole half width).
+    ``linear_solver``: Newton's first linear solver (``fem/forms.LINEAR_SOLVERS``; the others
+    after it where it fails)."""
 
     def __init__(self, run, half_width: float, edge: float | None = None, growth: float = 1.2,
                  largest: float | None = None, edge_held: bool = False, tops: bool = True,
-                 zone: float | None = None):
+                 zone: float | None = None, linear_solver: str = "umfpack"):
         import ngsolve as ng
 
         t0 = time.perf_counter()
         if not half_width > 0.0:
             raise ValueError(f"half_width = {half_width!r} m: must be > 0")
+        if linear_solver not in LINEAR_SOLVERS:
+            raise ValueError(f"linear_solver = {linear_solver!r}: one of {LINEAR_SOLVERS}")
         problem, f2 = run.problem, run.form
         missing = [what for what, on in (
             ("a flattening roll (roll.model)", problem.rp.shape is not None),
@@ -74,6 +79,9 @@ class Spread3D:
                                   consistency=consistency, rate_offset=rate_offset,
                                   strip_compliance=f2.compliance, strip_depth=f2.strip_depth)
         f3 = self.form
+        # the chosen solver first, the others after it where it fails (fem/nonlinear.py)
+        f3.nonlinear.linear_solvers = (linear_solver,) + tuple(
+            n for n in LINEAR_SOLVERS if n != linear_solver)
         self.disp = ng.GridFunction(f3.fes.components[0])
         copy.vector(run.disp, self.disp)
         self.mesh.SetDeformation(self.disp)
