@@ -24,10 +24,10 @@ from hotroll.workflows.build import build_model, steady_settings
 R, H0, H1, MF = 0.25, 0.01, 0.008, 0.3     # Case R; --h0/--h1: another pass of the same roll
 
 
-def case_r(m: float, h: float, exit_length: float | None = None):
+def case_r(m: float, h: float, exit_length: float | None = None, friction: float = MF):
     over = {"pass.roll_radius": R, "pass.entry_thickness": H0, "pass.exit_thickness": H1,
             "pass.roll_angular_velocity": 4.0, "material.m": m, "friction.law": "tresca",
-            "friction.factor": MF, "friction.a_f": None, "mesh.h_contact": h,
+            "friction.factor": friction, "friction.a_f": None, "mesh.h_contact": h,
             "solver.method": "steady", "plate.length": 0.2}
     if exit_length:
         over["solver.steady_exit_length"] = exit_length

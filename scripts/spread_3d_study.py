@@ -9,6 +9,8 @@ run already in OUT is skipped); a markdown table of OUT at the end.
     python scripts/spread_3d_study.py OUT --ratios 2,4,8,16 --gradings coarse   # the 1/W limit
     python scripts/spread_3d_study.py OUT --ratios 8 --gradings coarse --zones 2,3,none
         # the edge zone (its width in h0; none: the whole half width): moving the cut
+    python scripts/spread_3d_study.py OUT --ratios 8 --gradings coarse --friction 0.8
+        # a rougher pass (the Tresca factor; default Case R's 0.3)
 
 Gradings: ``coarse`` the edge layer h thick, x1.2 inwards up to 4h; ``fine`` h/2, up to 2h.
 """
@@ -19,7 +21,7 @@ import json
 import time
 from pathlib import Path
 
-from asymmetric_case_r import H0, H1, R, case_r
+from asymmetric_case_r import H0, H1, MF, R, case_r
 
 from hotroll.solvers.spread_3d import Spread3D
 from hotroll.solvers.steady import SteadyRun
@@ -28,7 +30,8 @@ from hotroll.theory.spread import hill, sparling, wusatowski
 GRADINGS = {"coarse": (1.0, 4.0), "fine": (0.5, 2.0)}     # (edge, largest) in h
 
 
-def one(ratio: float, h: float, grading: str, two_d: dict, zone: float | None = None) -> dict:
+def one(ratio: float, h: float, grading: str, two_d: dict, zone: float | None = None,
+        friction: float = MF) -> dict:
     b0 = ratio * H0
     edge, largest = GRADINGS[grading]
     run = two_d["run"]
@@ -39,28 +42,29 @@ def one(ratio: float, h: float, grading: str, two_d: dict, zone: float | None = 
     fig = s3.figures()
     fig.pop("exit_half_width_profile", None)
     return {"b0_over_h0": ratio, "h": h, "grading": grading, "zone_h0": zone,
-            "layers": len(s3.z) - 1,
+            "friction": friction, "layers": len(s3.z) - 1,
             "wall": time.perf_counter() - t0, "plane_strain_force": two_d["force"],
             "hill": hill(b0, H0, H1, R) - b0, "sparling": sparling(b0, H0, H1, R) - b0,
             "wusatowski": wusatowski(b0, H0, H1, R) - b0, **fig}
 
 
 def table(rows: list[dict]) -> str:
-    out = ["| b0/h0 | grading | zone h0 | layers | DOFs | spread mm | Hill | Sparling | Wusatowski | "
-           "inside | force/width / plane strain | (out-in)/in | cut/mid-width p RMS | Newton its | "
-           "rounds | wall s |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    out = ["| b0/h0 | Tresca | grading | zone h0 | layers | DOFs | spread mm | Hill | Sparling | Wusatowski | "
+           "inside | force/width / plane strain | (out-in)/in | cut/mid-width p RMS | "
+           "cut/mid-width contact p RMS | Newton its | rounds | wall s |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lo, hi = (min(r[k] for k in ("hill", "sparling", "wusatowski")),
                   max(r[k] for k in ("hill", "sparling", "wusatowski")))
         out.append(
-            f"| {r['b0_over_h0']:g} | {r['grading']} | {r.get('zone_h0') or 'all'} | "
+            f"| {r['b0_over_h0']:g} | {r.get('friction', MF):g} | {r['grading']} | {r.get('zone_h0') or 'all'} | "
             f"{r['layers']} | {r['dofs']} | "
             f"{r['spread'] * 1e3:.3f} | {r['hill'] * 1e3:.3f} | {r['sparling'] * 1e3:.3f} | "
             f"{r['wusatowski'] * 1e3:.3f} | {'yes' if lo <= r['spread'] <= hi else 'no'} | "
             f"{r['roll_force_per_width'] / r['plane_strain_force']:.4f} | "
             f"{(r['flux_out'] + r.get('flux_edge', 0.0) - r['flux_in']) / r['flux_in']:.1e} | "
             f"{r.get('midplane_pressure_rms_deviation', float('nan')):.2e} | "
+            f"{r.get('midplane_contact_pressure_rms_deviation', float('nan')):.2e} | "
             f"{r['newton_iterations']} | "
             f"{r['rounds']} | {r['wall']:.0f} |")
     return "\n".join(out)
@@ -76,7 +80,7 @@ def plane_strain_limit(rows: list[dict], grading: str = "coarse") -> str:
                   r.get("midplane_pressure_deviation"), r["b0_over_h0"],
                   r.get("midplane_pressure_rms_deviation"))
                  for r in rows if r["grading"] == grading and r["b0_over_h0"] >= 2.0
-                 and r.get("zone_h0") is None)
+                 and r.get("zone_h0") is None and r.get("friction", MF) == MF)
     if len(pts) < 2:
         return "(1/W: fewer than two widths with b0/h0 >= 2)"
     x, y = np.array([p[0] for p in pts]), np.array([p[1] for p in pts])
@@ -98,6 +102,7 @@ def main() -> None:
     ap.add_argument("--ratios", default="0.5,1,2")
     ap.add_argument("--h", type=float, default=1e-3)
     ap.add_argument("--gradings", default="coarse,fine")
+    ap.add_argument("--friction", type=float, default=MF, help="the Tresca factor")
     ap.add_argument("--zones", default="none", help="edge zones in h0, comma separated "
                     "(none: the whole half width)")
     a = ap.parse_args()
@@ -106,17 +111,18 @@ def main() -> None:
     if a.out.exists():
         for line in a.out.read_text().splitlines():
             r = json.loads(line)
-            done.add((r["b0_over_h0"], r["h"], r["grading"], r.get("zone_h0")))
-    case, problem, st = case_r(0.05, a.h)
+            done.add((r["b0_over_h0"], r["h"], r["grading"], r.get("zone_h0"),
+                      r.get("friction", MF)))
+    case, problem, st = case_r(0.05, a.h, friction=a.friction)
     run = SteadyRun(problem, st, case.plate.length)
     assert run.run().status == "steady"
     two_d = {"run": run, "force": run.state.history[-1]["roll_force"]}
     for ratio in map(float, a.ratios.split(",")):
         for grading in a.gradings.split(","):
             for zone in zones:
-                if (ratio, a.h, grading, zone) in done:
+                if (ratio, a.h, grading, zone, a.friction) in done:
                     continue
-                row = one(ratio, a.h, grading, two_d, zone)
+                row = one(ratio, a.h, grading, two_d, zone, a.friction)
                 with a.out.open("a") as fh:
                     fh.write(json.dumps(row) + "\n")
                 print(f"b0/h0 {ratio:g} {grading} zone {zone}: spread "

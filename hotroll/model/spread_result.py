@@ -34,7 +34,8 @@ class SpreadResult:
       power of the 3D pass (torque x omega: an identity of any converged solution that checks
       the torque);
     - ``midplane``: the mid-width plane's deviations from the plane-strain pass (-: pressure
-      largest and RMS over the 2D pressure's, velocity over the roll speed);
+      largest and RMS over the 2D pressure's, the same of the arc's contact pressure, velocity
+      over the roll speed);
     - ``settled``, ``rounds``, ``newton_iterations``, ``dofs``, ``layers`` (width layers of the
       quarter), ``edge_layer`` (m), ``wall_time`` (s); ``zone_cut`` (m): where an edge zone's
       3D strip begins (0: the whole half width; the plane-strain pass's figures inside it);

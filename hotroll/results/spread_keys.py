@@ -40,6 +40,11 @@ class SpreadKeys:
     midplane_pressure_rms_deviation: float = _f(
         "-", "mid-width pressure deviation (RMS)", "the 3D pass's pressure on the mid-width "
         "plane against the plane-strain pass's, RMS over the 2D pressure's", group=_G, when=_W)
+    midplane_contact_pressure_rms_deviation: float = _f(
+        "-", "mid-width contact pressure deviation (RMS)", "the 3D pass's contact pressure "
+        "on the arc at mid-width against the plane-strain pass's, RMS over the 2D contact "
+        "pressure's (the bite only: how far the middle of the strip is from plane strain)",
+        group=_G, when=_W)
     spread_settled: bool = _f(None, "3D pass settled", "Newton converged and the lateral face "
                               "moved less than its tolerance", group=_G, when=_W)
     spread_rounds: int = _f(None, "3D rounds", "rounds of Newton and the lateral face's "

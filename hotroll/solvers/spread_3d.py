@@ -232,8 +232,10 @@ class Spread3D:
     def midplane_deviation(self) -> dict:
         """How far the mid-width plane (z = 0) is from the 2D pass: the largest difference of
         the pressure at its vertices over the 2D pass's largest |p|, its root mean square over
-        the 2D pressure's, and the largest difference of the velocity at its P2 nodes over the
-        roll speed (all 0 with the edge held; the plane-strain limit of a wide strip)."""
+        the 2D pressure's (the whole plane: ahead of the bite and after it too), the same two
+        of the contact pressure at the arc's vertices (the bite), and the largest difference
+        of the velocity at its P2 nodes over the roll speed (all 0 with the edge held; the
+        plane-strain limit of a wide strip)."""
         f2, f3 = self.run2d.form, self.form
         g2, g3 = f2.nonlinear.gf, f3.nonlinear.gf
         out = {}
@@ -246,6 +248,14 @@ class Spread3D:
         # sits where the pressure peaks at the contact's start)
         out["midplane_pressure_rms_deviation"] = float(np.sqrt(np.mean((mid - p2) ** 2))
                                                        / np.sqrt(np.mean(p2 ** 2)))
+        # the contact pressure on the arc at mid-width (level 0's arc vertices, numbered as
+        # the 2D mesh's) against the 2D pass's: what the roll feels, the bite only
+        verts = f2.multiplier_vertices()[0]
+        c2, c3 = f2.vertex_pressure()[verts], f3.vertex_pressure()[verts]
+        out["midplane_contact_pressure_deviation"] = float(np.abs(c3 - c2).max()
+                                                           / np.abs(c2).max())
+        out["midplane_contact_pressure_rms_deviation"] = float(
+            np.sqrt(np.mean((c3 - c2) ** 2)) / np.sqrt(np.mean(c2 ** 2)))
         V2 = g2.components[0]
         u2 = V2.vec.FV().NumPy()
         mid = np.zeros_like(u2)

@@ -65,6 +65,8 @@ def spread_record(s3) -> SpreadResult:
         flux_edge=4.0 * fig["flux_edge"],
         midplane={k: fig[k] for k in ("midplane_pressure_deviation",
                                       "midplane_pressure_rms_deviation",
+                                      "midplane_contact_pressure_deviation",
+                                      "midplane_contact_pressure_rms_deviation",
                                       "midplane_velocity_deviation")},
         power_balance_error=fig["power_balance_error"], settled=bool(fig["settled"]),
         rounds=int(fig["rounds"]), newton_iterations=int(fig["newton_iterations"]),

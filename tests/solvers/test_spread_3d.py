@@ -51,6 +51,7 @@ def test_the_held_edge_is_the_2d_pass(passes):
     assert held["midplane_velocity_deviation"] <= 1e-7
     assert held["midplane_pressure_deviation"] <= 1e-3
     assert 0.0 <= held["midplane_pressure_rms_deviation"] <= 1e-3
+    assert 0.0 <= held["midplane_contact_pressure_rms_deviation"] <= 1e-3
     assert "spread" not in held
 
 
@@ -209,7 +210,9 @@ def test_the_exit_width_is_the_outlet_faces_area_over_its_height(solved, passes)
 def test_the_mid_width_deviation_by_hand(solved):
     """[hand] the mid-width plane's deviation from the 2D pass: the 3D pressure and velocity
     set to (1 + c) times the 2D pass's in every layer give a pressure deviation c (largest
-    and root mean square) and a velocity deviation c max|u_2D| / U (over its coefficients)."""
+    and root mean square), the contact multiplier (1 + c) times the 2D one a contact pressure
+    deviation c (the same two), and a velocity deviation c max|u_2D| / U (over its
+    coefficients)."""
     run, held, _ = solved
     g2, g3 = run.form.nonlinear.gf, held.form.nonlinear.gf
     keep = g3.vec.FV().NumPy().copy()
@@ -218,7 +221,9 @@ def test_the_mid_width_deviation_by_hand(solved):
         held.copy.vector(g2.components[0], g3.components[0])
         P2, P3 = g2.components[1], g3.components[1]
         held.copy.copy(P2.space, P2.vec.FV().NumPy(), P3.space, P3.vec.FV().NumPy())
-        nv = g3.components[0].space.ndof + P3.space.ndof
+        L2, L3 = g2.components[2], g3.components[2]
+        held.copy.copy(L2.space, L2.vec.FV().NumPy(), L3.space, L3.vec.FV().NumPy())
+        nv = g3.components[0].space.ndof + P3.space.ndof + L3.space.ndof
         g3.vec.FV().NumPy()[:nv] *= 1.0 + c
         dev = held.midplane_deviation()
     finally:
@@ -227,6 +232,8 @@ def test_the_mid_width_deviation_by_hand(solved):
     peak = abs(g2.components[0].vec.FV().NumPy()).max()
     assert dev["midplane_pressure_deviation"] == pytest.approx(c, rel=1e-9)
     assert dev["midplane_pressure_rms_deviation"] == pytest.approx(c, rel=1e-9)
+    assert dev["midplane_contact_pressure_deviation"] == pytest.approx(c, rel=1e-9)
+    assert dev["midplane_contact_pressure_rms_deviation"] == pytest.approx(c, rel=1e-9)
     assert dev["midplane_velocity_deviation"] == pytest.approx(c * peak / run.problem.rp.u_roll,
                                                                rel=1e-9)
 
