@@ -202,3 +202,40 @@ def test_a_steady_mesh_made_again_is_an_independent_copy_of_the_same_mesh():
     faster = build_steady_mesh(RollPass(0.3, 0.004, 0.0032, omega=20.0, axis_x=0.0), 0.02,
                                0.02, spec, margin=0.004)      # the roll speed is not geometry
     assert np.array_equal(np.array([v.point for v in faster.vertices]), pa)
+
+
+@pytest.mark.parametrize("multiplier", [False, True])
+def test_the_residual_norm_weighs_the_pressure_rows_alone(multiplier):
+    """``pressure_range`` is the pressure's block of DOFs: after the velocity's, before a
+    contact multiplier's (NGSolve's product space numbers its factors in turn). The residual's
+    norm (``nonlinear._Workspace.norm``) weighs those rows alone by ``pressure_row_scale``:
+    with 1 on every velocity row, 2 on every pressure row, 5 on every multiplier row and a
+    weight of 3 it is sqrt(n_u + (3 x 2)^2 n_p + 5^2 n_l) (by hand; every DOF free here)."""
+    import ngsolve as ng
+    from netgen.geom2d import unit_square
+
+    from hotroll.fem.forms import NonlinearProblem
+    from hotroll.fem.nonlinear import _Workspace
+    from hotroll.fem.spaces import taylor_hood
+
+    mesh = ng.Mesh(unit_square.GenerateMesh(maxh=0.4))
+    fes = taylor_hood(mesh, dirichlety="", multiplier_on="top" if multiplier else None)
+
+    def integrand(u, p, w, v, q, *lam_xi):
+        form = ng.InnerProduct(u, v) * ng.dx + p * q * ng.dx
+        if lam_xi:
+            lam, xi = lam_xi
+            form += lam * xi * ng.ds("top")
+        return form
+
+    problem = NonlinearProblem(fes, integrand, pressure_row_scale=3.0)
+    n_u, n_p = fes.components[0].ndof, fes.components[1].ndof
+    n_l = fes.ndof - n_u - n_p
+    assert (n_l > 0) == multiplier and n_u == 2 * (mesh.nv + mesh.nedge) and n_p == mesh.nv
+    pr = problem.pressure_range()
+    assert (pr.start, pr.stop) == (n_u, n_u + n_p)
+    assert problem.free_mask.all()
+    ws = _Workspace(problem)
+    a = ws.r.FV().NumPy()
+    a[:n_u], a[n_u:n_u + n_p], a[n_u + n_p:] = 1.0, 2.0, 5.0
+    assert ws.norm(ws.r) == pytest.approx(math.sqrt(n_u + 36.0 * n_p + 25.0 * n_l), rel=1e-14)

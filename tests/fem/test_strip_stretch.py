@@ -60,3 +60,35 @@ def test_an_end_up_to_a_quarter_contact_length_past_the_gap_keeps_the_old_anchor
         assert m.exit_anchor(AXIS + d * lc) == m.x_b
     assert m.exit_anchor(AXIS + 0.4 * lc) == pytest.approx(AXIS + 0.8 * lc)
     assert m.exit_anchor(AXIS + 5.0 * lc) == m.x_b_max == pytest.approx(AXIS + 2.0 * lc)
+
+
+def test_the_arcs_last_vertex_follows_a_flattened_roll():
+    """[hand] the arc's chain of edges lies on the roll as it is now, its last vertex (the
+    reference gap, mapped to the contact's end) included; the exit top after it on its own
+    curve. A roll flattened uniformly by w0 after the shape was made (a roll coupling's update
+    maps the mesh again with the shape as it stood: solvers/couplings.RollFlattening): its
+    surface radius R - w0, its centre still the gap plus R above the axis, so its lowest point
+    (the end) is at the gap + w0, while the shape's exit top still starts at the gap."""
+    from dataclasses import replace
+
+    from hotroll.fem.free_surface import StripShape
+    from hotroll.model.geometry import RollShape
+
+    theta = np.linspace(-0.4, 0.4, 9)
+    rp = RollPass(R, H0, H1, omega=5.0, axis_x=AXIS, shape=RollShape(theta, np.zeros(9)))
+    m = object.__new__(StripMap)
+    m.rp, m.roll = replace(rp, shape=rp.shape.copy()), rp     # as StripMap.__init__
+    lc = rp.contact_length
+    m.set_anchors(rp.x_touch - 2.0 * lc, AXIS + 2.0 * lc)
+    X = np.array([rp.x_touch - 0.5 * lc, AXIS - 0.5 * lc, AXIS, AXIS + 0.25 * lc])
+    m.H_ref = np.array([H0, float(rp.height(AXIS - 0.5 * lc)), H1, H1])
+    m.P = np.stack([X, m.H_ref], axis=1)                # the top's nodes
+    shape = StripShape.flat(m.rp)
+    w0 = 1e-4
+    rp.shape.set(theta, np.full(9, -w0))
+    y = m.positions(shape)[:, 1]
+    assert float(rp.height(AXIS)) == pytest.approx(H1 + w0, abs=1e-15)
+    assert y[2] == pytest.approx(H1 + w0, abs=1e-15)               # the end, on the roll
+    assert y[1] == pytest.approx(float(rp.height(AXIS - 0.5 * lc)), abs=1e-15)
+    assert y[3] == pytest.approx(H1, abs=1e-15)                     # the free tops: the shape's
+    assert y[0] == pytest.approx(H0, abs=1e-15)
