@@ -36,6 +36,10 @@ class SpreadConfig(Section):
         None, "the edge-zone model of a wide strip: only this outer part of the half width in "
         "3D, plane strain on its cut and the plane-strain pass's figures inside it, at most "
         "pass.width / 2 (omit: the whole half width)", "m", "> 0")
+    strain: Literal["transported", "frozen"] = field(
+        "transported", "a strain-dependent flow stress's strain: carried through the 3D flow "
+        "(the edge's own hardening) or the plane-strain pass's in every width layer", "",
+        '"transported" or "frozen"')
     max_rounds: int = field(30, "the 3D pass's rounds of Newton and the lateral face's update",
                             "", "an integer in [1, 200]", ge=1, le=200)
 

@@ -19,7 +19,8 @@ class SpreadResult:
       (over the exit thickness), ``spread`` their difference;
     - ``exit_section``: ``y`` (m, from the mid-plane) and ``half_width`` (m) at the outlet;
     - ``exit_thickness``: ``z`` (m, from mid-width to the edge, one per width level) and the
-      strip's full ``thickness`` (m) at the outlet there;
+      strip's full ``thickness`` (m) at the outlet there; with the strain carried through the
+      3D flow also its ``strain`` (-, the mean over the thickness there);
     - ``width_along``: ``x`` (m) and the half width there at mid-thickness (``centre``) and on
       the strip's surface (``surface``), m;
     - ``contact_map``: the contact pressure (Pa) over the arc, ``pressure`` (width levels x

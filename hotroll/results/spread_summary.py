@@ -67,7 +67,8 @@ def unsettled(sp: SpreadResult, max_rounds: int) -> str | None:
 
 
 def write_spread_files(out: Path, sp: SpreadResult, shift: float, vtk: bool) -> None:
-    """exit_section.csv (y m, half width m), exit_thickness.csv (z m, thickness m),
+    """exit_section.csv (y m, half width m), exit_thickness.csv (z m, thickness m; strain -
+    where it is carried through the 3D flow),
     width_along.csv (x m, half width at mid-thickness
     and on the surface, m), contact_map.npz (x, angle rad, z m, pressure Pa) and, with ``vtk``,
     fields_3d.vtu; x where the case puts the roll axis (``shift``)."""

@@ -6,11 +6,12 @@ across the stock's half width b0 (``fem/extruded_mesh.py``), its form the 2D one
 stream surfaces of the 3D flow: the lateral face z = B(x, y) (``fem/lateral_face.py``) and the
 top, traced per width level with the contact's start x_c(z) (``solvers/spread_tops.py``; with
 ``tops=False`` the 2D pass's in every level). The contact's end, the friction parameter, the
-tensions and the strain and temperature a flow stress takes (``solvers/spread_fields.py``:
-frozen across the width) stay as the 2D pass left them. Newton on the current shape and the
-surfaces' update alternate until they settle (their largest move below ``surface_tol`` h, the
-2D pass's tolerance of its traced tops). With ``edge_held`` the face is held (u_z = 0): plane
-strain, the 2D answer.
+tensions and the temperature a flow stress takes (``solvers/spread_fields.py``: frozen across
+the width) stay as the 2D pass left them; a strain-dependent flow stress's strain is carried
+through the 3D flow (``strain_3d``). Newton on the current shape, the surfaces' update and the
+strain's transport alternate until they settle (the surfaces' largest move below
+``surface_tol`` h, the 2D pass's tolerance of its traced tops; the strain's change below its
+``strain_rtol``). With ``edge_held`` the face is held (u_z = 0): plane strain, the 2D answer.
 """
 from __future__ import annotations
 
@@ -26,8 +27,12 @@ from hotroll.fem.penalties import PenaltyTable
 from hotroll.fem.reproducible import integrate
 from hotroll.fem.rolling_form_3d import RollingForm3D
 from hotroll.model.material import NortonHoff
-from hotroll.solvers.spread_fields import frozen_flow_stress
+from hotroll.solvers.spread_fields import frozen_flow_stress, strain_3d
 from hotroll.solvers.spread_tops import LevelTops
+
+#: how the 3D strip takes the strain of a strain-dependent flow stress: carried through its
+#: own flow (the edge's hardening) or the 2D pass's in every layer
+STRAIN_MODES = ("transported", "frozen")
 
 
 class Spread3D:
@@ -38,11 +43,13 @@ class Spread3D:
     width, plane strain (u_z = 0, as on the mid-width plane) on the cut at half_width - zone
     and the 2D pass's figures per width inside it (None: the whole half width).
     ``linear_solver``: Newton's first linear solver (``fem/forms.LINEAR_SOLVERS``; the others
-    after it where it fails)."""
+    after it where it fails). ``strain``: a strain-dependent flow stress's strain carried
+    through the 3D flow ("transported", with a free edge) or the 2D pass's ("frozen")."""
 
     def __init__(self, run, half_width: float, edge: float | None = None, growth: float = 1.2,
                  largest: float | None = None, edge_held: bool = False, tops: bool = True,
-                 zone: float | None = None, linear_solver: str = "umfpack"):
+                 zone: float | None = None, linear_solver: str = "umfpack",
+                 strain: str = "transported"):
         import ngsolve as ng
 
         t0 = time.perf_counter()
@@ -50,6 +57,8 @@ class Spread3D:
             raise ValueError(f"half_width = {half_width!r} m: must be > 0")
         if linear_solver not in LINEAR_SOLVERS:
             raise ValueError(f"linear_solver = {linear_solver!r}: one of {LINEAR_SOLVERS}")
+        if strain not in STRAIN_MODES:
+            raise ValueError(f"strain = {strain!r}: one of {STRAIN_MODES}")
         problem, f2 = run.problem, run.form
         missing = [what for what, on in (
             ("a flattening roll (roll.model)", problem.rp.shape is not None),
@@ -69,10 +78,15 @@ class Spread3D:
                                                       4.0 * edge if largest is None else largest)
         self.z[-1] = half_width
         ref2 = ng.Mesh(run.mesh.ngmesh.Copy())          # the 2D reference (undeformed)
+        self._ref_x = np.array([v.point[0] for v in ref2.vertices])
         self.mesh = extrude(ref2, self.z)
         mat = problem.material
         copy = self.copy = LayerCopy(ref2, self.mesh)
-        consistency, rate_offset = frozen_flow_stress(run, copy)
+        # the strain: carried through the 3D flow with a free edge; with the edge held the
+        # strip is in plane strain and the 2D pass's is its answer
+        self.strain = (strain_3d(run, copy, self.mesh)
+                       if strain == "transported" and not edge_held else None)
+        consistency, rate_offset = frozen_flow_stress(run, copy, self.strain)
         self.form = RollingForm3D(self.mesh, problem.rp, NortonHoff(1.0, mat.m, mat.eps0),
                                   problem.friction, PenaltyTable(h),
                                   tensions=problem.reduced_tensions, edge_held=edge_held,
@@ -126,13 +140,19 @@ class Spread3D:
                 change = max(change, self.face.update(self.form.nonlinear.velocity))
                 self.face.displace(self.disp)
                 self.mesh.SetDeformation(self.disp)
+                # the strain along the new flow on the new shape (its change over the largest)
+                strained = (0.0 if self.strain is None
+                            else self.strain.transport(self.form.nonlinear.velocity))
                 if progress is not None:
                     progress({"stage": "spread", "spread_round": self.rounds, "message": (
                         f"3D pass round {self.rounds} ({self.form.fes.ndof} unknowns): Newton "
                         f"{'converged' if st.converged else 'NOT converged'} after "
                         f"{st.iterations} iterations, the free surfaces moved "
-                        f"{change / self.problem.h:.3g} h (tolerance {s.surface_tol:g} h)")})
-                if st.converged and change <= tol_face:
+                        f"{change / self.problem.h:.3g} h (tolerance {s.surface_tol:g} h)"
+                        + ("" if self.strain is None else
+                           f", the strain changed {strained:.3g} (tolerance "
+                           f"{s.strain_rtol:g})"))})
+                if st.converged and change <= tol_face and strained <= s.strain_rtol:
                     self.settled = True
                     break
         except LinearSolveError as e:         # the pass's record says why (settled False)
@@ -229,6 +249,12 @@ class Spread3D:
                 "tension_power": tension, "contact_power": contact, "power_balance_error":
                     abs(roll + tension - plastic - friction - contact) / max(abs(roll), 1e-300)}
 
+    def _arc_x(self, disp, verts) -> np.ndarray:
+        """The deformed x (m) of the 2D mesh's vertices ``verts`` (in 3D: level 0's, the first
+        nv vertices) under the displacement GridFunction ``disp`` (its x component's DOFs
+        first, a vertex's DOF its number)."""
+        return self._ref_x[verts] + disp.vec.FV().NumPy()[verts]
+
     def midplane_deviation(self) -> dict:
         """How far the mid-width plane (z = 0) is from the 2D pass: the largest difference of
         the pressure at its vertices over the 2D pass's largest |p|, its root mean square over
@@ -249,9 +275,16 @@ class Spread3D:
         out["midplane_pressure_rms_deviation"] = float(np.sqrt(np.mean((mid - p2) ** 2))
                                                        / np.sqrt(np.mean(p2 ** 2)))
         # the contact pressure on the arc at mid-width (level 0's arc vertices, numbered as
-        # the 2D mesh's) against the 2D pass's: what the roll feels, the bite only
+        # the 2D mesh's) against the 2D pass's at the same x: what the roll feels, the bite
+        # only. The level's own contact start moves its vertices along the arc (the top per
+        # level), so the 3D pressure is read at the 2D vertices' x (linear between its own;
+        # 0 where the 3D contact has not begun or has ended)
         verts = f2.multiplier_vertices()[0]
-        c2, c3 = f2.vertex_pressure()[verts], f3.vertex_pressure()[verts]
+        x2 = self._arc_x(self.run2d.disp, verts)
+        x3 = self._arc_x(self.disp, verts)
+        order = np.argsort(x3)
+        c2 = f2.vertex_pressure()[verts]
+        c3 = np.interp(x2, x3[order], f3.vertex_pressure()[verts][order], left=0.0, right=0.0)
         out["midplane_contact_pressure_deviation"] = float(np.abs(c3 - c2).max()
                                                            / np.abs(c2).max())
         out["midplane_contact_pressure_rms_deviation"] = float(

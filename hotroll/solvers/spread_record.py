@@ -41,6 +41,18 @@ def spread_record(s3) -> SpreadResult:
     top_out = np.nonzero(out)[0][np.argmax(P[out, 1])]
     rows = np.arange(levels) * nv + top_out
     section_z = {"z": X3[rows, 2], "thickness": 2.0 * X3[rows, 1]}
+    if s3.strain is not None:
+        # the strain carried through the 3D strip: each level's outlet, its mean over the
+        # thickness (the P1 values' trapezoids over the outlet's deformed heights)
+        outs = np.nonzero(out)[0]
+        outs = outs[np.argsort(P[outs, 1])]
+        eps = s3.strain.values
+        mean = []
+        for k in range(levels):
+            idx = k * nv + outs
+            y, e = X3[idx, 1], eps[idx]
+            mean.append(float(np.sum(0.5 * (e[1:] + e[:-1]) * np.diff(y)) / (y[-1] - y[0])))
+        section_z["strain"] = np.array(mean)
     # the half width along x at mid-thickness (the sym line) and on the strip's surface (B's
     # vertex values at the edge level's x, the surface's interpolated to the sym line's x)
     B = s3.face.B.vec.FV().NumPy()[:nv]
@@ -86,7 +98,8 @@ def _boundary_vertices(mesh, names) -> np.ndarray:
 
 def write_vtk_3d(s3, path: Path, shift: float = 0.0) -> Path:
     """ParaView file (.vtu) of the 3D quarter strip: velocity (m/s), pressure (Pa), equivalent
-    strain rate (1/s) on the deformed mesh, moved by ``shift`` in x."""
+    strain rate (1/s) and, where it is carried through the 3D flow, the strain (-) on the
+    deformed mesh, moved by ``shift`` in x."""
     import ngsolve
 
     from hotroll.fem.forms import strain_rate
@@ -100,9 +113,12 @@ def write_vtk_3d(s3, path: Path, shift: float = 0.0) -> Path:
     try:
         s3.mesh.SetDeformation(s3.disp)
         edot = ngsolve.sqrt(edot_squared(strain_rate(u)) + 1e-300)
+        coefs, names = [u, K * f.nonlinear.pressure, edot], ["velocity", "pressure", "edot"]
+        if s3.strain is not None:
+            coefs.append(s3.strain.gf)
+            names.append("strain")
         with atomic(Path(path).with_suffix(".vtu")) as tmp:     # NGSolve appends .vtu
-            ngsolve.VTKOutput(s3.mesh, coefs=[u, K * f.nonlinear.pressure, edot],
-                              names=["velocity", "pressure", "edot"],
+            ngsolve.VTKOutput(s3.mesh, coefs=coefs, names=names,
                               filename=str(tmp.with_suffix("")), subdivision=0).Do()
     finally:
         d[:nv] -= shift

@@ -16,6 +16,7 @@ def solve_spread(case: Case, run, progress=None) -> SpreadResult:
     half = 0.5 * case.pass_.width
     edge, growth, largest = case.spread.layers(half, case.mesh.h)
     s3 = Spread3D(run, half, edge=edge, growth=growth, largest=largest,
-                  zone=case.spread.edge_zone and case.spread.modelled(half))
+                  zone=case.spread.edge_zone and case.spread.modelled(half),
+                  strain=case.spread.strain)
     s3.solve(max_rounds=case.spread.max_rounds, progress=progress)
     return spread_record(s3)

@@ -21,6 +21,8 @@ def test_a_spread_case_loads_and_resolves_its_layers():
     the largest 4 of them."""
     case = load_case(BASE, STEADY)
     assert case.spread is not None and case.spread.max_rounds == 30
+    assert case.spread.strain == "transported"
+    assert load_case(BASE, {**STEADY, "spread.strain": "frozen"}).spread.strain == "frozen"
     assert case.spread.layers(0.005, 1e-3) == (1e-3, 1.2, 4e-3)
     assert case.spread.layers(0.0004, 1e-3) == pytest.approx((4e-4, 1.2, 1.6e-3))
     given = load_case(BASE, {**STEADY, "spread.edge_layer": "2 mm", "spread.largest_layer": 0.003})
@@ -55,6 +57,7 @@ def test_a_transient_case_is_refused_once_for_its_method():
     ({"spread.edge_layer": 0.002, "spread.largest_layer": 0.001},
      "spread.largest_layer: must be >= spread.edge_layer"),
     ({"spread.growth": 0.9}, "spread.growth: must be in \\[1, 2\\]"),
+    ({"spread.strain": "carried"}, 'spread.strain: .*"transported" or "frozen"'),
     ({"pass.speed_ratio": 1.1}, "pass: \\[spread\\] needs a symmetric pass"),
     ({"roll.model": "hitchcock"}, 'roll.model: \\[spread\\] needs "rigid"'),
     ({"pass.roll_gap": 0.0079, "pass.mill_modulus": 5e9, "pass.exit_thickness": None},

@@ -244,3 +244,25 @@ def test_a_scalar_field_is_the_same_in_every_layer_h1_and_per_element():
                 assert g3(m3(px, py, pz)) == pytest.approx(g(m2(px, py)), rel=1e-12)
     with pytest.raises(ValueError, match="H1 of order 3"):
         copy.scalar(ng.GridFunction(fe_space(ng.H1, m2, order=3)))
+
+
+def test_the_strain_transport_is_exact_on_the_prisms_for_a_strain_linear_in_x():
+    """[analytic] the strain's steady transport (fem/strain.py, SUPG P1) on the extruded
+    prisms: the flow u = (U, -a y, a z) (divergence free, its strain rate diag(0, -a, a),
+    edot = 2a/sqrt(3) everywhere) carries eps = eps0 + edot (x - x_in) / U, which P1 holds
+    and SUPG is consistent with, so the discrete strain is that to rounding (the inlet
+    "left" at x_in = 0, eps0 = 0.1)."""
+    import ngsolve as ng
+
+    from hotroll.fem.strain import StrainField
+
+    mesh = box(6, 3, width_axis(0.5, 0.1))
+    U, a, eps0 = 2.0, 0.3, 0.1
+    field = StrainField(mesh, eps0, inlet="left")
+    u = ng.GridFunction(ng.VectorH1(mesh, order=1))        # linear: held exactly
+    u.Set(ng.CF((U, -a * ng.y, a * ng.z)))
+    change = field.transport(u)
+    assert change > 0.0
+    X = np.array([v.point for v in mesh.vertices])
+    exact = eps0 + 2.0 * a / math.sqrt(3.0) * X[:, 0] / U
+    assert np.max(np.abs(field.values - exact)) <= 1e-12

@@ -158,3 +158,24 @@ def test_the_html_page_shows_the_width_and_spread(ran):
     html = write_report(out).read_text()
     assert "Width and spread" in html and "edge_layer" in html
     assert f"{1e3 * s['spread']:.4g}" in html
+
+
+@pytest.mark.parametrize("mode", ["transported", "frozen"])
+def test_the_cases_strain_mode_reaches_the_3d_pass(monkeypatch, mode):
+    """[plumb] ``spread.strain`` is the 3D pass's ``strain`` (the pass itself faked)."""
+    from hotroll.workflows import spread
+
+    seen = {}
+
+    class Stop(Exception):
+        pass
+
+    def fake(run, half, **kw):
+        seen.update(kw, half=half)
+        raise Stop
+
+    monkeypatch.setattr(spread, "Spread3D", fake)
+    case = load_case("hotroll/examples/cases/example1.toml", {**CASE, "spread.strain": mode})
+    with pytest.raises(Stop):
+        spread.solve_spread(case, run=None)
+    assert seen["strain"] == mode and seen["half"] == pytest.approx(0.005)
