@@ -24,9 +24,10 @@ class SpreadResult:
     - ``width_along``: ``x`` (m) and the half width there at mid-thickness (``centre``) and on
       the strip's surface (``surface``), m;
     - ``contact_map``: the contact pressure (Pa) over the arc, ``pressure`` (width levels x
-      arc vertices, from entry to exit), at ``x`` (m), ``angle`` (rad from the roll's vertical
-      centre line) and ``z`` (m, across the width), each of the same shape (the contact's
-      start differs from level to level);
+      arc vertices, from entry to exit: the multiplier's nodal forces over their areas, its
+      own nodal values in ``pressure_multiplier``), at ``x`` (m), ``angle`` (rad from the
+      roll's vertical centre line) and ``z`` (m, across the width), each of the same shape
+      (the contact's start differs from level to level);
     - ``roll_force``, ``roll_torque`` (N, N m): one roll over the whole width; ``roll_power``
       (W) torque times the roll's angular velocity;
     - ``flux_in``, ``flux_out``, ``flux_edge`` (m^3/s of the whole strip) through the entry,

@@ -70,7 +70,8 @@ def write_spread_files(out: Path, sp: SpreadResult, shift: float, vtk: bool) -> 
     """exit_section.csv (y m, half width m), exit_thickness.csv (z m, thickness m; strain -
     where it is carried through the 3D flow),
     width_along.csv (x m, half width at mid-thickness
-    and on the surface, m), contact_map.npz (x, angle rad, z m, pressure Pa) and, with ``vtk``,
+    and on the surface, m), contact_map.npz (x, angle rad, z m, pressure and pressure_multiplier
+    Pa) and, with ``vtk``,
     fields_3d.vtu; x where the case puts the roll axis (``shift``)."""
     write_csv(out / "exit_section.csv", dict(sp.exit_section))
     write_csv(out / "exit_thickness.csv", dict(sp.exit_thickness))

@@ -27,6 +27,7 @@ from hotroll.fem.penalties import PenaltyTable
 from hotroll.fem.reproducible import integrate
 from hotroll.fem.rolling_form_3d import RollingForm3D
 from hotroll.model.material import NortonHoff
+from hotroll.solvers.spread_ends import LevelEnds
 from hotroll.solvers.spread_fields import frozen_flow_stress, strain_3d
 from hotroll.solvers.spread_tops import LevelTops
 
@@ -42,6 +43,8 @@ class Spread3D:
     ``zone`` (m): the edge-zone model of a wide strip, only the outer ``zone`` of the half
     width, plane strain (u_z = 0, as on the mid-width plane) on the cut at half_width - zone
     and the 2D pass's figures per width inside it (None: the whole half width).
+    ``ends``: with unilateral contact, each width level's contact end found from its own
+    pressure (``solvers/spread_ends.py``; False: the 2D pass's end in every level).
     ``linear_solver``: Newton's first linear solver (``fem/forms.LINEAR_SOLVERS``; the others
     after it where it fails). ``strain``: a strain-dependent flow stress's strain carried
     through the 3D flow ("transported", with a free edge) or the 2D pass's ("frozen")."""
@@ -49,7 +52,7 @@ class Spread3D:
     def __init__(self, run, half_width: float, edge: float | None = None, growth: float = 1.2,
                  largest: float | None = None, edge_held: bool = False, tops: bool = True,
                  zone: float | None = None, linear_solver: str = "umfpack",
-                 strain: str = "transported"):
+                 strain: str = "transported", ends: bool = True):
         import ngsolve as ng
 
         t0 = time.perf_counter()
@@ -114,6 +117,9 @@ class Spread3D:
         self.edge_held = edge_held
         #: the top per width level (solvers/spread_tops.py), or None: the 2D pass's
         self.tops = LevelTops(self) if tops and not edge_held else None
+        #: the contact's end per width level (solvers/spread_ends.py), or None: the 2D pass's
+        self.ends = (LevelEnds(self, self.tops) if ends and self.tops is not None
+                     and run.unilateral else None)
         self.rounds, self.iterations, self.settled, self.failure = 0, 0, False, ""
         self.setup_time, self.solve_time = time.perf_counter() - t0, 0.0
 
@@ -132,7 +138,9 @@ class Spread3D:
                 if self.face is None:
                     self.settled = st.converged
                     break
-                change = 0.0
+                change, ended = 0.0, 0.0
+                if self.ends is not None:     # each level's contact end, then its tops
+                    ended = self.ends.update()
                 if self.tops is not None:     # the tops first: the face is solved on them
                     change = self.tops.update()
                     self.tops.displace(self.disp)
@@ -149,10 +157,14 @@ class Spread3D:
                         f"{'converged' if st.converged else 'NOT converged'} after "
                         f"{st.iterations} iterations, the free surfaces moved "
                         f"{change / self.problem.h:.3g} h (tolerance {s.surface_tol:g} h)"
+                        + ("" if self.ends is None else
+                           f", the contact's ends moved {ended / self.problem.h:.3g} h "
+                           f"(tolerance {self.ends.tol / self.problem.h:.3g} h)")
                         + ("" if self.strain is None else
                            f", the strain changed {strained:.3g} (tolerance "
                            f"{s.strain_rtol:g})"))})
-                if st.converged and change <= tol_face and strained <= s.strain_rtol:
+                if (st.converged and change <= tol_face and strained <= s.strain_rtol
+                        and (self.ends is None or ended <= self.ends.tol)):
                     self.settled = True
                     break
         except LinearSolveError as e:         # the pass's record says why (settled False)
@@ -249,6 +261,15 @@ class Spread3D:
                 "tension_power": tension, "contact_power": contact, "power_balance_error":
                     abs(roll + tension - plastic - friction - contact) / max(abs(roll), 1e-300)}
 
+    def arc_ends(self) -> tuple[np.ndarray, np.ndarray]:
+        """The contact's two end vertices (the 2D chain's first and last along x): the 2D
+        mesh's numbers, and the 3D mesh's in every width level."""
+        verts = self.run2d.form.multiplier_vertices()[0]
+        verts = verts[np.argsort(self._ref_x[verts])]
+        ends2 = np.array([verts[0], verts[-1]])
+        nv = self.run2d.mesh.nv
+        return ends2, (np.arange(len(self.z))[:, None] * nv + ends2[None, :]).ravel()
+
     def _arc_x(self, disp, verts) -> np.ndarray:
         """The deformed x (m) of the 2D mesh's vertices ``verts`` (in 3D: level 0's, the first
         nv vertices) under the displacement GridFunction ``disp`` (its x component's DOFs
@@ -275,16 +296,19 @@ class Spread3D:
         out["midplane_pressure_rms_deviation"] = float(np.sqrt(np.mean((mid - p2) ** 2))
                                                        / np.sqrt(np.mean(p2 ** 2)))
         # the contact pressure on the arc at mid-width (level 0's arc vertices, numbered as
-        # the 2D mesh's) against the 2D pass's at the same x: what the roll feels, the bite
-        # only. The level's own contact start moves its vertices along the arc (the top per
-        # level), so the 3D pressure is read at the 2D vertices' x (linear between its own;
-        # 0 where the 3D contact has not begun or has ended)
+        # the 2D mesh's; the nodal forces over their areas, RollingForm.vertex_traction)
+        # against the 2D pass's at the same x: what the roll feels, the bite only. The
+        # level's own contact start and end move its vertices along the arc, so the 3D
+        # pressure is read at the 2D vertices' x (linear between its own; 0 where the 3D
+        # contact has not begun or has ended)
         verts = f2.multiplier_vertices()[0]
         x2 = self._arc_x(self.run2d.disp, verts)
         x3 = self._arc_x(self.disp, verts)
         order = np.argsort(x3)
-        c2 = f2.vertex_pressure()[verts]
-        c3 = np.interp(x2, x3[order], f3.vertex_pressure()[verts][order], left=0.0, right=0.0)
+        ends2, ends3 = self.arc_ends()
+        c2 = f2.vertex_traction(ends2)[verts]
+        c3 = np.interp(x2, x3[order], f3.vertex_traction(ends3)[verts][order], left=0.0,
+                       right=0.0)
         out["midplane_contact_pressure_deviation"] = float(np.abs(c3 - c2).max()
                                                            / np.abs(c2).max())
         out["midplane_contact_pressure_rms_deviation"] = float(

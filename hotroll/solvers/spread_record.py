@@ -63,10 +63,13 @@ def spread_record(s3) -> SpreadResult:
     # the contact pressure at the arc's vertices in every level (x, angle, z of each)
     verts2 = run.form.multiplier_vertices()[0]
     verts2 = verts2[np.argsort(P[verts2, 0])]
-    p3 = K * s3.form.vertex_pressure()
+    # (the nodal forces over their areas, the multiplier's own values beside them:
+    # RollingForm.vertex_traction, as the 2D pass's contact.csv)
+    p3 = K * s3.form.vertex_traction(s3.arc_ends()[1])
     idx3 = np.arange(levels)[:, None] * nv + verts2[None, :]
     cmap = {"x": X3[idx3, 0], "angle": rp.angle(X3[idx3, :2]), "z": X3[idx3, 2],
-            "pressure": p3[idx3]}
+            "pressure": p3[idx3],
+            "pressure_multiplier": K * s3.form.vertex_pressure()[idx3]}
     omega = rp.omega
     return SpreadResult(
         stock_width=2.0 * fig["stock_half_width"], exit_width=2.0 * fig["exit_half_width"],

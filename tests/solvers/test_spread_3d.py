@@ -274,6 +274,11 @@ def test_the_mid_width_deviation_by_hand(solved):
         nv = g3.components[0].space.ndof + P3.space.ndof + L3.space.ndof
         g3.vec.FV().NumPy()[:nv] *= 1.0 + c
         dev = held.midplane_deviation()
+        ends2, ends3 = held.arc_ends()
+        verts = run.form.multiplier_vertices()[0]
+        traction2 = run.form.vertex_traction(ends2)[verts]
+        rows = np.arange(len(held.z))[:, None] * run.mesh.nv + verts[None, :]
+        traction3 = held.form.vertex_traction(ends3)[rows]
     finally:
         g3.vec.FV().NumPy()[:] = keep
     # the velocity's: its largest coefficient (vertex values and edge bubbles) times c
@@ -282,8 +287,57 @@ def test_the_mid_width_deviation_by_hand(solved):
     assert dev["midplane_pressure_rms_deviation"] == pytest.approx(c, rel=1e-9)
     assert dev["midplane_contact_pressure_deviation"] == pytest.approx(c, rel=1e-9)
     assert dev["midplane_contact_pressure_rms_deviation"] == pytest.approx(c, rel=1e-9)
+    # [identity] the nodal forces over their areas in every level are the 2D pass's nodal
+    # forces over their lengths (the face integrals the line integrals times the layer's):
+    # the multiplier scaled by 1 + c, the traction too
+    assert traction3.shape == (len(held.z), len(traction2))
+    assert np.max(np.abs(traction3 - (1.0 + c) * traction2)) <= 1e-10 * np.abs(traction2).max()
     assert dev["midplane_velocity_deviation"] == pytest.approx(c * peak / run.problem.rp.u_roll,
                                                                rel=1e-9)
+
+
+def test_each_width_level_leaves_the_roll_where_its_pressure_falls_to_zero(solved):
+    """[identity] unilateral contact per width level (solvers/spread_ends.py): at every level
+    p_end >= 0, the end before the gap or at it, and p_end = 0 unless it is at the gap (to 1 %
+    of the peak: the ends settle to 1e-3 h); no tension anywhere on the arc (the nodal forces
+    over their areas). [measured] With the 2D pass's end in every level the strip is held to
+    the roll at the middle level: its end vertex pulls with 13 % of the peak pressure."""
+    run, _, free = solved
+    assert free.ends is not None and run.unilateral
+    nv, rp = run.mesh.nv, run.problem.rp
+    ends2, ends3 = free.arc_ends()
+    traction = free.form.vertex_traction(ends3)
+    p_end = free.form.vertex_pressure()[np.arange(len(free.z)) * nv + ends2[1]]
+    peak = traction.max()
+    gap = run.end_bounds()[1]
+    x_e = free.ends.ends()
+    assert np.all(x_e <= gap + 1e-12) and np.all(p_end >= -0.01 * peak)
+    assert np.all((np.abs(p_end) <= 0.01 * peak) | (x_e >= gap - 1e-9))
+    assert traction.min() >= -0.01 * peak
+    assert rp.axis_x - x_e.min() > 0.0            # one level leaves before the gap
+    held_end = Spread3D(run, B0, edge=0.5 * B0, ends=False)
+    assert held_end.solve() and held_end.ends is None
+    p_held = held_end.form.vertex_pressure()[np.arange(len(held_end.z)) * nv + ends2[1]]
+    assert p_held.min() < -0.05 * peak
+
+
+def test_a_uniform_multiplier_is_its_own_traction(solved):
+    """[hand] a uniform contact multiplier lambda = 1: the nodal forces over their areas are
+    1 at every arc vertex of every level (the arc's hats sum to 1), the multiplier's own values
+    at the ends; off the arc 0."""
+    _, held, _ = solved
+    f = held.form
+    lam = f.multiplier.vec.FV().NumPy()
+    keep = lam.copy()
+    try:
+        lam[:] = 1.0 / f.lam_scale
+        out = f.vertex_traction(held.arc_ends()[1])
+    finally:
+        lam[:] = keep
+    verts = f.multiplier_vertices()[0]
+    assert np.max(np.abs(out[verts] - 1.0)) <= 1e-12
+    off = np.setdiff1d(np.arange(held.mesh.nv), verts)
+    assert np.all(out[off] == 0.0)
 
 
 def test_the_top_traced_per_level_leaks_what_the_2d_pass_leaks():
