@@ -8,10 +8,13 @@ towards mid-width. What it does not carry yet is refused here, by name, before a
 """
 from __future__ import annotations
 
-from typing import Literal
+from typing import Any, Literal
+
+from pydantic import field_validator
 
 from hotroll.config.base import PosFloat, Section, field
 from hotroll.config.roll_sides import UPPER
+from hotroll.config.sections import check_profile
 
 #: b0/h0 the 3D pass takes: below, a bar narrower than a quarter of its thickness (an edger's
 #: pass, not flat rolling); above, a plate whose quarter needs more width layers than a laptop
@@ -40,8 +43,19 @@ class SpreadConfig(Section):
         "transported", "a strain-dependent flow stress's strain: carried through the 3D flow "
         "(the edge's own hardening) or the plane-strain pass's in every width layer", "",
         '"transported" or "frozen"')
+    temperature_profile: list[tuple[float, float]] | None = field(
+        None, "entry temperature across the half width, [[zeta, T], ...] with zeta = z / "
+        "half width from 0 (mid-width) to 1 (the edge), linear between, its mid-width value "
+        "plate.temperature: the edges' cooling before the pass, carried through the bite "
+        "(omit: the plane-strain pass's temperature at every width)", "K",
+        "pairs with zeta increasing strictly from 0 to 1 and T > 0", columns=("", "K"))
     max_rounds: int = field(30, "the 3D pass's rounds of Newton and the lateral face's update",
                             "", "an integer in [1, 200]", ge=1, le=200)
+
+    @field_validator("temperature_profile")
+    @classmethod
+    def _profile(cls, v: Any) -> Any:
+        return check_profile("temperature_profile", v)
 
     def modelled(self, half_width: float) -> float:
         """The width the 3D strip models from its edge (m): the edge zone or the half width."""
@@ -107,6 +121,14 @@ def problems(case) -> list[str]:
     if case.plate.free_surface != "traced":
         out.append('plate.free_surface: [spread] needs "traced" (the 3D strip\'s free '
                    'surfaces are stream surfaces)')
+    if s.temperature_profile is not None:
+        mid, t_plate = s.temperature_profile[0][1], case.plate.temperature
+        if abs(mid - t_plate) > 1e-9 * t_plate:
+            out.append(f"spread.temperature_profile: its mid-width value (zeta = 0) is the "
+                       f"plane-strain pass's, plate.temperature = {t_plate:g} K, got {mid:g} K")
+        if case.material.law == "norton-hoff":
+            out.append('spread.temperature_profile: the flow stress law "norton-hoff" does '
+                       "not depend on the temperature (a grade's law does)")
     if case.solver.method == "steady" and case.contact.resolved("steady") != "multiplier":
         out.append('contact.method: [spread] needs the exact contact ("auto" or '
                    f'"multiplier"), got "{case.contact.method}" (the penalty)')

@@ -26,9 +26,10 @@ from hotroll.fem.nonlinear import LinearSolveError, newton
 from hotroll.fem.penalties import PenaltyTable
 from hotroll.fem.reproducible import integrate
 from hotroll.fem.rolling_form_3d import RollingForm3D
+from hotroll.fem.strain import CarriedField
 from hotroll.model.material import NortonHoff
 from hotroll.solvers.spread_ends import LevelEnds
-from hotroll.solvers.spread_fields import frozen_flow_stress, strain_3d
+from hotroll.solvers.spread_fields import cooled_flow_stress, frozen_flow_stress, strain_3d
 from hotroll.solvers.spread_tops import LevelTops
 
 #: how the 3D strip takes the strain of a strain-dependent flow stress: carried through its
@@ -43,6 +44,9 @@ class Spread3D:
     ``zone`` (m): the edge-zone model of a wide strip, only the outer ``zone`` of the half
     width, plane strain (u_z = 0, as on the mid-width plane) on the cut at half_width - zone
     and the 2D pass's figures per width inside it (None: the whole half width).
+    ``entry_temperature``: the entry temperature across the width (K, a function of z / half
+    width, its value at 0 the 2D pass's), its differences from mid-width's carried through the
+    bite into the flow stress (None: the 2D pass's temperature at every width).
     ``ends``: with unilateral contact, each width level's contact end found from its own
     pressure (``solvers/spread_ends.py``; False: the 2D pass's end in every level).
     ``linear_solver``: Newton's first linear solver (``fem/forms.LINEAR_SOLVERS``; the others
@@ -52,7 +56,7 @@ class Spread3D:
     def __init__(self, run, half_width: float, edge: float | None = None, growth: float = 1.2,
                  largest: float | None = None, edge_held: bool = False, tops: bool = True,
                  zone: float | None = None, linear_solver: str = "umfpack",
-                 strain: str = "transported", ends: bool = True):
+                 strain: str = "transported", ends: bool = True, entry_temperature=None):
         import ngsolve as ng
 
         t0 = time.perf_counter()
@@ -89,7 +93,16 @@ class Spread3D:
         # strip is in plane strain and the 2D pass's is its answer
         self.strain = (strain_3d(run, copy, self.mesh)
                        if strain == "transported" and not edge_held else None)
-        consistency, rate_offset = frozen_flow_stress(run, copy, self.strain)
+        #: the entry temperature's difference across the width from mid-width's, carried
+        #: through the bite (fem/strain.CarriedField), or None
+        self.cooling = None
+        if entry_temperature is None:
+            consistency, rate_offset = frozen_flow_stress(run, copy, self.strain)
+        else:
+            mid = float(entry_temperature(0.0))
+            self.cooling = CarriedField(
+                self.mesh, lambda x, y, z: entry_temperature(z / half_width) - mid)
+            consistency, rate_offset = cooled_flow_stress(run, copy, self.cooling, self.strain)
         self.form = RollingForm3D(self.mesh, problem.rp, NortonHoff(1.0, mat.m, mat.eps0),
                                   problem.friction, PenaltyTable(h),
                                   tensions=problem.reduced_tensions, edge_held=edge_held,
@@ -149,8 +162,9 @@ class Spread3D:
                 self.face.displace(self.disp)
                 self.mesh.SetDeformation(self.disp)
                 # the strain along the new flow on the new shape (its change over the largest)
-                strained = (0.0 if self.strain is None
-                            else self.strain.transport(self.form.nonlinear.velocity))
+                strained = max(0.0 if field is None
+                               else field.transport(self.form.nonlinear.velocity)
+                               for field in (self.strain, self.cooling))
                 if progress is not None:
                     progress({"stage": "spread", "spread_round": self.rounds, "message": (
                         f"3D pass round {self.rounds} ({self.form.fes.ndof} unknowns): Newton "
@@ -160,8 +174,8 @@ class Spread3D:
                         + ("" if self.ends is None else
                            f", the contact's ends moved {ended / self.problem.h:.3g} h "
                            f"(tolerance {self.ends.tol / self.problem.h:.3g} h)")
-                        + ("" if self.strain is None else
-                           f", the strain changed {strained:.3g} (tolerance "
+                        + ("" if self.strain is None and self.cooling is None else
+                           f", the carried fields changed {strained:.3g} (tolerance "
                            f"{s.strain_rtol:g})"))})
                 if (st.converged and change <= tol_face and strained <= s.strain_rtol
                         and (self.ends is None or ended <= self.ends.tol)):

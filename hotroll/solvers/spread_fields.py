@@ -60,3 +60,29 @@ def frozen_flow_stress(run, copy, strain3d=None) -> tuple:
         k = th.flow.consistency(eps, copy.scalar(th.T_mean)) / th.K_ref
     offset = th.rate_offset()
     return k, (None if offset is None else copy.scalar(offset))
+
+
+def cooled_flow_stress(run, copy, theta, strain3d=None) -> tuple:
+    """(consistency, rate offset) as ``frozen_flow_stress``, the temperature the 2D pass's
+    plus ``theta`` (a ``fem/strain.CarriedField``: the entry temperature's difference across
+    the width from mid-width's, carried through the bite): K(eps, T + theta) / K_ref and
+    m(T + theta) - m_ref (None where the law's exponent does not depend on T). T: the
+    plate's (isothermal) or the 2D pass's elements' mean (``[thermal]``)."""
+    problem, th = run.problem, run.thermal
+    if th is None:
+        flow, K_ref, m_ref = problem.flow_stress, problem.material.K, problem.material.m
+        T, entry = problem.temperature + theta.gf, problem.entry_strain
+    else:
+        flow, K_ref, m_ref = th.flow, th.K_ref, th.m_ref
+        T, entry = copy.scalar(th.T_mean) + theta.gf, th.entry_strain
+    if flow is None:
+        raise ValueError("an entry temperature across the width needs a temperature-dependent "
+                         "flow stress law (a grade's)")
+    if strain3d is not None:
+        eps = strain3d.gf
+    elif run.strain is not None:
+        eps = copy.scalar(run.strain.gf)
+    else:
+        eps = entry
+    varies = float(flow.rate_exponent(1000.0)) != float(flow.rate_exponent(1500.0))
+    return flow.consistency(eps, T) / K_ref, (flow.rate_exponent(T) - m_ref if varies else None)

@@ -23,6 +23,12 @@ def test_a_spread_case_loads_and_resolves_its_layers():
     assert case.spread is not None and case.spread.max_rounds == 30
     assert case.spread.strain == "transported"
     assert load_case(BASE, {**STEADY, "spread.strain": "frozen"}).spread.strain == "frozen"
+    # the entry temperature across the width, a temperature with its unit
+    grade = {"material.law": "hensel-spittel", "material.grade": "C45", "material.m": None,
+             "material.K": None}
+    cold = load_case(BASE, {**STEADY, **grade, "spread.temperature_profile": [
+        [0.0, "1100 degC"], [1.0, "1000 degC"]]})
+    assert cold.spread.temperature_profile == [(0.0, 1373.15), (1.0, 1273.15)]
     assert case.spread.layers(0.005, 1e-3) == (1e-3, 1.2, 4e-3)
     assert case.spread.layers(0.0004, 1e-3) == pytest.approx((4e-4, 1.2, 1.6e-3))
     given = load_case(BASE, {**STEADY, "spread.edge_layer": "2 mm", "spread.largest_layer": 0.003})
@@ -58,6 +64,13 @@ def test_a_transient_case_is_refused_once_for_its_method():
      "spread.largest_layer: must be >= spread.edge_layer"),
     ({"spread.growth": 0.9}, "spread.growth: must be in \\[1, 2\\]"),
     ({"spread.strain": "carried"}, 'spread.strain: .*"transported" or "frozen"'),
+    ({"spread.temperature_profile": [[0.0, 1300.0], [1.0, 1200.0]]},
+     "spread.temperature_profile: its mid-width value .* plate.temperature = 1373.15 K, got "
+     "1300 K"),
+    ({"spread.temperature_profile": [[0.0, 1373.15], [1.0, 1273.15]]},
+     'spread.temperature_profile: the flow stress law "norton-hoff" does not depend'),
+    ({"spread.temperature_profile": [[0.0, 1373.15], [0.5, 1273.15]]},
+     "spread.temperature_profile: .*1"),
     ({"pass.speed_ratio": 1.1}, "pass: \\[spread\\] needs a symmetric pass"),
     ({"roll.model": "hitchcock"}, 'roll.model: \\[spread\\] needs "rigid"'),
     ({"pass.roll_gap": 0.0079, "pass.mill_modulus": 5e9, "pass.exit_thickness": None},

@@ -143,7 +143,18 @@ def test_the_held_edge_keeps_a_strain_law_its_temperature_and_the_elastic_strip(
     assert f["midplane_velocity_deviation"] <= 1e-10
 
 
-def test_the_strain_is_carried_through_the_3d_flow():
+@pytest.fixture(scope="module")
+def c45():
+    """Case R with C45's Hensel-Spittel law (a strain field; the strip's elasticity), the
+    plane-strain pass solved."""
+    case, problem, st = _setup(**{"material.law": "hensel-spittel", "material.grade": "C45",
+                                  "material.m": None, "material.K": None})
+    run = SteadyRun(problem, st, case.plate.length)
+    assert run.run().status == "steady"
+    return run
+
+
+def test_the_strain_is_carried_through_the_3d_flow(c45):
     """A Hensel-Spittel grade (C45: K rises with the strain) on the narrow bar, one width
     layer. [hand] The strip spreads, so its exit strain is not plane strain's: the homogeneous
     equivalent strain of the exit's shape, sqrt(2/3 (e_x^2 + e_y^2 + e_z^2)) with e_y =
@@ -158,16 +169,13 @@ def test_the_strain_is_carried_through_the_3d_flow():
     from hotroll.solvers.record import exit_strain
     from hotroll.solvers.spread_record import spread_record
 
-    case, problem, st = _setup(**{"material.law": "hensel-spittel", "material.grade": "C45",
-                                  "material.m": None, "material.K": None})
-    run = SteadyRun(problem, st, case.plate.length)
-    assert run.run().status == "steady"
+    run = c45
     frozen = Spread3D(run, B0, edge=B0, strain="frozen")
     assert frozen.solve() and frozen.strain is None
     moved = Spread3D(run, B0, edge=B0)
     moved.reports = []
     assert moved.solve(progress=moved.reports.append) and moved.strain is not None
-    assert "the strain changed" in moved.reports[-1]["message"]
+    assert "the carried fields changed" in moved.reports[-1]["message"]
     f, g = moved.figures(), frozen.figures()
     levels = spread_record(moved).exit_thickness
     eps = np.asarray(levels["strain"])
@@ -181,6 +189,48 @@ def test_the_strain_is_carried_through_the_3d_flow():
     mean = 0.5 * (eps[0] + eps[1])                       # two levels, the width halved
     assert mean == pytest.approx(exit_strain(run) * hom3 / hom2, rel=0.05)
     assert f["roll_force_per_width"] < g["roll_force_per_width"]
+
+
+def test_an_entry_temperature_across_the_width_is_carried_into_the_flow_stress(c45):
+    """The entry temperature across the width (``Spread3D(entry_temperature=...)``, the
+    case's ``spread.temperature_profile``). [identity] a uniform profile at the plate's
+    temperature is no profile (1e-12). [exact] with the edge held (u_z = 0) the difference
+    from mid-width's is carried along x unchanged: at every vertex the inlet's at its z
+    (linear in z: P1 holds it; 1e-6 K of 100 K). [estimate] edges 100 K colder (linear across
+    the half width): the force rises as the width's mean of the flow stress at the pass's mean
+    strain rate and half its exit strain, sigma(T0 - 100 zeta) / sigma(T0) over zeta, within
+    1 % (measured 0.5 %: the strip's redistribution between the levels)."""
+    import math
+
+    from hotroll.model.profile import ThicknessProfile
+    from hotroll.solvers.record import exit_strain
+
+    run = c45
+    pb = run.problem
+    T0, rp, flow = pb.temperature, pb.rp, pb.flow_stress
+
+    def pass_(profile):
+        s3 = Spread3D(run, B0, edge=B0, entry_temperature=profile)
+        assert s3.solve()
+        return s3.figures()["roll_force"]
+
+    plain = pass_(None)
+    assert pass_(ThicknessProfile.from_pairs([[0.0, T0], [1.0, T0]])) == pytest.approx(
+        plain, rel=1e-12)
+    cold = ThicknessProfile.from_pairs([[0.0, T0], [1.0, T0 - 100.0]])
+    held = Spread3D(run, B0, edge=0.5 * B0, edge_held=True, entry_temperature=cold)
+    assert held.solve()
+    held.cooling.transport(held.form.nonlinear.velocity)
+    z = np.array([v.point[2] for v in held.mesh.vertices])
+    assert np.max(np.abs(held.cooling.values + 100.0 * z / B0)) <= 1e-6
+    rate = rp.u_roll / rp.contact_length * 2.0 / math.sqrt(3.0) * math.log(
+        rp.half_entry / rp.half_exit)
+    eps = 0.5 * exit_strain(run)
+    zeta = np.linspace(0.0, 1.0, 2001)
+    ratio = np.array([flow.sigma(eps, rate, T0 - 100.0 * q) for q in zeta]) / flow.sigma(
+        eps, rate, T0)
+    mean = float(np.sum(0.5 * (ratio[1:] + ratio[:-1])) * (zeta[1] - zeta[0]))
+    assert pass_(cold) / plain == pytest.approx(mean, rel=0.01)
 
 
 def test_an_unknown_strain_mode_is_refused(solved):

@@ -179,3 +179,28 @@ def test_the_cases_strain_mode_reaches_the_3d_pass(monkeypatch, mode):
     with pytest.raises(Stop):
         spread.solve_spread(case, run=None)
     assert seen["strain"] == mode and seen["half"] == pytest.approx(0.005)
+    assert seen["entry_temperature"] is None
+
+
+def test_the_cases_entry_temperature_across_the_width_reaches_the_3d_pass(monkeypatch):
+    """[plumb] ``spread.temperature_profile`` is the 3D pass's ``entry_temperature``, a
+    function of z / half width (the pass itself faked)."""
+    from hotroll.workflows import spread
+
+    seen = {}
+
+    class Stop(Exception):
+        pass
+
+    def fake(run, half, **kw):
+        seen.update(kw)
+        raise Stop
+
+    monkeypatch.setattr(spread, "Spread3D", fake)
+    case = load_case("hotroll/examples/cases/example1.toml", {
+        **CASE, "material.law": "hensel-spittel", "material.grade": "C45", "material.m": None,
+        "material.K": None, "spread.temperature_profile": [[0.0, 1373.15], [1.0, 1273.15]]})
+    with pytest.raises(Stop):
+        spread.solve_spread(case, run=None)
+    f = seen["entry_temperature"]
+    assert float(f(0.0)) == 1373.15 and float(f(0.5)) == pytest.approx(1323.15)
