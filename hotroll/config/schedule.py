@@ -209,6 +209,10 @@ class Schedule(Section):
                 problems.append(f'mill.{key}: "{tandem}" not with [spread] (the stands\' mass '
                                 f"flux is matched per unit width, and the spread changes the "
                                 f'width from stand to stand); "given" with [spread]')
+        if self.spread is not None and self.spread.temperature_profile is not None:
+            problems.append("spread.temperature_profile: not in a schedule (each pass enters "
+                            "at its own temperature, and the profile across the width is not "
+                            "carried from pass to pass yet); a single pass's case takes it")
         for k, p in enumerate(self.passes, 1):
             if (p.exit_thickness is None) == (p.roll_gap is None):
                 problems.append(f"pass[{k}]: give exactly one of exit_thickness (m) and "

@@ -72,3 +72,18 @@ def test_a_tandem_matched_by_flux_is_refused_with_spread(key, value):
     data["mill"] = {key: value}
     with pytest.raises(CaseError, match=f'mill.{key}: "{value}" not with \\[spread\\]'):
         schedule_from_dict(data)
+
+
+def test_an_entry_temperature_across_the_width_is_refused_in_a_schedule():
+    """[plumb] ``spread.temperature_profile`` names one pass's entry temperature; a schedule's
+    passes enter at their own: refused naming the key, before any computation."""
+    import tomllib
+
+    from hotroll.config.case import CaseError
+    from hotroll.config.schedule import schedule_from_dict
+
+    data = tomllib.loads(DATA.read_text())
+    data["spread"] = {**data.get("spread", {}),
+                      "temperature_profile": [[0.0, 1373.15], [1.0, 1273.15]]}
+    with pytest.raises(CaseError, match="spread.temperature_profile: not in a schedule"):
+        schedule_from_dict(data)
