@@ -284,32 +284,6 @@ class RollingForm(FrictionTerms):
         out[verts] = self.lam_scale * self.multiplier.vec.FV().NumPy()[dofs]
         return out
 
-    def vertex_traction(self, ends):
-        """The contact pressure (reduced) at every mesh vertex as the multiplier's nodal forces
-        over their areas (lengths in 2D), p_i = int lambda phi_i ds / int phi_i ds over the
-        arc (phi_i the P1 hat of vertex i; ``quantities.nodal_traction``'s on any mesh: the
-        P1 mass matrix's ringing at the entry corner taken off); the vertices ``ends`` (the
-        contact's ends) keep the multiplier's values; 0 off the arc."""
-        import numpy as np
-        from ngsolve import H1, LinearForm, ds
-
-        from hotroll.fem.reproducible import parallel
-
-        V = fe_space(H1, self.mesh, order=1)
-        v, on = V.TestFunction(), self.mesh.Boundaries(self.MULTIPLIER_ON)
-        force, size = LinearForm(V), LinearForm(V)
-        force += self.multiplier * v * ds(definedon=on)
-        size += v * ds(definedon=on)
-        with parallel():
-            force.Assemble()
-            size.Assemble()
-        out = self.vertex_pressure()
-        verts = self.multiplier_vertices()[0]
-        inner = np.setdiff1d(verts, np.asarray(ends, int))
-        out[inner] = (self.lam_scale * force.vec.FV().NumPy()[inner]
-                      / size.vec.FV().NumPy()[inner])
-        return out
-
     def pressure(self, u, lam=None):
         """Contact pressure (reduced units): the multiplier s lambda~ (``lam``: a trial function
         or the solution's by default) or the penalty reaction gamma_vC (u.n)."""

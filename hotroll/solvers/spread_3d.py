@@ -24,6 +24,7 @@ from hotroll.fem.forms import LINEAR_SOLVERS
 from hotroll.fem.lateral_face import LateralFace
 from hotroll.fem.nonlinear import LinearSolveError, newton
 from hotroll.fem.penalties import PenaltyTable
+from hotroll.fem.quantities import vertex_traction
 from hotroll.fem.reproducible import integrate
 from hotroll.fem.rolling_form_3d import RollingForm3D
 from hotroll.fem.strain import CarriedField
@@ -310,7 +311,7 @@ class Spread3D:
         out["midplane_pressure_rms_deviation"] = float(np.sqrt(np.mean((mid - p2) ** 2))
                                                        / np.sqrt(np.mean(p2 ** 2)))
         # the contact pressure on the arc at mid-width (level 0's arc vertices, numbered as
-        # the 2D mesh's; the nodal forces over their areas, RollingForm.vertex_traction)
+        # the 2D mesh's; the nodal forces over their areas, quantities.vertex_traction)
         # against the 2D pass's at the same x: what the roll feels, the bite only. The
         # level's own contact start and end move its vertices along the arc, so the 3D
         # pressure is read at the 2D vertices' x (linear between its own; 0 where the 3D
@@ -320,8 +321,8 @@ class Spread3D:
         x3 = self._arc_x(self.disp, verts)
         order = np.argsort(x3)
         ends2, ends3 = self.arc_ends()
-        c2 = f2.vertex_traction(ends2)[verts]
-        c3 = np.interp(x2, x3[order], f3.vertex_traction(ends3)[verts][order], left=0.0,
+        c2 = vertex_traction(f2, ends2)[verts]
+        c3 = np.interp(x2, x3[order], vertex_traction(f3, ends3)[verts][order], left=0.0,
                        right=0.0)
         out["midplane_contact_pressure_deviation"] = float(np.abs(c3 - c2).max()
                                                            / np.abs(c2).max())

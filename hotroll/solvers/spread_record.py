@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from hotroll.fem.quantities import vertex_traction
 from hotroll.files import atomic
 from hotroll.model.spread_result import SpreadResult
 
@@ -64,8 +65,8 @@ def spread_record(s3) -> SpreadResult:
     verts2 = run.form.multiplier_vertices()[0]
     verts2 = verts2[np.argsort(P[verts2, 0])]
     # (the nodal forces over their areas, the multiplier's own values beside them:
-    # RollingForm.vertex_traction, as the 2D pass's contact.csv)
-    p3 = K * s3.form.vertex_traction(s3.arc_ends()[1])
+    # quantities.vertex_traction, as the 2D pass's contact.csv)
+    p3 = K * vertex_traction(s3.form, s3.arc_ends()[1])
     idx3 = np.arange(levels)[:, None] * nv + verts2[None, :]
     cmap = {"x": X3[idx3, 0], "angle": rp.angle(X3[idx3, :2]), "z": X3[idx3, 2],
             "pressure": p3[idx3],

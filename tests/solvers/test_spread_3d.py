@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from test_full_strip import _setup  # the same directory (pytest puts it on the path)
 
+from hotroll.fem.quantities import vertex_traction
 from hotroll.solvers.spread_3d import Spread3D
 from hotroll.solvers.steady import SteadyRun
 
@@ -326,9 +327,9 @@ def test_the_mid_width_deviation_by_hand(solved):
         dev = held.midplane_deviation()
         ends2, ends3 = held.arc_ends()
         verts = run.form.multiplier_vertices()[0]
-        traction2 = run.form.vertex_traction(ends2)[verts]
+        traction2 = vertex_traction(run.form, ends2)[verts]
         rows = np.arange(len(held.z))[:, None] * run.mesh.nv + verts[None, :]
-        traction3 = held.form.vertex_traction(ends3)[rows]
+        traction3 = vertex_traction(held.form, ends3)[rows]
     finally:
         g3.vec.FV().NumPy()[:] = keep
     # the velocity's: its largest coefficient (vertex values and edge bubbles) times c
@@ -356,7 +357,7 @@ def test_each_width_level_leaves_the_roll_where_its_pressure_falls_to_zero(solve
     assert free.ends is not None and run.unilateral
     nv, rp = run.mesh.nv, run.problem.rp
     ends2, ends3 = free.arc_ends()
-    traction = free.form.vertex_traction(ends3)
+    traction = vertex_traction(free.form, ends3)
     p_end = free.form.vertex_pressure()[np.arange(len(free.z)) * nv + ends2[1]]
     peak = traction.max()
     gap = run.end_bounds()[1]
@@ -381,7 +382,7 @@ def test_a_uniform_multiplier_is_its_own_traction(solved):
     keep = lam.copy()
     try:
         lam[:] = 1.0 / f.lam_scale
-        out = f.vertex_traction(held.arc_ends()[1])
+        out = vertex_traction(f, held.arc_ends()[1])
     finally:
         lam[:] = keep
     verts = f.multiplier_vertices()[0]
