@@ -37,7 +37,8 @@ ROLL_KEYS = ["surface_speed", "roll_force", "roll_torque", "roll_power", "forwar
 #: With [spread]: the 3D pass's width figures (its whole-width force and torque replace plane
 #: strain x width in roll_force_total, roll_torque_total).
 SPREAD_KEYS = ["exit_width", "spread", "spread_hill", "spread_sparling", "spread_wusatowski",
-               "edge_bulge", "edge_drop", "plane_strain_roll_force_total", "spread_mass_flux_error",
+               "edge_bulge", "edge_drop", "plane_strain_roll_force_total", "spread_forward_slip",
+               "spread_mass_flux_error",
                "spread_power_balance_error",
                "spread_settled", "spread_dofs", "spread_wall_time"]
 #: With [thermal]: shown after the mechanics' figures (units from summary.json's ``units``).

@@ -32,6 +32,8 @@ class SpreadResult:
       (W) torque times the roll's angular velocity;
     - ``flux_in``, ``flux_out``, ``flux_edge`` (m^3/s of the whole strip) through the entry,
       the exit and the lateral faces;
+    - ``forward_slip`` (-): the whole strip's mean exit speed (the outlet's flux over its
+      area) over the roll's surface speed, minus 1;
     - ``power_balance_error`` (-): |roll + tension power - plastic - friction power| / roll
       power of the 3D pass (torque x omega: an identity of any converged solution that checks
       the torque);
@@ -68,6 +70,7 @@ class SpreadResult:
     wall_time: float
     zone_cut: float = 0.0
     failure: str = ""
+    forward_slip: float = float("nan")
     write_vtk: Callable[[Path, float], Path] | None = field(default=None, repr=False)
 
     @property

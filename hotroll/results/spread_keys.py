@@ -31,6 +31,10 @@ class SpreadKeys:
         "N", "roll force, plane strain x width", "`roll_force` (the plane-strain pass, per m) "
         "times `width`: what the 3D pass's `roll_force_total` is compared with", group=_G,
         when=_W)
+    spread_forward_slip: float = _f(
+        "-", "forward slip, whole width", "the 3D pass's mean exit speed (its outlet's flux "
+        "over the outlet's area) over the roll's surface speed, minus 1: below the "
+        "plane-strain `forward_slip` where the strip spreads", group=_G, when=_W)
     spread_mass_flux_error: float = _f(
         "-", "3D mass flux error", "(out + through the lateral faces - in) / in of the 3D "
         "pass", group=_G, when=_W)

@@ -28,6 +28,7 @@ def spread_figures(case, sp: SpreadResult, roll_force: float) -> dict:
         "roll_power_total": sp.roll_power, "mill_power": 2.0 * sp.roll_power,
         "plane_strain_roll_force_total": roll_force * b0,
         "spread_mass_flux_error": sp.mass_flux_error,
+        "spread_forward_slip": sp.forward_slip,
         "spread_power_balance_error": sp.power_balance_error,
         "midplane_pressure_rms_deviation": sp.midplane["midplane_pressure_rms_deviation"],
         "midplane_contact_pressure_rms_deviation":

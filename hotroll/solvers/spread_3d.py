@@ -193,8 +193,9 @@ class Spread3D:
         width (N/m of the stock's width), roll torque (N m), the exit's mean half width and
         the spread (m), the exit half width over the thickness (m, at 40 equal steps of
         y / exit half thickness from the mid-plane), the mass fluxes through the cut faces and
-        the lateral face (m^3/s of the quarter), Newton iterations, rounds, DOFs, wall time
-        (s)."""
+        the lateral face (m^3/s of the quarter), the mean exit speed (m/s: the outlet's flux
+        over its area) and the forward slip from it, Newton iterations, rounds, DOFs, wall
+        time (s)."""
         import ngsolve as ng
 
         f, mesh, K = self.form, self.mesh, self.problem.material.K
@@ -226,6 +227,13 @@ class Spread3D:
                "wall_time": self.setup_time + self.solve_time, "settled": self.settled,
                "failure": self.failure}
         out["roll_force_per_width"] = out["roll_force"] / (2.0 * b0)
+        # the mean exit speed: the outlet's flux over its area projected on x (the 2D pass's
+        # face_flow across the width), the forward slip of the whole strip from it
+        area = float(integrate(nn[0], mesh, ng.BND, definedon=mesh.Boundaries("out")))
+        if two is not None:
+            area += 0.5 * two["exit_thickness_measured"] * inner
+        out["exit_velocity"] = out["flux_out"] / area
+        out["forward_slip"] = out["exit_velocity"] / self.problem.rp.u_roll - 1.0
         out.update(self.power_balance(K * torque))
         out.update(self.midplane_deviation())
         if self.face is not None:

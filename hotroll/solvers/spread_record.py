@@ -87,7 +87,7 @@ def spread_record(s3) -> SpreadResult:
         power_balance_error=fig["power_balance_error"], settled=bool(fig["settled"]),
         rounds=int(fig["rounds"]), newton_iterations=int(fig["newton_iterations"]),
         dofs=int(fig["dofs"]), layers=levels - 1, zone_cut=fig["zone_cut"],
-        failure=fig["failure"],
+        failure=fig["failure"], forward_slip=fig["forward_slip"],
         edge_layer=float(s3.z[-1] - s3.z[-2]), wall_time=fig["wall_time"],
         write_vtk=lambda path, shift=0.0: write_vtk_3d(s3, path, shift))
 

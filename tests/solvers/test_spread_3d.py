@@ -47,6 +47,7 @@ def test_the_held_edge_is_the_2d_pass(passes):
     assert held["roll_torque"] / (2.0 * B0) == pytest.approx(two["roll_torque"], rel=1e-8)
     assert held["flux_in"] / B0 == pytest.approx(two["mass_flux_in"], rel=1e-8)
     assert held["flux_out"] / B0 == pytest.approx(two["mass_flux_out"], rel=1e-8)
+    assert held["forward_slip"] == pytest.approx(two["forward_slip"], rel=1e-8)
     # the mid-width plane: the velocity to 1e-7 U; the pressure (which Newton's stopping test,
     # on the velocity's update, does not watch) moves by 9e-5 of its peak in the 3D pass's one
     # step from where the 2D pass stopped
@@ -89,6 +90,26 @@ def test_the_strip_spreads_and_the_force_per_width_falls(passes):
     assert 0.0 < free["spread"] < 2.0 * B0 * (0.01 / 0.008 - 1.0)
     assert free["roll_force_per_width"] < 0.99 * two["roll_force"]
     assert free["flux_in"] > held["flux_in"]
+
+
+def test_the_spread_lowers_the_forward_slip_as_the_mass_balance_says(passes, solved):
+    """[identity] the whole strip's mean exit speed times its exit area is its outflow, and
+    the inflow is the 2D pass's (the same entry): v_3D = v_2D (h1 b0 / A_3D) (Q_in,3D /
+    (Q_in,2D b0)) to the two passes' mass balances (1e-3); [hand] the strip spreads, its exit
+    area grows and its forward slip falls below plane strain's."""
+    run, _, free_run = solved
+    two, _, free = passes
+    import ngsolve as ng
+
+    from hotroll.fem.reproducible import integrate
+
+    m3 = free_run.mesh
+    area = integrate(ng.specialcf.normal(3)[0], m3, ng.BND, definedon=m3.Boundaries("out"))
+    h1 = 0.5 * two["exit_thickness_measured"]
+    v2 = (1.0 + two["forward_slip"]) * run.problem.rp.u_roll
+    expect = v2 * (h1 * B0 / area) * (free["flux_in"] / (two["mass_flux_in"] * B0))
+    assert free["exit_velocity"] == pytest.approx(expect, rel=1e-3)
+    assert area > h1 * B0 and free["forward_slip"] < two["forward_slip"]
 
 
 def test_the_spread_lies_inside_the_empirical_formulas_band(passes):
