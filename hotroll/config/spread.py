@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from typing import Any, Literal
 
+import numpy as np
 from pydantic import field_validator
 
 from hotroll.config.base import PosFloat, Section, field
@@ -122,14 +123,42 @@ def problems(case) -> list[str]:
         out.append('plate.free_surface: [spread] needs "traced" (the 3D strip\'s free '
                    'surfaces are stream surfaces)')
     if s.temperature_profile is not None:
-        mid, t_plate = s.temperature_profile[0][1], case.plate.temperature
-        if abs(mid - t_plate) > 1e-9 * t_plate:
-            out.append(f"spread.temperature_profile: its mid-width value (zeta = 0) is the "
-                       f"plane-strain pass's, plate.temperature = {t_plate:g} K, got {mid:g} K")
-        if case.material.law == "norton-hoff":
-            out.append('spread.temperature_profile: the flow stress law "norton-hoff" does '
-                       "not depend on the temperature (a grade's law does)")
+        out.extend(_profile_problems(case, s))
     if case.solver.method == "steady" and case.contact.resolved("steady") != "multiplier":
         out.append('contact.method: [spread] needs the exact contact ("auto" or '
                    f'"multiplier"), got "{case.contact.method}" (the penalty)')
+    return out
+
+
+def _profile_problems(case, s) -> list[str]:
+    """Why ``spread.temperature_profile`` cannot be taken: its mid-width value not the plate's,
+    a law whose flow stress does not change with the temperature, a temperature outside the
+    law's, a profile that varies inside an edge zone's cut (the plane-strain pass's figures
+    there are at mid-width's temperature)."""
+    out, key = [], "spread.temperature_profile"
+    zeta = [z for z, _ in s.temperature_profile]
+    temps = [t for _, t in s.temperature_profile]
+    mid, t_plate = temps[0], case.plate.temperature
+    if abs(mid - t_plate) > 1e-9 * t_plate:
+        out.append(f"{key}: its mid-width value (zeta = 0) is the plane-strain pass's, "
+                   f"plate.temperature = {t_plate:g} K, got {mid:g} K")
+    law = case.material.flow_stress()
+    other = min(temps) if min(temps) != t_plate else t_plate - 100.0
+    if float(law.sigma(0.1, 1.0, t_plate)) == float(law.sigma(0.1, 1.0, other)):
+        out.append(f'{key}: the flow stress law "{case.material.law}" does not depend on the '
+                   "temperature (a grade's law does)")
+    else:
+        bad = [t for t in temps if not 0.0 < float(law.rate_exponent(t)) <= 1.0]
+        if bad:
+            out.append(f"{key}: the law's rate exponent leaves (0, 1] at {min(bad):g} K "
+                       f"(allowed: {law.admissible_temperature_range()} K)")
+    width = case.pass_.width
+    if s.edge_zone is not None and width is not None:
+        cut = 1.0 - s.edge_zone / (0.5 * width)
+        inside = [t for z, t in zip(zeta, temps) if z <= cut]
+        at_cut = float(np.interp(cut, zeta, temps))
+        if any(abs(t - mid) > 1e-9 * mid for t in [*inside, at_cut]):
+            out.append(f"{key}: must be the plate's temperature up to the edge zone's cut "
+                       f"(zeta = 1 - spread.edge_zone / (pass.width / 2) = {cut:.4g}): the "
+                       "plane-strain pass's figures inside the cut are at mid-width's")
     return out

@@ -109,32 +109,6 @@ def nodal_traction(xy: np.ndarray, pressure: np.ndarray, vertex: np.ndarray) -> 
     return out
 
 
-def vertex_traction(form, ends) -> np.ndarray:
-    """The contact pressure (reduced) at every mesh vertex of ``form``'s mesh (2D or 3D) as
-    the multiplier's nodal forces over their areas (lengths in 2D), p_i = int lambda phi_i ds /
-    int phi_i ds over the arc (phi_i the P1 hat of vertex i: ``nodal_traction``'s by the
-    mesh's own integrals, so on the 3D strip's surface too); the vertices ``ends`` (the
-    contact's ends) keep the multiplier's values; 0 off the arc."""
-    from ngsolve import H1, LinearForm, ds
-
-    from hotroll.fem.reproducible import fe_space, parallel
-
-    V = fe_space(H1, form.mesh, order=1)
-    v, on = V.TestFunction(), form.mesh.Boundaries(form.MULTIPLIER_ON)
-    force, size = LinearForm(V), LinearForm(V)
-    force += form.multiplier * v * ds(definedon=on)
-    size += v * ds(definedon=on)
-    with parallel():
-        force.Assemble()
-        size.Assemble()
-    out = form.vertex_pressure()
-    verts = form.multiplier_vertices()[0]
-    inner = np.setdiff1d(verts, np.asarray(ends, int))
-    out[inner] = (form.lam_scale * force.vec.FV().NumPy()[inner]
-                  / size.vec.FV().NumPy()[inner])
-    return out
-
-
 def at_top_nodes(values: np.ndarray, top: TopBoundary, contact_only: bool) -> np.ndarray:
     """A field given at the mesh vertices, at the top nodes as ``top_nodes`` orders them: the
     vertices' values, then each edge midpoint's as the mean of its two vertices (exact for a P1

@@ -76,7 +76,8 @@ class StrainField:
         r = f.vec.CreateVector()
         r.data = f.vec - a.mat * self.gf.vec
         self.gf.vec.data += inv * r
-        scale = float(np.max(np.abs(self.values)))
+        # over the new field's largest (the old one's where the new one is 0 everywhere)
+        scale = float(np.max(np.abs(self.values))) or float(np.max(np.abs(old)))
         return float(np.max(np.abs(self.values - old))) / scale if scale > 0.0 else 0.0
 
     def _forms(self, velocity):

@@ -5,16 +5,19 @@ across the stock's half width b0 (``fem/extruded_mesh.py``), its form the 2D one
 (``fem/rolling_form_3d.py``), its start the 2D solution in every layer. Its free surfaces are
 stream surfaces of the 3D flow: the lateral face z = B(x, y) (``fem/lateral_face.py``) and the
 top, traced per width level with the contact's start x_c(z) (``solvers/spread_tops.py``; with
-``tops=False`` the 2D pass's in every level). The contact's end, the friction parameter, the
-tensions and the temperature a flow stress takes (``solvers/spread_fields.py``: frozen across
-the width) stay as the 2D pass left them; a strain-dependent flow stress's strain is carried
-through the 3D flow (``strain_3d``). Newton on the current shape, the surfaces' update and the
-strain's transport alternate until they settle (the surfaces' largest move below
-``surface_tol`` h, the 2D pass's tolerance of its traced tops; the strain's change below its
+``tops=False`` the 2D pass's in every level), and with unilateral contact each level's own
+contact end (``solvers/spread_ends.py``). The friction parameter and the tensions stay as the
+2D pass left them; the temperature a flow stress takes is the 2D pass's plus the entry's
+difference across the width where one is given, and a strain-dependent flow stress's strain
+is carried through the 3D flow (``solvers/spread_fields.py``). Newton on the current shape,
+the surfaces' update, the ends' search and the carried fields' transport alternate until
+they settle (the surfaces' largest move below ``surface_tol`` h, the 2D pass's tolerance of
+its traced tops; the ends' below the 2D pass's; the carried fields' change below
 ``strain_rtol``). With ``edge_held`` the face is held (u_z = 0): plane strain, the 2D answer.
 """
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
@@ -24,14 +27,18 @@ from hotroll.fem.forms import LINEAR_SOLVERS
 from hotroll.fem.lateral_face import LateralFace
 from hotroll.fem.nonlinear import LinearSolveError, newton
 from hotroll.fem.penalties import PenaltyTable
-from hotroll.fem.quantities import vertex_traction
 from hotroll.fem.reproducible import integrate
 from hotroll.fem.rolling_form_3d import RollingForm3D
 from hotroll.fem.strain import CarriedField
 from hotroll.model.material import NortonHoff
+from hotroll.solvers.spread_contact import level_contact, plane_contact
 from hotroll.solvers.spread_ends import LevelEnds
 from hotroll.solvers.spread_fields import cooled_flow_stress, frozen_flow_stress, strain_3d
 from hotroll.solvers.spread_tops import LevelTops
+
+#: the contact's ends move once the surfaces' last move is within this many of their
+#: tolerances (the 2D pass's rule: couplings.ContactEnd.after_others)
+AFTER_OTHERS = 10.0
 
 #: how the 3D strip takes the strain of a strain-dependent flow stress: carried through its
 #: own flow (the edge's hardening) or the 2D pass's in every layer
@@ -48,8 +55,9 @@ class Spread3D:
     ``entry_temperature``: the entry temperature across the width (K, a function of z / half
     width, its value at 0 the 2D pass's), its differences from mid-width's carried through the
     bite into the flow stress (None: the 2D pass's temperature at every width).
-    ``ends``: with unilateral contact, each width level's contact end found from its own
-    pressure (``solvers/spread_ends.py``; False: the 2D pass's end in every level).
+    ``ends``: with unilateral contact and the tops per level, each width level's contact end
+    found from its own pressure (``solvers/spread_ends.py``; False, or ``tops=False``: the 2D
+    pass's end in every level).
     ``linear_solver``: Newton's first linear solver (``fem/forms.LINEAR_SOLVERS``; the others
     after it where it fails). ``strain``: a strain-dependent flow stress's strain carried
     through the 3D flow ("transported", with a free edge) or the 2D pass's ("frozen")."""
@@ -86,7 +94,6 @@ class Spread3D:
                                                       4.0 * edge if largest is None else largest)
         self.z[-1] = half_width
         ref2 = ng.Mesh(run.mesh.ngmesh.Copy())          # the 2D reference (undeformed)
-        self._ref_x = np.array([v.point[0] for v in ref2.vertices])
         self.mesh = extrude(ref2, self.z)
         mat = problem.material
         copy = self.copy = LayerCopy(ref2, self.mesh)
@@ -126,6 +133,8 @@ class Spread3D:
         for c in range(1, len(g2.components)):
             copy.copy(g2.components[c].space, g2.components[c].vec.FV().NumPy(),
                       g3.components[c].space, g3.components[c].vec.FV().NumPy())
+        if self.cooling is not None:     # carried along the start's flow (the 2D pass's)
+            self.cooling.transport(f3.nonlinear.velocity)
         self.face = None if edge_held else LateralFace(ref2, run.disp.vec.FV().NumPy(),
                                                        self.z, copy)
         self.edge_held = edge_held
@@ -138,12 +147,15 @@ class Spread3D:
         self.setup_time, self.solve_time = time.perf_counter() - t0, 0.0
 
     def solve(self, max_rounds: int = 30, progress=None) -> bool:
-        """Newton and the face's update in turn until the face moves less than surface_tol h
-        and Newton converged; True if settled. ``progress``: called with a report (its words in
+        """Newton and the surfaces' update (with the ends' search and the carried fields'
+        transport) in turn until Newton converged, the surfaces moved less than surface_tol
+        h, the ends less than their tolerance and the carried fields changed less than
+        strain_rtol; True if settled. ``progress``: called with a report (its words in
         ``message``) after each round."""
         t0 = time.perf_counter()
         s = self.run2d.s
         tol_face = s.surface_tol * self.problem.h
+        moved = math.inf                  # the surfaces' last move (m)
         try:
             for _ in range(max_rounds):
                 st = newton(self.form.nonlinear, s.tol, s.max_it)
@@ -154,12 +166,16 @@ class Spread3D:
                     break
                 change, ended = 0.0, 0.0
                 if self.ends is not None:     # each level's contact end, then its tops
-                    ended = self.ends.update()
+                    # as the 2D pass's end (couplings.ContactEnd.after_others): moved once the
+                    # surfaces are within 10 tolerances (their last round's move)
+                    ended = (self.ends.update() if moved <= AFTER_OTHERS * tol_face
+                             else math.inf)
                 if self.tops is not None:     # the tops first: the face is solved on them
                     change = self.tops.update()
                     self.tops.displace(self.disp)
                     self.face.set_shape(self.tops.d2[-1])
                 change = max(change, self.face.update(self.form.nonlinear.velocity))
+                moved = change
                 self.face.displace(self.disp)
                 self.mesh.SetDeformation(self.disp)
                 # the strain along the new flow on the new shape (its change over the largest)
@@ -173,7 +189,8 @@ class Spread3D:
                         f"{st.iterations} iterations, the free surfaces moved "
                         f"{change / self.problem.h:.3g} h (tolerance {s.surface_tol:g} h)"
                         + ("" if self.ends is None else
-                           f", the contact's ends moved {ended / self.problem.h:.3g} h "
+                           ", the contact's ends wait for the surfaces" if math.isinf(ended)
+                           else f", the contact's ends moved {ended / self.problem.h:.3g} h "
                            f"(tolerance {self.ends.tol / self.problem.h:.3g} h)")
                         + ("" if self.strain is None and self.cooling is None else
                            f", the carried fields changed {strained:.3g} (tolerance "
@@ -284,21 +301,6 @@ class Spread3D:
                 "tension_power": tension, "contact_power": contact, "power_balance_error":
                     abs(roll + tension - plastic - friction - contact) / max(abs(roll), 1e-300)}
 
-    def arc_ends(self) -> tuple[np.ndarray, np.ndarray]:
-        """The contact's two end vertices (the 2D chain's first and last along x): the 2D
-        mesh's numbers, and the 3D mesh's in every width level."""
-        verts = self.run2d.form.multiplier_vertices()[0]
-        verts = verts[np.argsort(self._ref_x[verts])]
-        ends2 = np.array([verts[0], verts[-1]])
-        nv = self.run2d.mesh.nv
-        return ends2, (np.arange(len(self.z))[:, None] * nv + ends2[None, :]).ravel()
-
-    def _arc_x(self, disp, verts) -> np.ndarray:
-        """The deformed x (m) of the 2D mesh's vertices ``verts`` (in 3D: level 0's, the first
-        nv vertices) under the displacement GridFunction ``disp`` (its x component's DOFs
-        first, a vertex's DOF its number)."""
-        return self._ref_x[verts] + disp.vec.FV().NumPy()[verts]
-
     def midplane_deviation(self) -> dict:
         """How far the mid-width plane (z = 0) is from the 2D pass: the largest difference of
         the pressure at its vertices over the 2D pass's largest |p|, its root mean square over
@@ -318,20 +320,14 @@ class Spread3D:
         # sits where the pressure peaks at the contact's start)
         out["midplane_pressure_rms_deviation"] = float(np.sqrt(np.mean((mid - p2) ** 2))
                                                        / np.sqrt(np.mean(p2 ** 2)))
-        # the contact pressure on the arc at mid-width (level 0's arc vertices, numbered as
-        # the 2D mesh's; the nodal forces over their areas, quantities.vertex_traction)
-        # against the 2D pass's at the same x: what the roll feels, the bite only. The
-        # level's own contact start and end move its vertices along the arc, so the 3D
-        # pressure is read at the 2D vertices' x (linear between its own; 0 where the 3D
-        # contact has not begun or has ended)
-        verts = f2.multiplier_vertices()[0]
-        x2 = self._arc_x(self.run2d.disp, verts)
-        x3 = self._arc_x(self.disp, verts)
-        order = np.argsort(x3)
-        ends2, ends3 = self.arc_ends()
-        c2 = vertex_traction(f2, ends2)[verts]
-        c3 = np.interp(x2, x3[order], vertex_traction(f3, ends3)[verts][order], left=0.0,
-                       right=0.0)
+        # the contact pressure on the arc at mid-width (level 0, as the 2D pass reads its own:
+        # solvers/spread_contact.py) against the 2D pass's at the same x: what the roll feels,
+        # the bite only. The level's own contact start and end move its vertices along the
+        # arc, so the 3D pressure is read at the 2D vertices' x (linear between its own; 0
+        # where the 3D contact has not begun or has ended)
+        two, lev = plane_contact(self.run2d), level_contact(self)
+        c2 = two["traction"]
+        c3 = np.interp(two["x"], lev["x"][0], lev["traction"][0], left=0.0, right=0.0)
         out["midplane_contact_pressure_deviation"] = float(np.abs(c3 - c2).max()
                                                            / np.abs(c2).max())
         out["midplane_contact_pressure_rms_deviation"] = float(

@@ -5,8 +5,9 @@ Each width level z_k carries its own contact end x_e(z_k) (its ``StripShape.x_e`
 ``solvers/spread_tops.LevelTops``), found as the 2D pass finds its own
 (``fem/free_surface.ContactEndSearch``, ``solvers/contact_end.py``): a root of the contact
 pressure at the level's last arc vertex, p_end >= 0, X_roll - x_e >= 0, p_end (X_roll - x_e)
-= 0, one step per round, each level with its own search (trust length, sign changes), its
-bounds the 2D pass's (up to the gap for a rigid-plastic strip, past it for an elastic one), an
+= 0, one step per round once the surfaces are within 10 of their tolerances (the 2D pass's
+rule), each level with its own search from scratch (trust length, sign changes), its bounds
+the 2D pass's (up to the gap for a rigid-plastic strip, past it for an elastic one), an
 elastic strip's first steps predicted by its Winkler layer. After a level's end moved its arc
 vertices slide along the roll and the multiplier is carried with the position
 (``contact_end.carried_pressure``). With the end the 2D pass's in every level, the bundled
@@ -15,10 +16,9 @@ edge (+142 MPa): where the strip leaves the roll depends on the width position.
 """
 from __future__ import annotations
 
-import copy
-
 import numpy as np
 
+from hotroll.fem.free_surface import ContactEndSearch
 from hotroll.solvers.contact_end import carried_pressure, move_end
 from hotroll.solvers.couplings import ContactEnd
 
@@ -29,7 +29,9 @@ class LevelEnds:
 
     def __init__(self, s3, tops):
         self.s3, self.tops, run = s3, tops, s3.run2d
-        self.searches = [copy.deepcopy(run.end_search) for _ in range(len(s3.z))]
+        # each level its own search from scratch (the 2D pass's last pair, sign changes and
+        # trust are its own level's history, not these)
+        self.searches = [ContactEndSearch() for _ in range(len(s3.z))]
         #: the tolerance of an end's move (m): the 2D pass's (``couplings.ContactEnd``)
         scale = ContactEnd.TOLERANCE_ELASTIC if run.form.compliance else ContactEnd.TOLERANCE
         self.tol = scale * run.s.surface_tol * run.problem.h

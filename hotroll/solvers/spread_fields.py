@@ -1,6 +1,7 @@
 """The flow stress a 3D strip takes from its solved 2D pass (issue 53): the temperature is the
-2D pass's, the same in every width layer (frozen across the width); the strain too
-(``frozen_flow_stress``), or carried through the 3D flow (``strain_3d``: the edge's own).
+2D pass's in every width layer, plus the entry temperature's difference across the width
+where one is given (``cooled_flow_stress``); the strain is the 2D pass's in every layer
+(``frozen_flow_stress``) or carried through the 3D flow (``strain_3d``: the edge's own).
 
 A strain- or temperature-dependent flow stress enters the form as its consistency
 K(eps, T) / K_ref and, where the law's rate exponent depends on the temperature (Hensel-Spittel
@@ -9,10 +10,9 @@ strain at the vertices, H1; the elements' mean temperature, the ratio and the of
 element, L2 of order 0) is copied onto the extrusion exactly (``LayerCopy.scalar``) and the
 same expression is built of the copies: with the edge held, the 3D form is the 2D one in every
 layer (the consistency check). With a free edge the strain is transported through the 3D
-strip (``Spread3D(strain="transported")``, the default). What this leaves out: near the free
-edge the temperature differs from mid-width (edge cooling with ``[thermal]``); the flow stress
-there takes mid-width's temperature, and with the 2D thermal coupling's per-element ratio
-its strain too.
+strip (``Spread3D(strain="transported")``, the default). What this leaves out: the bite's own
+cooling through the lateral face (the flow stress there takes the 2D pass's temperature plus
+the entry's difference across the width, carried).
 """
 from __future__ import annotations
 
@@ -20,15 +20,11 @@ from __future__ import annotations
 def strain_3d(run, copy, mesh3d):
     """The strain carried through the 3D strip (``fem/strain.py``: v . grad eps = edot, SUPG
     P1, the inlet's strain the 2D pass's), its start the 2D pass's strain in every layer; None
-    where the flow stress takes no strain, or takes it inside the 2D thermal coupling's
-    per-element ratio (then frozen across the width)."""
-    import ngsolve as ng
-
+    where the flow stress takes no strain (the 2D thermal coupling's per-element ratio is
+    that case: it exists only without a strain field)."""
     from hotroll.fem.strain import StrainField
 
     if run.strain is None:
-        return None
-    if run.thermal is not None and isinstance(run.thermal.consistency(), ng.GridFunction):
         return None
     p = run.problem
     field = StrainField(mesh3d, p.entry_strain, profile=p.strain_profile)

@@ -8,9 +8,9 @@ from pathlib import Path
 
 import numpy as np
 
-from hotroll.fem.quantities import vertex_traction
 from hotroll.files import atomic
 from hotroll.model.spread_result import SpreadResult
+from hotroll.solvers.spread_contact import level_contact
 
 #: the exit cross-section's sample heights: this many equal steps through the half thickness
 SECTION_POINTS = 40
@@ -61,16 +61,13 @@ def spread_record(s3) -> SpreadResult:
     sym, surface = (i[np.argsort(X[i, 0])] for i in (sym, surface))
     along = {"x": X[sym, 0], "centre": B[sym],
              "surface": np.interp(X[sym, 0], X[surface, 0], B[surface])}
-    # the contact pressure at the arc's vertices in every level (x, angle, z of each)
-    verts2 = run.form.multiplier_vertices()[0]
-    verts2 = verts2[np.argsort(P[verts2, 0])]
-    # (the nodal forces over their areas, the multiplier's own values beside them:
-    # quantities.vertex_traction, as the 2D pass's contact.csv)
-    p3 = K * vertex_traction(s3.form, s3.arc_ends()[1])
-    idx3 = np.arange(levels)[:, None] * nv + verts2[None, :]
-    cmap = {"x": X3[idx3, 0], "angle": rp.angle(X3[idx3, :2]), "z": X3[idx3, 2],
-            "pressure": p3[idx3],
-            "pressure_multiplier": K * s3.form.vertex_pressure()[idx3]}
+    # the contact pressure at the arc's vertices in every level (x, angle, z of each): the
+    # nodal forces over their lengths along the level, the multiplier's own values beside
+    # them (solvers/spread_contact.py, as the 2D pass's contact.csv)
+    lev = level_contact(s3)
+    cmap = {"x": lev["x"], "angle": rp.angle(np.stack([lev["x"], lev["y"]], axis=-1)),
+            "z": lev["z"], "pressure": K * lev["traction"],
+            "pressure_multiplier": K * lev["multiplier"]}
     omega = rp.omega
     return SpreadResult(
         stock_width=2.0 * fig["stock_half_width"], exit_width=2.0 * fig["exit_half_width"],

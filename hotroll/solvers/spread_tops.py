@@ -9,7 +9,8 @@ less the share of the flow across the level, (u_z - u_x z_k') dY/dz (``LevelTops
 2D pass's ``StripMap`` maps the reference mesh onto each level's shape, and the 3D mesh's x and
 y displacement is each level's, linear in z between two (``LayerCopy.per_layer``). The contact
 is the reference arc in every level (the map stretches it between x_c(z) and the contact's
-end), its end the 2D pass's.
+end x_e(z): the level's own with unilateral contact, ``solvers/spread_ends.py``, else the 2D
+pass's).
 """
 from __future__ import annotations
 

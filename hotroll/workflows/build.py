@@ -75,7 +75,10 @@ def build_model(case: Case):
                          case.friction.law_object(rp.u_roll, material.m), spec,
                          back_tension=case.pass_.back_tension,
                          front_tension=case.pass_.front_tension,
-                         flow_stress=flow if flow.depends_on_strain or case.thermal else None,
+                         # (a 3D pass's entry temperature across the width takes the law too)
+                         flow_stress=flow if (flow.depends_on_strain or case.thermal or (
+                             case.spread is not None
+                             and case.spread.temperature_profile is not None)) else None,
                          temperature=case.plate.temperature,
                          entry_strain=case.plate.mean_entry_strain,
                          carries_strain=flow.depends_on_strain,

@@ -29,6 +29,11 @@ def test_a_spread_case_loads_and_resolves_its_layers():
     cold = load_case(BASE, {**STEADY, **grade, "spread.temperature_profile": [
         [0.0, "1100 degC"], [1.0, "1000 degC"]]})
     assert cold.spread.temperature_profile == [(0.0, 1373.15), (1.0, 1273.15)]
+    # flat up to an edge zone's cut: taken
+    zoned = load_case(BASE, {**STEADY, **grade, "spread.edge_zone": 0.004,
+                             "spread.temperature_profile": [[0.0, 1373.15], [0.2, 1373.15],
+                                                            [1.0, 1273.15]]})
+    assert zoned.spread.temperature_profile[1] == (0.2, 1373.15)
     assert case.spread.layers(0.005, 1e-3) == (1e-3, 1.2, 4e-3)
     assert case.spread.layers(0.0004, 1e-3) == pytest.approx((4e-4, 1.2, 1.6e-3))
     given = load_case(BASE, {**STEADY, "spread.edge_layer": "2 mm", "spread.largest_layer": 0.003})
@@ -71,6 +76,10 @@ def test_a_transient_case_is_refused_once_for_its_method():
      'spread.temperature_profile: the flow stress law "norton-hoff" does not depend'),
     ({"spread.temperature_profile": [[0.0, 1373.15], [0.5, 1273.15]]},
      "spread.temperature_profile: .*1"),
+    ({"spread.edge_zone": 0.004,
+      "spread.temperature_profile": [[0.0, 1373.15], [0.1, 1363.15], [1.0, 1273.15]]},
+     "spread.temperature_profile: must be the plate's temperature up to the edge zone's cut "
+     "\\(zeta = 1 - spread.edge_zone / \\(pass.width / 2\\) = 0.2\\)"),
     ({"pass.speed_ratio": 1.1}, "pass: \\[spread\\] needs a symmetric pass"),
     ({"roll.model": "hitchcock"}, 'roll.model: \\[spread\\] needs "rigid"'),
     ({"pass.roll_gap": 0.0079, "pass.mill_modulus": 5e9, "pass.exit_thickness": None},

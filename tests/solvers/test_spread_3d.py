@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 from test_full_strip import _setup  # the same directory (pytest puts it on the path)
 
-from hotroll.fem.quantities import vertex_traction
 from hotroll.solvers.spread_3d import Spread3D
+from hotroll.solvers.spread_contact import level_contact, plane_contact
 from hotroll.solvers.steady import SteadyRun
 
 B0 = 0.005       # m, the stock's half width
@@ -217,8 +217,9 @@ def test_an_entry_temperature_across_the_width_is_carried_into_the_flow_stress(c
     """The entry temperature across the width (``Spread3D(entry_temperature=...)``, the
     case's ``spread.temperature_profile``). [identity] a uniform profile at the plate's
     temperature is no profile (1e-12). [exact] with the edge held (u_z = 0) the difference
-    from mid-width's is carried along x unchanged: at every vertex the inlet's at its z
-    (linear in z: P1 holds it; 1e-6 K of 100 K). [estimate] edges 100 K colder (linear across
+    from mid-width's is carried along x unchanged from the set-up on: at every vertex the
+    inlet's at its z (linear in z: P1 holds it; 1e-6 K of 100 K), and the held strip's force
+    rises with it. [estimate] edges 100 K colder (linear across
     the half width): the force rises as the width's mean of the flow stress at the pass's mean
     strain rate and half its exit strain, sigma(T0 - 100 zeta) / sigma(T0) over zeta, within
     1 % (measured 0.5 %: the strip's redistribution between the levels)."""
@@ -241,10 +242,11 @@ def test_an_entry_temperature_across_the_width_is_carried_into_the_flow_stress(c
         plain, rel=1e-12)
     cold = ThicknessProfile.from_pairs([[0.0, T0], [1.0, T0 - 100.0]])
     held = Spread3D(run, B0, edge=0.5 * B0, edge_held=True, entry_temperature=cold)
-    assert held.solve()
-    held.cooling.transport(held.form.nonlinear.velocity)
     z = np.array([v.point[2] for v in held.mesh.vertices])
-    assert np.max(np.abs(held.cooling.values + 100.0 * z / B0)) <= 1e-6
+    assert np.max(np.abs(held.cooling.values + 100.0 * z / B0)) <= 1e-6   # carried at set-up
+    assert held.solve()
+    # [hand] colder edges are harder: the held strip's force above the plane-strain pass's
+    assert held.figures()["roll_force_per_width"] > 1.05 * run.state.history[-1]["roll_force"]
     rate = rp.u_roll / rp.contact_length * 2.0 / math.sqrt(3.0) * math.log(
         rp.half_entry / rp.half_exit)
     eps = 0.5 * exit_strain(run)
@@ -346,11 +348,8 @@ def test_the_mid_width_deviation_by_hand(solved):
         nv = g3.components[0].space.ndof + P3.space.ndof + L3.space.ndof
         g3.vec.FV().NumPy()[:nv] *= 1.0 + c
         dev = held.midplane_deviation()
-        ends2, ends3 = held.arc_ends()
-        verts = run.form.multiplier_vertices()[0]
-        traction2 = vertex_traction(run.form, ends2)[verts]
-        rows = np.arange(len(held.z))[:, None] * run.mesh.nv + verts[None, :]
-        traction3 = vertex_traction(held.form, ends3)[rows]
+        two, lev = plane_contact(run), level_contact(held)
+        traction2, traction3 = two["traction"], lev["traction"]
     finally:
         g3.vec.FV().NumPy()[:] = keep
     # the velocity's: its largest coefficient (vertex values and edge bubbles) times c
@@ -359,10 +358,11 @@ def test_the_mid_width_deviation_by_hand(solved):
     assert dev["midplane_pressure_rms_deviation"] == pytest.approx(c, rel=1e-9)
     assert dev["midplane_contact_pressure_deviation"] == pytest.approx(c, rel=1e-9)
     assert dev["midplane_contact_pressure_rms_deviation"] == pytest.approx(c, rel=1e-9)
-    # [identity] the nodal forces over their areas in every level are the 2D pass's nodal
-    # forces over their lengths (the face integrals the line integrals times the layer's):
-    # the multiplier scaled by 1 + c, the traction too
+    # [identity] each level's nodal forces over their lengths are the 2D pass's, at the 2D
+    # pass's positions (the edge held): the multiplier scaled by 1 + c, the traction too
     assert traction3.shape == (len(held.z), len(traction2))
+    assert np.max(np.abs(lev["x"] - two["x"][None, :])) <= 1e-12
+    assert np.max(np.abs(lev["y"] - two["y"][None, :])) <= 1e-12
     assert np.max(np.abs(traction3 - (1.0 + c) * traction2)) <= 1e-10 * np.abs(traction2).max()
     assert dev["midplane_velocity_deviation"] == pytest.approx(c * peak / run.problem.rp.u_roll,
                                                                rel=1e-9)
@@ -376,10 +376,9 @@ def test_each_width_level_leaves_the_roll_where_its_pressure_falls_to_zero(solve
     the roll at the middle level: its end vertex pulls with 13 % of the peak pressure."""
     run, _, free = solved
     assert free.ends is not None and run.unilateral
-    nv, rp = run.mesh.nv, run.problem.rp
-    ends2, ends3 = free.arc_ends()
-    traction = vertex_traction(free.form, ends3)
-    p_end = free.form.vertex_pressure()[np.arange(len(free.z)) * nv + ends2[1]]
+    rp = run.problem.rp
+    lev = level_contact(free)
+    traction, p_end = lev["traction"], lev["multiplier"][:, -1]
     peak = traction.max()
     gap = run.end_bounds()[1]
     x_e = free.ends.ends()
@@ -389,27 +388,33 @@ def test_each_width_level_leaves_the_roll_where_its_pressure_falls_to_zero(solve
     assert rp.axis_x - x_e.min() > 0.0            # one level leaves before the gap
     held_end = Spread3D(run, B0, edge=0.5 * B0, ends=False)
     assert held_end.solve() and held_end.ends is None
-    p_held = held_end.form.vertex_pressure()[np.arange(len(held_end.z)) * nv + ends2[1]]
+    p_held = level_contact(held_end)["multiplier"][:, -1]
     assert p_held.min() < -0.05 * peak
 
 
-def test_a_uniform_multiplier_is_its_own_traction(solved):
-    """[hand] a uniform contact multiplier lambda = 1: the nodal forces over their areas are
-    1 at every arc vertex of every level (the arc's hats sum to 1), the multiplier's own values
-    at the ends; off the arc 0."""
-    _, held, _ = solved
+def test_an_alternating_multiplier_reads_a_third_of_itself(solved):
+    """[hand] the nodal force over its length, (L_l (p_i/3 + p_(i-1)/6) + L_r (p_i/3 +
+    p_(i+1)/6)) / ((L_l + L_r)/2) (quantities.nodal_traction), of a multiplier alternating
+    +-1 along each level is p_i / 3 at every inner vertex, whatever the lengths; the two ends
+    keep +-1 (the ringing's worst case: the traction takes two thirds of it off)."""
+    run, held, _ = solved
     f = held.form
     lam = f.multiplier.vec.FV().NumPy()
     keep = lam.copy()
+    verts = level_contact(held)["x"].shape[1]
+    chain = run.form.multiplier_vertices()[0]
+    chain = chain[np.argsort(np.asarray(run.mesh.ngmesh.Coordinates())[chain, 0])]
+    sign = (-1.0) ** np.arange(verts)
+    mv, dofs = f.multiplier_vertices()
     try:
-        lam[:] = 1.0 / f.lam_scale
-        out = vertex_traction(f, held.arc_ends()[1])
+        for k in range(len(held.z)):
+            lam[dofs[np.searchsorted(mv, k * run.mesh.nv + chain)]] = sign / f.lam_scale
+        lev = level_contact(held)
     finally:
         lam[:] = keep
-    verts = f.multiplier_vertices()[0]
-    assert np.max(np.abs(out[verts] - 1.0)) <= 1e-12
-    off = np.setdiff1d(np.arange(held.mesh.nv), verts)
-    assert np.all(out[off] == 0.0)
+    assert np.max(np.abs(lev["multiplier"] - sign[None, :])) <= 1e-14
+    assert np.max(np.abs(lev["traction"][:, 1:-1] - sign[None, 1:-1] / 3.0)) <= 1e-12
+    assert np.array_equal(lev["traction"][:, [0, -1]], lev["multiplier"][:, [0, -1]])
 
 
 def test_the_top_traced_per_level_leaks_what_the_2d_pass_leaks():
