@@ -36,8 +36,8 @@ from hotroll.solvers.spread_ends import LevelEnds
 from hotroll.solvers.spread_fields import cooled_flow_stress, frozen_flow_stress, strain_3d
 from hotroll.solvers.spread_tops import LevelTops
 
-#: the contact's ends move once the surfaces' last move is within this many of their
-#: tolerances (the 2D pass's rule: couplings.ContactEnd.after_others)
+#: the contact's ends first move once the surfaces' last move is within this many of their
+#: tolerances (the 2D pass's rule: couplings.ContactEnd.after_others), then every round
 AFTER_OTHERS = 10.0
 
 #: how the 3D strip takes the strain of a strain-dependent flow stress: carried through its
@@ -155,7 +155,7 @@ class Spread3D:
         t0 = time.perf_counter()
         s = self.run2d.s
         tol_face = s.surface_tol * self.problem.h
-        moved = math.inf                  # the surfaces' last move (m)
+        moved, started = math.inf, False  # the surfaces' last move (m); the ends moving
         try:
             for _ in range(max_rounds):
                 st = newton(self.form.nonlinear, s.tol, s.max_it)
@@ -166,10 +166,12 @@ class Spread3D:
                     break
                 change, ended = 0.0, 0.0
                 if self.ends is not None:     # each level's contact end, then its tops
-                    # as the 2D pass's end (couplings.ContactEnd.after_others): moved once the
-                    # surfaces are within 10 tolerances (their last round's move)
-                    ended = (self.ends.update() if moved <= AFTER_OTHERS * tol_face
-                             else math.inf)
+                    # as the 2D pass's end (couplings.ContactEnd.after_others): first moved
+                    # once the surfaces are within 10 tolerances (their last round's move),
+                    # then every round (waiting again after each move took a search step
+                    # every 2-3 rounds: the roughing pass's edge zone 1.5 h steps apart)
+                    started = started or moved <= AFTER_OTHERS * tol_face
+                    ended = self.ends.update() if started else math.inf
                 if self.tops is not None:     # the tops first: the face is solved on them
                     change = self.tops.update()
                     self.tops.displace(self.disp)

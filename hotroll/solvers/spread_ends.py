@@ -5,8 +5,8 @@ Each width level z_k carries its own contact end x_e(z_k) (its ``StripShape.x_e`
 ``solvers/spread_tops.LevelTops``), found as the 2D pass finds its own
 (``fem/free_surface.ContactEndSearch``, ``solvers/contact_end.py``): a root of the contact
 pressure at the level's last arc vertex, p_end >= 0, X_roll - x_e >= 0, p_end (X_roll - x_e)
-= 0, one step per round once the surfaces are within 10 of their tolerances (the 2D pass's
-rule), each level with its own search from scratch (trust length, sign changes), its bounds
+= 0, one step per round from the first round the surfaces are within 10 of their tolerances
+(the 2D pass's rule), each level with its own search from scratch (trust length, sign changes), its bounds
 the 2D pass's (up to the gap for a rigid-plastic strip, past it for an elastic one), an
 elastic strip's first steps predicted by its Winkler layer. After a level's end moved its arc
 vertices slide along the roll and the multiplier is carried with the position
