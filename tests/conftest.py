@@ -35,8 +35,11 @@ def solved_example1(tmp_path_factory) -> Path:
 #: 55 s, the property tests 42 s, the studies 40 s, contact and rolling 28 s each, ...),
 #: collected first: pytest-xdist's ``--dist loadfile`` hands out files in collection order,
 #: so the longest go first and the short ones fill the gaps (longest-first scheduling)
-#: instead of one long file running alone at the end.
-LONGEST_FIRST = ("workflows/test_study_mesh_table.py", "config/test_case_properties.py",
+#: instead of one long file running alone at the end. The 3D pass's two files first (issue 53:
+#: test_spread_3d.py took 6.5 min on a loaded machine before its laws and scalings moved to
+#: test_spread_3d_laws.py).
+LONGEST_FIRST = ("solvers/test_spread_3d.py", "solvers/test_spread_3d_laws.py",
+                 "workflows/test_study_mesh_table.py", "config/test_case_properties.py",
                  "workflows/test_study.py", "solvers/test_contact.py", "solvers/test_rolling.py",
                  "solvers/test_thermal_transient.py", "workflows/test_faults.py",
                  "results/test_summary_unchanged.py", "interfaces/test_behaviour.py",
