@@ -293,35 +293,31 @@ def test_an_edge_zone_is_the_bar_as_wide_as_the_zone_plus_the_2d_pass_inside(pas
         bar["midplane_pressure_rms_deviation"], rel=1e-9)
 
 
-@pytest.mark.parametrize("solver", ["umfpack", "sparsecholesky+gmres"])
-def test_the_3d_pass_gives_the_same_bits_at_any_thread_count(solved, monkeypatch, solver):
-    """[identity] 1 and 2 threads, and 2 again (the parallel regions take them whatever else
-    runs): the same spread, force and fluxes to the bit (coloured assembly; UMFPACK sequential;
-    the LDL^T factors of the preconditioned GMRES made and applied in one thread,
-    ``fem/reproducible.one_thread``: two 2-thread runs differed in the last bits before; one
-    width layer). The two solvers: the same discrete solution, to Newton's tolerance."""
+def test_the_3d_pass_gives_the_same_bits_at_any_thread_count(solved, monkeypatch):
+    """[identity] 1 and 2 threads (the parallel regions take them whatever else runs): the
+    same spread, force and fluxes to the bit with either linear solver (coloured assembly;
+    UMFPACK sequential; the LDL^T factors of the preconditioned GMRES made and applied in one
+    thread, ``fem/reproducible.one_thread``: its 1- and 2-thread runs, and two 2-thread runs,
+    differed in the last bits before; one width layer). The two solvers: the same discrete
+    solution, to Newton's tolerance (1e-8)."""
     from hotroll.fem import reproducible
     from hotroll.solvers.threads import solver_threads
 
     monkeypatch.setattr(reproducible, "others_running", lambda: 0)
     run, _, _ = solved
-    out = []
-    for n in (1, 2, 2):
-        with solver_threads(n):
-            s3 = Spread3D(run, B0, edge=B0, linear_solver=solver)
-            assert s3.solve()
-            f = s3.figures()
-            out.append(tuple(f[k] for k in ("spread", "roll_force", "roll_torque", "flux_in",
-                                             "flux_out")))
-        assert reproducible.threads_used()[-1] == n or n > reproducible.cores()
-    assert out[0] == out[1] == out[2]
-    if solver != "umfpack":
-        with solver_threads(1):
-            s3 = Spread3D(run, B0, edge=B0)
-            assert s3.solve()
-            f = s3.figures()
-        assert out[0][0] == pytest.approx(f["spread"], rel=1e-8)
-        assert out[0][1] == pytest.approx(f["roll_force"], rel=1e-8)
+    out = {}
+    for solver in ("umfpack", "sparsecholesky+gmres"):
+        for n in (1, 2):
+            with solver_threads(n):
+                s3 = Spread3D(run, B0, edge=B0, linear_solver=solver)
+                assert s3.solve()
+                f = s3.figures()
+                out[solver, n] = tuple(f[k] for k in ("spread", "roll_force", "roll_torque",
+                                                      "flux_in", "flux_out"))
+            assert reproducible.threads_used()[-1] == n or n > reproducible.cores()
+        assert out[solver, 1] == out[solver, 2]
+    a, b = out["umfpack", 1], out["sparsecholesky+gmres", 1]
+    assert b[0] == pytest.approx(a[0], rel=1e-8) and b[1] == pytest.approx(a[1], rel=1e-8)
 
 
 def test_an_unknown_3d_linear_solver_is_refused(solved):
