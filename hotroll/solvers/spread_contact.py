@@ -15,7 +15,7 @@ from hotroll.fem.quantities import nodal_traction
 def _chain(run) -> np.ndarray:
     """The 2D pass's arc vertices (the multiplier's), in order along the reference x."""
     verts = run.form.multiplier_vertices()[0]
-    x0 = np.array([run.mesh.ngmesh.Coordinates()[v][0] for v in verts])
+    x0 = np.asarray(run.mesh.ngmesh.Coordinates())[verts, 0]
     return verts[np.argsort(x0, kind="stable")]
 
 

@@ -16,6 +16,8 @@ the entry's difference across the width, carried).
 """
 from __future__ import annotations
 
+from hotroll.solvers.thermal_feedback import rate_exponent_varies
+
 
 def strain_3d(run, copy, mesh3d):
     """The strain carried through the 3D strip (``fem/strain.py``: v . grad eps = edot, SUPG
@@ -80,5 +82,5 @@ def cooled_flow_stress(run, copy, theta, strain3d=None) -> tuple:
         eps = copy.scalar(run.strain.gf)
     else:
         eps = entry
-    varies = float(flow.rate_exponent(1000.0)) != float(flow.rate_exponent(1500.0))
-    return flow.consistency(eps, T) / K_ref, (flow.rate_exponent(T) - m_ref if varies else None)
+    return flow.consistency(eps, T) / K_ref, (flow.rate_exponent(T) - m_ref
+                                              if rate_exponent_varies(flow) else None)

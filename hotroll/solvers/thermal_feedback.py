@@ -15,6 +15,11 @@ from hotroll.model.material import edot_squared
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 
 
+def rate_exponent_varies(flow) -> bool:
+    """Whether the law's rate exponent depends on the temperature (Hensel-Spittel m8)."""
+    return float(flow.rate_exponent(1000.0)) != float(flow.rate_exponent(1500.0))
+
+
 class FlowStressFeedback:
     """The flow stress a temperature gives the form: the consistency K(eps, T)/K_ref and,
     where the law's rate exponent depends on the temperature (Hensel-Spittel m8), the offset
@@ -29,9 +34,7 @@ class FlowStressFeedback:
         self.flow, self.strain, self.entry_strain = flow, strain, float(entry_strain)
         self.form = None
         self.last = SolveInfo(0, 0.0)
-        # whether the law's rate exponent depends on the temperature (Hensel-Spittel m8)
-        self.m_varies = flow is not None and (float(flow.rate_exponent(1000.0))
-                                              != float(flow.rate_exponent(1500.0)))
+        self.m_varies = flow is not None and rate_exponent_varies(flow)
 
     def _consistency_at(self, T):
         """K(eps, T)/K_ref at the temperature ``T`` (a CF, or numbers) and the strain field;
