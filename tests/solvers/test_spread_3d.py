@@ -251,16 +251,17 @@ def test_an_alternating_multiplier_reads_a_third_of_itself(solved):
 def test_the_top_traced_per_level_leaks_what_the_2d_pass_leaks():
     """[identity of the tracing, measured] Tresca 0.8 (the strip pulled sideways ahead of the
     bite): with the top traced per width level (solvers/spread_tops.py) the 3D pass's
-    (out + edge - in) / in is the 2D pass's own tracing error (3.5e-4 both, first order in h);
-    with the 2D pass's top kept in every level it was 1.7e-3 (the top ahead of the bite let
-    the strip in). [hand] the contact starts later where the strip spreads: x_c(z) behind the
+    (out + edge - in) / in is the 2D pass's own tracing error (3.5e-4 both with two width
+    layers, first order in h; one layer here, two levels: mid-width and edge, the suite's
+    time); with the 2D pass's top kept in every level it was 1.7e-3 (the top ahead of the
+    bite let the strip in). [hand] the contact starts later where the strip spreads: x_c(z) behind the
     2D pass's in every level, the most at the edge."""
     case, problem, st = _setup(**{"friction.factor": 0.8})
     run = SteadyRun(problem, st, case.plate.length)
     assert run.run().status == "steady"
     two = run.state.history[-1]
     leak2 = 1.0 - two["mass_flux_out"] / two["mass_flux_in"]
-    s3 = Spread3D(run, B0, edge=0.5 * B0)
+    s3 = Spread3D(run, B0, edge=B0)                  # one layer: two levels, mid and edge
     assert s3.solve()
     f = s3.figures()
     leak3 = (f["flux_in"] - f["flux_out"] - f["flux_edge"]) / f["flux_in"]
