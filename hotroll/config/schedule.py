@@ -209,10 +209,11 @@ class Schedule(Section):
                 problems.append(f'mill.{key}: "{tandem}" not with [spread] (the stands\' mass '
                                 f"flux is matched per unit width, and the spread changes the "
                                 f'width from stand to stand); "given" with [spread]')
-        if self.spread is not None and self.spread.temperature_profile is not None:
-            problems.append("spread.temperature_profile: not in a schedule (each pass enters "
-                            "at its own temperature, and the profile across the width is not "
-                            "carried from pass to pass yet); a single pass's case takes it")
+        for key in ("temperature_profile", "temperature_section"):
+            if self.spread is not None and getattr(self.spread, key) is not None:
+                problems.append(f"spread.{key}: not in a schedule (each pass enters with the "
+                                "temperature the last pass and its transport left across the "
+                                "width); a single pass's case takes it")
         for k, p in enumerate(self.passes, 1):
             if (p.exit_thickness is None) == (p.roll_gap is None):
                 problems.append(f"pass[{k}]: give exactly one of exit_thickness (m) and "
@@ -265,11 +266,13 @@ class Schedule(Section):
                   temperature_profile=None, strain: float = 0.0, strain_profile=None,
                   angular_velocity: float | None = None,
                   tensions: tuple[float, float] | None = None,
-                  width: float | None = None) -> Case:
+                  width: float | None = None, temperature_section=None) -> Case:
         """The k-th pass (from 0) as a validated case entering with this state (profiles:
         ``process.profile.ThicknessProfile`` or None); ``tensions``: (back, front) in Pa
         (None: the pass's own); ``width`` (m): the strip's entering this pass (None:
-        strip.width; with [spread] the last pass's exit width)."""
+        strip.width; with [spread] the last pass's exit width); ``temperature_section``: its
+        entry temperature over the cross-section (``model/section.SectionProfile``, with
+        [spread]; None: the same at every width)."""
         p = self.passes[k]
         back, front = tensions if tensions is not None else (p.back_tension, p.front_tension)
         omega = angular_velocity if angular_velocity is not None else p.angular_velocity()
@@ -297,6 +300,8 @@ class Schedule(Section):
             d["pass"]["width"] = width
         if self.spread is not None:          # each pass's 3D pass across the width
             d["spread"] = self.spread.model_dump(exclude_none=True)
+            if temperature_section is not None:
+                d["spread"]["temperature_section"] = temperature_section.to_dict()
         d["pass"].update(pass_rolls(p))
         if not p.isothermal:
             d["thermal"] = self.thermal.model_dump(exclude_none=True)

@@ -11,11 +11,13 @@ from __future__ import annotations
 from typing import Any, Literal
 
 import numpy as np
-from pydantic import field_validator
+from pydantic import Field, field_validator
 
 from hotroll.config.base import PosFloat, Section, field
 from hotroll.config.roll_sides import UPPER
 from hotroll.config.sections import check_profile
+from hotroll.model.profile import ProfileError
+from hotroll.model.section import SectionProfile
 
 #: b0/h0 the 3D pass takes: below, a bar narrower than a quarter of its thickness (an edger's
 #: pass, not flat rolling); above, a plate whose quarter needs more width layers than a laptop
@@ -23,6 +25,45 @@ from hotroll.config.sections import check_profile
 #: same bound; not validated: on Case R at b0/h0 = 8 no cut was in plane strain,
 #: docs/validation/spread_3d.md)
 WIDTH_RATIO = (0.25, 16.0)
+
+
+class TemperatureSection(Section):
+    """The entry temperature over the quarter cross-section (K): ``values[i][j]`` at
+    ``eta[i]`` (y / half thickness) and ``zeta[j]`` (z / half width), bilinear between."""
+
+    eta: list[float] = field(..., "through the half thickness, 0 (centre) to 1 (surface)", "",
+                             "increasing strictly from 0 to 1")
+    zeta: list[float] = field(..., "across the half width, 0 (mid-width) to 1 (the edge)", "",
+                              "increasing strictly from 0 to 1")
+    values: list[list[float]] = field(..., "the temperature, one row per eta of one value "
+                                      "per zeta", "K", "> 0")
+
+    @field_validator("eta", "zeta")
+    @classmethod
+    def _axis(cls, v: Any, info) -> Any:
+        try:
+            SectionProfile(tuple(v), (0.0, 1.0), tuple((1.0, 1.0) for _ in v))
+        except ProfileError as e:
+            raise ValueError(str(e).replace("eta", info.field_name)) from None
+        return v
+
+    @field_validator("values")
+    @classmethod
+    def _values(cls, v: Any, info) -> Any:
+        eta, zeta = info.data.get("eta"), info.data.get("zeta")
+        shape = (len(eta), len(zeta)) if eta is not None and zeta is not None else None
+        rows = [len(r) for r in v]
+        if shape is not None and (len(v), *set(rows)) != shape:
+            raise ValueError(f"one row per eta ({shape[0]}) of one value per zeta "
+                             f"({shape[1]}), got {len(v)} rows of {sorted(set(rows))} values")
+        low = min(min(r) for r in v) if v and all(v) else None
+        if low is None or not low > 0.0:
+            raise ValueError(f"temperatures must be > 0 K, got {low!r}")
+        return v
+
+    def profile(self) -> SectionProfile:
+        return SectionProfile(tuple(self.eta), tuple(self.zeta),
+                              tuple(tuple(r) for r in self.values))
 
 
 class SpreadConfig(Section):
@@ -50,6 +91,12 @@ class SpreadConfig(Section):
         "plate.temperature: the edges' cooling before the pass, carried through the bite "
         "(omit: the plane-strain pass's temperature at every width)", "K",
         "pairs with zeta increasing strictly from 0 to 1 and T > 0", columns=("", "K"))
+    temperature_section: TemperatureSection | None = Field(
+        None, description="entry temperature over the quarter cross-section (eta through the "
+        "half thickness, zeta across the half width, values in K), its mid-width column the "
+        "plate's entry profile (plate.temperature_profile or plate.temperature): what a "
+        "schedule hands on after its interpass cooling across the width (omit: as "
+        "temperature_profile)")
     max_rounds: int = field(30, "the 3D pass's rounds of Newton and the lateral face's update",
                             "", "an integer in [1, 200]", ge=1, le=200)
 
@@ -122,7 +169,10 @@ def problems(case) -> list[str]:
     if case.plate.free_surface != "traced":
         out.append('plate.free_surface: [spread] needs "traced" (the 3D strip\'s free '
                    'surfaces are stream surfaces)')
-    if s.temperature_profile is not None:
+    if s.temperature_profile is not None and s.temperature_section is not None:
+        out.append("spread.temperature_section: not with spread.temperature_profile (give "
+                   "one of the two)")
+    elif s.temperature_profile is not None or s.temperature_section is not None:
         out.extend(_profile_problems(case, s))
     if case.solver.method == "steady" and case.contact.resolved("steady") != "multiplier":
         out.append('contact.method: [spread] needs the exact contact ("auto" or '
@@ -130,21 +180,59 @@ def problems(case) -> list[str]:
     return out
 
 
+def entry_section(case) -> SectionProfile | None:
+    """The 3D pass's entry temperature over the cross-section: ``temperature_section``, or
+    ``temperature_profile`` across the width added to the plate's through the thickness
+    (uniform: plate.temperature), or None."""
+    s = case.spread
+    if s is None or (s.temperature_profile is None and s.temperature_section is None):
+        return None
+    if s.temperature_section is not None:
+        return s.temperature_section.profile()
+    prof = case.plate.entry_profiles()[0]
+    eta = (0.0, 1.0) if prof is None else prof.eta
+    base = (np.full(2, case.plate.temperature) if prof is None
+            else np.asarray(prof.values))
+    zeta = np.array([z for z, _ in s.temperature_profile])
+    add = np.array([t for _, t in s.temperature_profile]) - s.temperature_profile[0][1]
+    return SectionProfile(tuple(eta), tuple(zeta),
+                          tuple(tuple(r) for r in base[:, None] + add[None, :]))
+
+
+def temperature_matters(law, t: float) -> bool:
+    """True if the flow stress law changes with the temperature (at ``t`` against 100 K
+    below)."""
+    return float(law.sigma(0.1, 1.0, t)) != float(law.sigma(0.1, 1.0, t - 100.0))
+
+
 def _profile_problems(case, s) -> list[str]:
-    """Why ``spread.temperature_profile`` cannot be taken: its mid-width value not the plate's,
-    a law whose flow stress does not change with the temperature, a temperature outside the
+    """Why the entry temperature across the width (``spread.temperature_profile`` or
+    ``spread.temperature_section``) cannot be taken: its mid-width value not the plate's, a
+    law whose flow stress does not change with the temperature, a temperature outside the
     law's, a profile that varies inside an edge zone's cut (the plane-strain pass's figures
     there are at mid-width's temperature)."""
-    out, key = [], "spread.temperature_profile"
-    zeta = [z for z, _ in s.temperature_profile]
-    temps = [t for _, t in s.temperature_profile]
-    mid, t_plate = temps[0], case.plate.temperature
-    if abs(mid - t_plate) > 1e-9 * t_plate:
-        out.append(f"{key}: its mid-width value (zeta = 0) is the plane-strain pass's, "
-                   f"plate.temperature = {t_plate:g} K, got {mid:g} K")
+    key = ("spread.temperature_profile" if s.temperature_profile is not None
+           else "spread.temperature_section")
+    out = []
+    sec = entry_section(case)
+    t_plate = case.plate.temperature
+    eta = np.asarray(sec.eta)
+    prof = case.plate.entry_profiles()[0]
+    plate = np.full(eta.size, t_plate) if prof is None else prof(eta)
+    mid = sec.array[:, 0]
+    if s.temperature_profile is not None:
+        if abs(s.temperature_profile[0][1] - t_plate) > 1e-9 * t_plate:
+            out.append(f"{key}: its mid-width value (zeta = 0) is the plane-strain pass's, "
+                       f"plate.temperature = {t_plate:g} K, got "
+                       f"{s.temperature_profile[0][1]:g} K")
+    elif np.max(np.abs(mid - plate)) > 1e-9 * t_plate:
+        worst = int(np.argmax(np.abs(mid - plate)))
+        out.append(f"{key}: its mid-width column (zeta = 0) is the plane-strain pass's entry "
+                   f"profile (plate.temperature_profile, or plate.temperature), at eta = "
+                   f"{eta[worst]:g}: {plate[worst]:g} K, got {mid[worst]:g} K")
     law = case.material.flow_stress()
-    other = min(temps) if min(temps) != t_plate else t_plate - 100.0
-    if float(law.sigma(0.1, 1.0, t_plate)) == float(law.sigma(0.1, 1.0, other)):
+    temps = sec.array.ravel()
+    if not temperature_matters(law, t_plate):
         out.append(f'{key}: the flow stress law "{case.material.law}" does not depend on the '
                    "temperature (a grade's law does)")
     else:
@@ -155,9 +243,7 @@ def _profile_problems(case, s) -> list[str]:
     width = case.pass_.width
     if s.edge_zone is not None and width is not None:
         cut = 1.0 - s.edge_zone / (0.5 * width)
-        inside = [t for z, t in zip(zeta, temps) if z <= cut]
-        at_cut = float(np.interp(cut, zeta, temps))
-        if any(abs(t - mid) > 1e-9 * mid for t in [*inside, at_cut]):
+        if not sec.is_uniform_across(cut):
             out.append(f"{key}: must be the plate's temperature up to the edge zone's cut "
                        f"(zeta = 1 - spread.edge_zone / (pass.width / 2) = {cut:.4g}): the "
                        "plane-strain pass's figures inside the cut are at mid-width's")

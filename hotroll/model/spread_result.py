@@ -44,6 +44,9 @@ class SpreadResult:
       quarter), ``edge_layer`` (m), ``wall_time`` (s); ``zone_cut`` (m): where an edge zone's
       3D strip begins (0: the whole half width; the plane-strain pass's figures inside it);
       ``failure``: why its solve stopped (a linear solve failed), or "";
+    - ``exit_temperature_offset``: with an entry temperature across the width, its difference
+      from mid-width's at the outlet (K; ``eta``, ``zeta``, ``values`` one row per eta), or
+      None;
     - ``write_vtk(path, shift)``: the 3D fields for ParaView, positions moved by ``shift`` (m).
     """
 
@@ -71,6 +74,7 @@ class SpreadResult:
     zone_cut: float = 0.0
     failure: str = ""
     forward_slip: float = float("nan")
+    exit_temperature_offset: Mapping[str, list] | None = None
     write_vtk: Callable[[Path, float], Path] | None = field(default=None, repr=False)
 
     @property

@@ -49,6 +49,12 @@ class SpreadKeys:
         "on the arc at mid-width against the plane-strain pass's, RMS over the 2D contact "
         "pressure's (the bite only: how far the middle of the strip is from plane strain)",
         group=_G, when=_W)
+    exit_temperature_offset: dict | None = _f(
+        None, "exit temperature across the width", "the 3D pass's outlet: the temperature "
+        "less mid-width's at the same height (K), `values` one row per `eta` (0 the centre, "
+        "1 the surface) of one per `zeta` (0 mid-width, 1 the edge), carried through the bite "
+        "from the entry's (`spread.temperature_profile` or `spread.temperature_section`); "
+        "null without one", group=_G, when=_W)
     spread_settled: bool = _f(None, "3D pass settled", "Newton converged and the lateral face "
                               "moved less than its tolerance", group=_G, when=_W)
     spread_rounds: int = _f(None, "3D rounds", "rounds of Newton and the lateral face's "

@@ -37,7 +37,9 @@ def spread_figures(case, sp: SpreadResult, roll_force: float) -> dict:
         "spread_newton_iterations": sp.newton_iterations, "spread_dofs": sp.dofs,
         "spread_layers": sp.layers, "spread_edge_layer": sp.edge_layer,
         "spread_edge_zone": (b0 / 2 - sp.zone_cut) if sp.zone_cut > 0.0 else None,
-        "spread_wall_time": sp.wall_time}
+        "spread_wall_time": sp.wall_time,
+        "exit_temperature_offset": (None if sp.exit_temperature_offset is None
+                                    else dict(sp.exit_temperature_offset))}
 
 
 #: an edge zone's cut counts as plane strain while the 3D pressure on it lies within this RMS

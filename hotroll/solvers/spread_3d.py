@@ -53,8 +53,10 @@ class Spread3D:
     width, plane strain (u_z = 0, as on the mid-width plane) on the cut at half_width - zone
     and the 2D pass's figures per width inside it (None: the whole half width).
     ``entry_temperature``: the entry temperature across the width (K, a function of z / half
-    width, its value at 0 the 2D pass's), its differences from mid-width's carried through the
-    bite into the flow stress (None: the 2D pass's temperature at every width).
+    width, its value at 0 the 2D pass's) or over the cross-section (``model/section.py``, its
+    mid-width column the 2D pass's entry profile), its differences from mid-width's at the
+    same height carried through the bite into the flow stress (None: the 2D pass's
+    temperature at every width).
     ``ends``: with unilateral contact and the tops per level, each width level's contact end
     found from its own pressure (``solvers/spread_ends.py``; False, or ``tops=False``: the 2D
     pass's end in every level).
@@ -107,9 +109,7 @@ class Spread3D:
         if entry_temperature is None:
             consistency, rate_offset = frozen_flow_stress(run, copy, self.strain)
         else:
-            mid = float(entry_temperature(0.0))
-            self.cooling = CarriedField(
-                self.mesh, lambda x, y, z: entry_temperature(z / half_width) - mid)
+            self.cooling = CarriedField(self.mesh, _offset(entry_temperature, half_width))
             consistency, rate_offset = cooled_flow_stress(run, copy, self.cooling, self.strain)
         self.form = RollingForm3D(self.mesh, problem.rp, NortonHoff(1.0, mat.m, mat.eps0),
                                   problem.friction, PenaltyTable(h),
@@ -342,3 +342,12 @@ class Spread3D:
                                               / self.problem.rp.u_roll)
         return out
 
+
+def _offset(entry_temperature, half_width: float):
+    """theta(x, y, z) at the inlet's vertices (K): the entry temperature less mid-width's at
+    the same height, from a ``SectionProfile`` (eta = y / the inlet's half thickness) or a
+    profile across the width alone (a function of zeta)."""
+    if hasattr(entry_temperature, "offset"):
+        return lambda x, y, z: entry_temperature.offset(y / y.max(), z / half_width)
+    mid = float(entry_temperature(0.0))
+    return lambda x, y, z: entry_temperature(z / half_width) - mid

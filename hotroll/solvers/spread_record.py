@@ -54,6 +54,7 @@ def spread_record(s3) -> SpreadResult:
             y, e = X3[idx, 1], eps[idx]
             mean.append(float(np.sum(0.5 * (e[1:] + e[:-1]) * np.diff(y)) / (y[-1] - y[0])))
         section_z["strain"] = np.array(mean)
+    offset = None if s3.cooling is None else exit_offset(s3, X3, out, P)
     # the half width along x at mid-thickness (the sym line) and on the strip's surface (B's
     # vertex values at the edge level's x, the surface's interpolated to the sym line's x)
     B = s3.face.B.vec.FV().NumPy()[:nv]
@@ -84,9 +85,31 @@ def spread_record(s3) -> SpreadResult:
         power_balance_error=fig["power_balance_error"], settled=bool(fig["settled"]),
         rounds=int(fig["rounds"]), newton_iterations=int(fig["newton_iterations"]),
         dofs=int(fig["dofs"]), layers=levels - 1, zone_cut=fig["zone_cut"],
+        exit_temperature_offset=offset,
         failure=fig["failure"], forward_slip=fig["forward_slip"],
         edge_layer=float(s3.z[-1] - s3.z[-2]), wall_time=fig["wall_time"],
         write_vtk=lambda path, shift=0.0: write_vtk_3d(s3, path, shift))
+
+
+def exit_offset(s3, X3: np.ndarray, out: np.ndarray, P: np.ndarray) -> dict:
+    """The entry temperature's difference from mid-width's as the outlet carries it (K):
+    ``values[j][k]`` at the outlet's vertex heights (eta: over each level's top, averaged over
+    the levels) and the width levels (zeta: over the edge's half width at that height,
+    averaged over the heights); an edge zone's cut and mid-width (zeta = 0) between them
+    hold 0 (the plane-strain pass's temperature inside the cut)."""
+    nv, levels = s3.run2d.mesh.nv, len(s3.z)
+    outs = np.nonzero(out)[0]
+    outs = outs[np.argsort(P[outs, 1])]
+    idx = np.arange(levels)[None, :] * nv + outs[:, None]          # (heights, levels)
+    y, z = X3[idx, 1], X3[idx, 2]
+    eta = np.mean(y / y[-1:, :], axis=1)
+    zeta = np.mean(z / z[:, -1:], axis=0)
+    values = s3.cooling.values[idx]
+    if zeta[0] > 0.0:                    # an edge zone: plane strain up to its cut
+        zeta = np.concatenate([[0.0], zeta])
+        values = np.concatenate([np.zeros((eta.size, 1)), values], axis=1)
+    eta[0], eta[-1], zeta[0], zeta[-1] = 0.0, 1.0, 0.0, 1.0
+    return {"eta": eta.tolist(), "zeta": zeta.tolist(), "values": values.tolist()}
 
 
 def _boundary_vertices(mesh, names) -> np.ndarray:

@@ -7,6 +7,7 @@ from dataclasses import replace
 from hotroll.config.case import Case, CaseError
 from hotroll.config.full_strip import asymmetric_refusal, friction_sections
 from hotroll.config.roll_sides import SIDES
+from hotroll.config.spread import entry_section
 from hotroll.fem.mesh import MeshSpec, plate_fine_length
 from hotroll.model.material import NortonHoff
 from hotroll.model.roll_elastic import FlatteningRoll, RollElasticity
@@ -77,8 +78,7 @@ def build_model(case: Case):
                          front_tension=case.pass_.front_tension,
                          # (a 3D pass's entry temperature across the width takes the law too)
                          flow_stress=flow if (flow.depends_on_strain or case.thermal or (
-                             case.spread is not None
-                             and case.spread.temperature_profile is not None)) else None,
+                             entry_section(case) is not None)) else None,
                          temperature=case.plate.temperature,
                          entry_strain=case.plate.mean_entry_strain,
                          carries_strain=flow.depends_on_strain,

@@ -31,9 +31,12 @@ from typing import Callable
 import numpy as np
 
 from hotroll.config.schedule import Schedule
+from hotroll.config.spread import temperature_matters
 from hotroll.model.interpass import cool, enthalpy_mean
+from hotroll.model.interpass_section import cool_section
 from hotroll.model.microstructure.softening import PassState
 from hotroll.model.profile import ThicknessProfile
+from hotroll.model.section import SectionProfile
 from hotroll.model.thermal_properties import ThermalProperties
 from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv, write_json
@@ -60,7 +63,22 @@ def pass_case(sch: Schedule, k: int, state: StripState, omega: float | None = No
     T, e = state.temperature, state.strain
     return sch.pass_case(k, state.thickness, _enthalpy_mean(sch, T),
                          None if T.is_uniform else T, e.mean(),
-                         None if e.is_uniform else e, omega, tensions, width=state.width)
+                         None if e.is_uniform else e, omega, tensions, width=state.width,
+                         temperature_section=_section_for(sch, k, state))
+
+
+def _section_for(sch: Schedule, k: int, state: StripState):
+    """The k-th pass's entry temperature over the cross-section (``spread.temperature_section``),
+    or None: where the strip's edges cooled (a [spread] schedule's transport) and the pass's
+    flow stress feels it (a thermal pass, a law that depends on the temperature). An edge
+    zone's interior is mid-width's (its cut is plane strain)."""
+    sec = state.section
+    if (sec is None or sch.spread is None or sch.passes[k].isothermal or sec.is_uniform_across()
+            or not temperature_matters(sch.material.flow_stress(), state.temperature.values[0])):
+        return None
+    if sch.spread.edge_zone is not None and state.width is not None:
+        sec = sec.uniform_up_to(max(0.0, 1.0 - sch.spread.edge_zone / (0.5 * state.width)))
+    return sec
 
 
 def _enthalpy_mean(sch: Schedule, T: ThicknessProfile) -> float:
@@ -86,24 +104,42 @@ def transport(sch: Schedule, k: int, state: StripState, exit_velocity: float,
     th = sch.thermal
     duration = tr.duration if tr.duration is not None else tr.distance / exit_velocity
     T = state.temperature
-    res = cool(np.asarray(T.eta), np.asarray(T.values), 0.5 * state.thickness, duration,
-               sch.material.thermal_properties(), None, None, th.ambient_temperature,
-               surface=th.law("surface", htc_air=tr.htc_air, emissivity=tr.emissivity),
-               record=deformed is not None)
-    eta = res.y / res.y[-1]
-    T_new = ThicknessProfile(tuple(eta), tuple(res.temperature))
+    surface = th.law("surface", htc_air=tr.htc_air, emissivity=tr.emissivity)
+    props = sch.material.thermal_properties()
+    section = None
+    if sch.spread is not None and state.width is not None:
+        # across the width too: the edges cool from the side (model/interpass_section.py)
+        res = cool_section(state.section or SectionProfile.across(T), 0.5 * state.thickness,
+                           0.5 * state.width, duration, props, surface,
+                           th.ambient_temperature, record=deformed is not None)
+        section = res.section
+        T_new = section.mid_width()
+        # J per m^2 of the quarter's cooled surface (the top's half width and the edge's half
+        # thickness), as the 1D model's per m^2 of its top
+        heat_lost = res.heat_lost / (0.5 * state.width + 0.5 * state.thickness)
+        surface_T = float(T_new.values[-1])
+    else:
+        res = cool(np.asarray(T.eta), np.asarray(T.values), 0.5 * state.thickness, duration,
+                   props, None, None, th.ambient_temperature, surface=surface,
+                   record=deformed is not None)
+        eta = res.y / res.y[-1]
+        T_new = ThicknessProfile(tuple(eta), tuple(res.temperature))
+        heat_lost, surface_T = res.heat_lost, res.surface
     soft = None
     if deformed is None:
         new = StripState(state.thickness, T_new, state.strain.scaled(tr.strain_retained),
-                         width=state.width)
-    else:
+                         width=state.width, section=section)
+    else:     # the kinetics at mid-width (its column's history with the section)
         soft = MS.after_transport(sch, deformed, res, f"pass[{k + 1}].transport")
-        new = StripState(state.thickness, T_new, *MS.handed_on(soft), width=state.width)
-    row = {"transport_duration": duration, "transport_heat_lost": res.heat_lost,
+        new = StripState(state.thickness, T_new, *MS.handed_on(soft), width=state.width,
+                         section=section)
+    row = {"transport_duration": duration, "transport_heat_lost": heat_lost,
            "transport_balance_error": res.balance_error,
            "next_entry_temperature_mean": res.mean,
-           "next_entry_temperature_surface": res.surface,
+           "next_entry_temperature_surface": surface_T,
            "next_entry_strain_mean": new.strain.mean()}
+    if section is not None:
+        row["next_entry_temperature_edge"] = section.edge_mean()
     if soft is not None:
         row.update(MS.transport_columns(soft))
     return new, row, soft

@@ -4,7 +4,7 @@ results (``model/spread_result.py``)."""
 from __future__ import annotations
 
 from hotroll.config.case import Case
-from hotroll.model.profile import ThicknessProfile
+from hotroll.config.spread import entry_section
 from hotroll.model.spread_result import SpreadResult
 from hotroll.solvers.spread_3d import Spread3D
 from hotroll.solvers.spread_record import spread_record
@@ -18,8 +18,6 @@ def solve_spread(case: Case, run, progress=None) -> SpreadResult:
     edge, growth, largest = case.spread.layers(half, case.mesh.h)
     s3 = Spread3D(run, half, edge=edge, growth=growth, largest=largest,
                   zone=case.spread.edge_zone and case.spread.modelled(half),
-                  strain=case.spread.strain, entry_temperature=(
-                      None if case.spread.temperature_profile is None
-                      else ThicknessProfile.from_pairs(case.spread.temperature_profile)))
+                  strain=case.spread.strain, entry_temperature=entry_section(case))
     s3.solve(max_rounds=case.spread.max_rounds, progress=progress)
     return spread_record(s3)

@@ -10,19 +10,22 @@ import numpy as np
 
 from hotroll.config.schedule import Schedule
 from hotroll.model.profile import ThicknessProfile, folded
+from hotroll.model.section import SectionProfile
 from hotroll.workflows.schedule_rolls import asymmetric_exit
 
 
 class StripState:
     """The strip between passes: full thickness (m), temperature and strain profiles, with a
     microstructure model the austenite grain size (m), and its width (m; None: per unit width;
-    with [spread] each pass's exit width is the next one's)."""
+    with [spread] each pass's exit width is the next one's). ``section``: with [spread] the
+    temperature over the quarter cross-section (``model/section.py``; its mid-width column is
+    ``temperature``), or None (the same at every width)."""
 
     def __init__(self, thickness: float, temperature: ThicknessProfile,
                  strain: ThicknessProfile, grain: ThicknessProfile | None = None,
-                 width: float | None = None):
+                 width: float | None = None, section: SectionProfile | None = None):
         self.thickness, self.temperature, self.strain = thickness, temperature, strain
-        self.grain, self.width = grain, width
+        self.grain, self.width, self.section = grain, width, section
 
     def to_dict(self) -> dict:
         d = {"thickness": self.thickness, "temperature_profile": self.temperature.pairs(),
@@ -31,6 +34,8 @@ class StripState:
             d["grain_size_profile"] = self.grain.pairs()
         if self.width is not None:
             d["width"] = self.width
+        if self.section is not None:
+            d["temperature_section"] = self.section.to_dict()
         return d
 
 
@@ -64,7 +69,7 @@ def exit_state(sch: Schedule, case, summary: dict,
                                                and prof["strain"] is None)):
         return StripState(exit_thickness(case, summary),
                           *asymmetric_exit(summary, entry.temperature, entry.strain), grain,
-                          width)
+                          width, entry.section)
     T = (entry.temperature if case.thermal is None and entry is not None
          else ThicknessProfile(tuple(prof["eta"]), tuple(prof["temperature"])))
     if prof.get("strain") is not None:
@@ -72,7 +77,14 @@ def exit_state(sch: Schedule, case, summary: dict,
         e = ThicknessProfile(strain.eta, tuple(np.maximum(strain.values, 0.0)))
     else:
         e = ThicknessProfile.uniform(summary["homogeneous_exit_strain"])
-    return StripState(exit_thickness(case, summary), T, e, grain, width)
+    # the 3D pass's outlet across the width: the plane-strain exit profile plus what the
+    # entry's width profile left there (carried through the bite)
+    offset = summary.get("exit_temperature_offset")
+    if case.thermal is None and entry is not None:     # an isothermal pass: unchanged
+        section = entry.section
+    else:
+        section = SectionProfile.across(T, offset) if offset is not None else None
+    return StripState(exit_thickness(case, summary), T, e, grain, width, section)
 
 
 

@@ -83,6 +83,9 @@ BASE: dict = {
 }
 #: the [spread] section, in the base of its own keys only (it refuses an asymmetric pass)
 SPREAD = {"edge_layer": 0.02, "growth": 1.2, "largest_layer": 0.08, "max_rounds": 30}
+#: an entry temperature over the cross-section whose mid-width column is BASE's plate profile
+SECTION = {"eta": [0.0, 1.0], "zeta": [0.0, 0.5, 1.0],
+           "values": [[1373.15, 1370.0, 1340.0], [1300.0, 1295.0, 1270.0]]}
 HS_MATERIAL = {"law": "hensel-spittel", "A": 1e8, "m1": -0.003, "m2": 0.1, "m3": 0.15,
                "m4": -0.001, "m5": 1e-4, "m7": -0.1, "m8": 1e-5, "m9": 0.01}
 #: Keys active only under another law: the base the key is broken in.
@@ -95,6 +98,10 @@ def base_for(section: str, key: str) -> dict:
     d = copy.deepcopy(BASE)
     if section == "spread":
         d["spread"] = dict(SPREAD)
+    if section == "spread.temperature_section":     # its mid-width column the plate's profile
+        d["spread"] = {**SPREAD, "temperature_section": dict(SECTION)}
+        d["material"] = {**HS_MATERIAL, **{k: d["material"][k] for k in (
+            "density", "specific_heat", "conductivity")}, "eps0": 1e-4}
     if (section, key) in LAW_OF:
         d["friction"] = {**LAW_OF[section, key], "v_reg": 1e-4, "a_f_max": 1e6}
     if section.startswith("friction.") and ("friction", key) in LAW_OF:   # a roll's own
@@ -322,7 +329,7 @@ def test_a_bad_value_is_refused_naming_its_field(field, data):
 @given(section=st.sampled_from(sorted(SECTIONS)),
        key=st.from_regex(r"[a-z][a-z0-9_]{0,14}", fullmatch=True), value=st.integers())
 def test_an_unknown_key_is_refused_naming_it(section, key, value):
-    d = copy.deepcopy(BASE)
+    d = base_for(section, key)
     if key in C.fields_of(SECTIONS[section]):
         return
     table(d, section)[key] = value
@@ -355,7 +362,7 @@ REQUIRED = [(s, k) for s, k, info in FIELDS if info.is_required()] + [
 @pytest.mark.parametrize("section,key", REQUIRED)
 def test_a_missing_required_key_is_named(section, key):
     d = base_for(section, key)
-    del d[section][key]
+    del table(d, section)[key]
     assert all(p.startswith(f"{section}.{key}: ") and ("missing" in p or "required" in p)
                for p in refused(d))
     if section in ("pass", "plate", "material"):

@@ -183,8 +183,9 @@ def test_the_cases_strain_mode_reaches_the_3d_pass(monkeypatch, mode):
 
 
 def test_the_cases_entry_temperature_across_the_width_reaches_the_3d_pass(monkeypatch):
-    """[plumb] ``spread.temperature_profile`` is the 3D pass's ``entry_temperature``, a
-    function of z / half width (the pass itself faked)."""
+    """[plumb] ``spread.temperature_profile`` (and ``spread.temperature_section``) is the 3D
+    pass's ``entry_temperature``, over the cross-section: the profile across the width added
+    to the plate's through the thickness (the pass itself faked)."""
     from hotroll.workflows import spread
 
     seen = {}
@@ -203,4 +204,12 @@ def test_the_cases_entry_temperature_across_the_width_reaches_the_3d_pass(monkey
     with pytest.raises(Stop):
         spread.solve_spread(case, run=None)
     f = seen["entry_temperature"]
-    assert float(f(0.0)) == 1373.15 and float(f(0.5)) == pytest.approx(1323.15)
+    assert float(f(0.0, 0.0)) == 1373.15 and float(f(0.7, 0.5)) == pytest.approx(1323.15)
+    section = {"eta": [0.0, 1.0], "zeta": [0.0, 1.0],
+               "values": [[1373.15, 1300.0], [1373.15, 1250.0]]}
+    case = load_case("hotroll/examples/cases/example1.toml", {
+        **CASE, "material.law": "hensel-spittel", "material.grade": "C45", "material.m": None,
+        "material.K": None, "spread.temperature_section": section})
+    with pytest.raises(Stop):
+        spread.solve_spread(case, run=None)
+    assert seen["entry_temperature"].to_dict() == section
