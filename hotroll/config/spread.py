@@ -36,7 +36,8 @@ class TemperatureSection(Section):
     zeta: list[float] = field(..., "across the half width, 0 (mid-width) to 1 (the edge)", "",
                               "increasing strictly from 0 to 1")
     values: list[list[float]] = field(..., "the temperature, one row per eta of one value "
-                                      "per zeta", "K", "> 0")
+                                      "per zeta", "K", "> 0, one row per eta of one value per "
+                                      "zeta")
 
     @field_validator("eta", "zeta")
     @classmethod
@@ -216,10 +217,11 @@ def _profile_problems(case, s) -> list[str]:
     out = []
     sec = entry_section(case)
     t_plate = case.plate.temperature
-    eta = np.asarray(sec.eta)
     prof = case.plate.entry_profiles()[0]
+    # both columns at every node of either (each is linear between its own)
+    eta = np.asarray(sec.eta) if prof is None else np.union1d(sec.eta, prof.eta)
     plate = np.full(eta.size, t_plate) if prof is None else prof(eta)
-    mid = sec.array[:, 0]
+    mid = sec.mid_width()(eta)
     if s.temperature_profile is not None:
         if abs(s.temperature_profile[0][1] - t_plate) > 1e-9 * t_plate:
             out.append(f"{key}: its mid-width value (zeta = 0) is the plane-strain pass's, "

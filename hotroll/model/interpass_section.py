@@ -96,9 +96,13 @@ def cool_section(T0: SectionProfile, half_thickness: float, half_width: float,
     n = int(intervals)
     if n < 2:
         raise ThermalInputError(f"transport intervals = {intervals!r}: must be >= 2")
+    if t_end == 0.0:
+        return SectionCooling(T0, enthalpy_mean_of(T0, props), 0.0, 0.0,
+                              np.asarray(T0.eta) * H, np.zeros(1) if record else None,
+                              T0.array[:, :1].T.copy() if record else None)
     y = np.linspace(0.0, H, n + 1)
     alpha = float(np.max(props.k_values(T0.array) / props.rho_c_values(T0.array)))
-    z = width_nodes(B, min(H / n, REACH_SHARE * math.sqrt(alpha * max(t_end, 1e-300))))
+    z = width_nodes(B, min(H / n, REACH_SHARE * math.sqrt(alpha * t_end)))
     ny, nz = y.size, z.size
     wy, wz = _weights(n, H / n), _volumes(z)
     vol = np.outer(wy, wz).ravel()                              # m^2 per node
@@ -120,8 +124,8 @@ def cool_section(T0: SectionProfile, half_thickness: float, half_width: float,
     area = area.ravel()
     H0 = float(vol @ props.enthalpy_values(temp))
     if steps is None:
-        steps = max(100, math.ceil(t_end / (0.1 * H * H / alpha))) if t_end > 0.0 else 0
-    dt = t_end / steps if steps else 0.0
+        steps = max(100, math.ceil(t_end / (0.1 * H * H / alpha)))
+    dt = t_end / steps
     lost = 0.0
     n_all = ny * nz
     history = [temp.reshape(ny, nz)[:, 0].copy()] if record else None
@@ -147,14 +151,25 @@ def cool_section(T0: SectionProfile, half_thickness: float, half_width: float,
             new += d
             if np.max(np.abs(d)) <= 1e-11 * np.max(new):
                 break
+        else:
+            raise ThermalInputError(f"interpass cooling across the width: Newton did not "
+                                    f"converge in a step of {dt:.3g} s (last change "
+                                    f"{np.max(np.abs(d)):.3g} K)")
         temp = new
         if record:
             history.append(temp.reshape(ny, nz)[:, 0].copy())
         lost += dt * float(area @ surface.flux(temp, T_amb))
     change = H0 - float(vol @ props.enthalpy_values(temp))
-    err = abs(change - lost) / max(abs(lost), 1e-300) if steps else 0.0
+    err = abs(change - lost) / max(abs(lost), 1e-300)
     grid = temp.reshape(ny, nz)
     section = SectionProfile(tuple(y / H), tuple(z / B), tuple(tuple(r) for r in grid))
     return SectionCooling(section, enthalpy_mean(props, temp, vol), lost, err, y,
                           np.linspace(0.0, t_end, int(steps) + 1) if record else None,
                           np.array(history) if record else None)
+
+
+def enthalpy_mean_of(section: SectionProfile, props: ThermalProperties) -> float:
+    """The section's mean temperature by its heat content (K): bilinear cells' corners by
+    their control areas."""
+    w = np.outer(_volumes(np.asarray(section.eta)), _volumes(np.asarray(section.zeta)))
+    return enthalpy_mean(props, section.array.ravel(), w.ravel())

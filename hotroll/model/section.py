@@ -96,15 +96,24 @@ class SectionProfile:
     @classmethod
     def across(cls, profile: ThicknessProfile, offset: dict | None = None) -> SectionProfile:
         """A profile through the thickness, the same at every width, plus ``offset`` (K, a
-        dict of ``eta``, ``zeta`` and ``values``: a 3D pass's ``exit_temperature_offset``; None:
-        nothing added)."""
+        dict of ``eta``, ``zeta`` and ``values``: a 3D pass's ``exit_temperature_offset``,
+        linear in eta between its rows; None: nothing added), on the union of the two eta
+        grids (the profile's grading, fine under the roll's chill, kept)."""
         if offset is None:
             v = np.asarray(profile.values)
             return cls(profile.eta, (0.0, 1.0), tuple((x, x) for x in v))
-        eta = np.asarray(offset["eta"])
-        base = profile(eta)
-        values = base[:, None] + np.asarray(offset["values"])
+        e_off = np.asarray(offset["eta"], dtype=float)
+        eta = np.union1d(np.asarray(profile.eta), e_off)
+        add = np.asarray(offset["values"], dtype=float)
+        add = np.stack([np.interp(eta, e_off, add[:, j]) for j in range(add.shape[1])], axis=1)
+        values = profile(eta)[:, None] + add
         return cls(tuple(eta), tuple(offset["zeta"]), tuple(tuple(r) for r in values))
+
+    def offset_dict(self) -> dict:
+        """``offset`` for ``across``: the values less mid-width's at each eta (K)."""
+        v = self.array
+        return {"eta": list(self.eta), "zeta": list(self.zeta),
+                "values": (v - v[:, :1]).tolist()}
 
     def edge_mean(self) -> float:
         """The edge face's mean over the thickness (zeta = 1; K)."""

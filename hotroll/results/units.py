@@ -17,7 +17,7 @@ UNITS: dict[str, str] = {
     "newton_iterations": "-", "fe_solves": "-", "wall_time": "s", "transport_duration": "s",
     "transport_heat_lost": "J/m^2", "next_entry_temperature_mean": "K",
     "next_entry_temperature_surface": "K", "next_entry_strain_mean": "-",
-    "next_entry_temperature_edge": "K",
+    "next_entry_temperature_edge": "K", "next_entry_temperature_section_mean": "K",
     # the microstructure (issue 33): pass and transport columns
     "drx_onset_share": "-", "zener_log_mean": "ln(1/s)", "critical_strain_centre": "-",
     "critical_strain_surface": "-", "kinetics_strain_centre": "-",

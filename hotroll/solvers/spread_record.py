@@ -95,8 +95,8 @@ def exit_offset(s3, X3: np.ndarray, out: np.ndarray, P: np.ndarray) -> dict:
     """The entry temperature's difference from mid-width's as the outlet carries it (K):
     ``values[j][k]`` at the outlet's vertex heights (eta: over each level's top, averaged over
     the levels) and the width levels (zeta: over the edge's half width at that height,
-    averaged over the heights); an edge zone's cut and mid-width (zeta = 0) between them
-    hold 0 (the plane-strain pass's temperature inside the cut)."""
+    averaged over the heights), less the innermost level's (mid-width's, or an edge zone's
+    cut's: 0 up to it, the plane-strain pass's temperature inside the cut)."""
     nv, levels = s3.run2d.mesh.nv, len(s3.z)
     outs = np.nonzero(out)[0]
     outs = outs[np.argsort(P[outs, 1])]
@@ -105,6 +105,7 @@ def exit_offset(s3, X3: np.ndarray, out: np.ndarray, P: np.ndarray) -> dict:
     eta = np.mean(y / y[-1:, :], axis=1)
     zeta = np.mean(z / z[:, -1:], axis=0)
     values = s3.cooling.values[idx]
+    values = values - values[:, :1]      # mid-width's (the carried field's residue there) is 0
     if zeta[0] > 0.0:                    # an edge zone: plane strain up to its cut
         zeta = np.concatenate([[0.0], zeta])
         values = np.concatenate([np.zeros((eta.size, 1)), values], axis=1)

@@ -73,12 +73,12 @@ def _section_for(sch: Schedule, k: int, state: StripState):
     flow stress feels it (a thermal pass, a law that depends on the temperature). An edge
     zone's interior is mid-width's (its cut is plane strain)."""
     sec = state.section
-    if (sec is None or sch.spread is None or sch.passes[k].isothermal or sec.is_uniform_across()
+    if (sec is None or sch.spread is None or sch.passes[k].isothermal
             or not temperature_matters(sch.material.flow_stress(), state.temperature.values[0])):
         return None
     if sch.spread.edge_zone is not None and state.width is not None:
         sec = sec.uniform_up_to(max(0.0, 1.0 - sch.spread.edge_zone / (0.5 * state.width)))
-    return sec
+    return None if sec.is_uniform_across() else sec
 
 
 def _enthalpy_mean(sch: Schedule, T: ThicknessProfile) -> float:
@@ -114,6 +114,7 @@ def transport(sch: Schedule, k: int, state: StripState, exit_velocity: float,
                            th.ambient_temperature, record=deformed is not None)
         section = res.section
         T_new = section.mid_width()
+        section_mean = res.mean
         # J per m^2 of the quarter's cooled surface (the top's half width and the edge's half
         # thickness), as the 1D model's per m^2 of its top
         heat_lost = res.heat_lost / (0.5 * state.width + 0.5 * state.thickness)
@@ -135,11 +136,14 @@ def transport(sch: Schedule, k: int, state: StripState, exit_velocity: float,
                          section=section)
     row = {"transport_duration": duration, "transport_heat_lost": heat_lost,
            "transport_balance_error": res.balance_error,
-           "next_entry_temperature_mean": res.mean,
+           # the next pass's entry mean (mid-width's, with the section: its plate temperature)
+           "next_entry_temperature_mean": (res.mean if section is None
+                                           else _enthalpy_mean(sch, T_new)),
            "next_entry_temperature_surface": surface_T,
            "next_entry_strain_mean": new.strain.mean()}
     if section is not None:
         row["next_entry_temperature_edge"] = section.edge_mean()
+        row["next_entry_temperature_section_mean"] = section_mean
     if soft is not None:
         row.update(MS.transport_columns(soft))
     return new, row, soft

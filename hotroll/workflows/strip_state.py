@@ -82,6 +82,10 @@ def exit_state(sch: Schedule, case, summary: dict,
     offset = summary.get("exit_temperature_offset")
     if case.thermal is None and entry is not None:     # an isothermal pass: unchanged
         section = entry.section
+    elif offset is None and entry is not None and entry.section is not None:
+        # a pass not handed the section (its law ignores T): carried through as the bite
+        # carries it (the difference from mid-width's unchanged)
+        section = SectionProfile.across(T, entry.section.offset_dict())
     else:
         section = SectionProfile.across(T, offset) if offset is not None else None
     return StripState(exit_thickness(case, summary), T, e, grain, width, section)

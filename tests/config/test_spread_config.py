@@ -92,7 +92,16 @@ def test_a_transient_case_is_refused_once_for_its_method():
      "spread.temperature_section: not with spread.temperature_profile"),
     ({"spread.temperature_section": {"eta": [0.0, 1.0], "zeta": [0.0, 1.0],
                                      "values": [[1373.15, 1300.0], [1373.15]]}},
-     "spread.temperature_section.values: must be > 0 \\[K\\], got"),
+     "spread.temperature_section.values: must be > 0, one row per eta of one value per "
+     "zeta \\[K\\], got"),
+    ({"spread.temperature_section": {"eta": [0.0, 1.0], "zeta": [0.0, 1.0],
+                                     "values": [[1373.15, 1350.0], [1300.0, 1250.0]]},
+      "plate.temperature_profile": [[0.0, 1373.15], [0.5, 1373.15], [1.0, 1300.0]],
+      **{"material.law": "hensel-spittel", "material.grade": "C45", "material.m": None,
+         "material.K": None, "thermal.htc_contact": 2e4, "thermal.roll_temperature": 400.0,
+         "thermal.htc_air": 20.0, "thermal.emissivity": 0.8}},
+     "spread.temperature_section: its mid-width column .* at eta = 0.5: 1373.15 K, got "
+     "1336.58 K"),
     ({"spread.temperature_section": {"eta": [0.0, 1.0], "zeta": [0.0, 0.8],
                                      "values": [[1373.15, 1300.0], [1373.15, 1290.0]]}},
      "spread.temperature_section.zeta: must be increasing strictly from 0 to 1, got "

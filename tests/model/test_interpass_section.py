@@ -107,3 +107,10 @@ def test_a_malformed_section_is_refused(bad):
 def test_bad_transport_input_names_the_field():
     with pytest.raises(ThermalInputError, match="half_width"):
         cool_section(uniform(T0), 0.01, 0.0, 1.0, STEEL, ConvectionRadiation(20.0, 0.8), TA)
+
+
+def test_no_time_no_change():
+    """[exact] a transport of 0 s hands the section on as it is, nothing lost."""
+    start = SectionProfile((0.0, 1.0), (0.0, 1.0), ((1300.0, 1250.0), (1280.0, 1200.0)))
+    r = cool_section(start, 0.005, 0.005, 0.0, STEEL, ConvectionRadiation(20.0, 0.8), TA)
+    assert r.section == start and r.heat_lost == 0.0

@@ -84,6 +84,10 @@ def test_the_next_pass_enters_with_the_section_its_transport_cooled(rolled):
     assert np.max(np.abs(got.mid_width()(plate[:, 0]) - plate[:, 1])) <= 1e-9 * plate.max()
     assert np.all(got.array[:, -1] < got.array[:, 0] - 1.0)
     assert rows[0]["next_entry_temperature_edge"] < rows[0]["next_entry_temperature_mean"]
+    # the next pass's entry mean is mid-width's (its plate temperature), the section's below
+    assert rows[1]["entry_temperature_mean"] == pytest.approx(
+        rows[0]["next_entry_temperature_mean"], rel=1e-9)
+    assert rows[0]["next_entry_temperature_section_mean"] < rows[0]["next_entry_temperature_mean"]
     units = json.loads((out / "schedule.json").read_text())["units"]
     assert units["next_entry_temperature_edge"] == "K"
 
@@ -105,8 +109,10 @@ def test_the_second_pass_carries_the_edges_cooling_to_its_outlet(rolled):
     sec = SectionProfile.from_dict(handed["temperature_section"])
     assert np.asarray(sec.zeta) == pytest.approx(off["zeta"])
     prof = _summary(out, rows[1])["exit_profile"]
-    plane = np.interp(eta, prof["eta"], prof["temperature"])
-    assert np.max(np.abs(sec.array - plane[:, None] - v)) <= 1e-9 * plane.max()
+    assert set(prof["eta"]) <= set(sec.eta)            # the exit profile's grading kept
+    plane = np.interp(sec.eta, prof["eta"], prof["temperature"])
+    add = np.stack([np.interp(sec.eta, eta, v[:, j]) for j in range(v.shape[1])], axis=1)
+    assert np.max(np.abs(sec.array - plane[:, None] - add)) <= 1e-9 * plane.max()
 
 
 def _state(sch) -> StripState:
@@ -139,3 +145,45 @@ def test_what_a_pass_is_handed_depends_on_what_feels_it():
     cut = 1.0 - 0.003 / 0.0052
     assert sec.is_uniform_across(cut) and not sec.is_uniform_across()
     assert sec(np.array([0.0, 1.0]), np.array([1.0, 1.0])) == pytest.approx([1240.0, 1190.0])
+
+
+def _exit(case, offset) -> dict:
+    """A pass's summary as exit_state reads it: a chilled exit profile, graded to the
+    surface, and the 3D outlet's offset (or None)."""
+    eta = [0.0, 0.5, 0.8, 0.9, 0.95, 1.0]
+    return {"exit_profile": {"eta": eta, "temperature": [1300.0, 1298.0, 1290.0, 1275.0,
+                                                          1255.0, 1200.0],
+                             "strain": [0.2] * 6},
+            "exit_width": 0.0106, "exit_thickness": 0.008, "homogeneous_exit_strain": 0.2,
+            "exit_temperature_offset": offset}
+
+
+def test_the_exit_state_keeps_the_chill_and_carries_a_section_the_pass_did_not_take():
+    """[plumb] the next section is the exit profile on its own grading (the chill's fine
+    rows) plus the outlet's offset interpolated in eta; a thermal pass not handed the
+    section (a law without T) carries the entry's difference from mid-width's unchanged, an
+    isothermal pass the entry's section itself."""
+    from hotroll.workflows.strip_state import exit_state
+
+    sch = schedule_from_dict(thermal_bar())
+    state = _state(sch)
+    case = pass_case(sch, 1, state)
+    offset = {"eta": [0.0, 1.0], "zeta": [0.0, 1.0], "values": [[0.0, -10.0], [0.0, -30.0]]}
+    sec = exit_state(sch, case, _exit(case, offset), entry=state).section
+    assert sec.eta == (0.0, 0.5, 0.8, 0.9, 0.95, 1.0)
+    assert sec.array[:, 0] == pytest.approx([1300.0, 1298.0, 1290.0, 1275.0, 1255.0, 1200.0])
+    assert sec.array[:, 1] - sec.array[:, 0] == pytest.approx(
+        [-10.0, -20.0, -26.0, -28.0, -29.0, -30.0])
+    nh = thermal_bar()
+    nh["material"] = {**nh["material"], "law": "norton-hoff", "K": 1.5e8, "m": 0.05}
+    nh["material"].pop("grade")
+    nh_sch = schedule_from_dict(nh)
+    carried = exit_state(nh_sch, pass_case(nh_sch, 1, state), _exit(case, None),
+                         entry=state).section
+    assert carried.offset(np.array([0.0, 1.0]), np.array([1.0, 1.0])) == pytest.approx(
+        [-60.0, -60.0])
+    iso = thermal_bar()
+    iso["pass"][1]["isothermal"] = True
+    iso_sch = schedule_from_dict(iso)
+    assert exit_state(iso_sch, pass_case(iso_sch, 1, state), _exit(case, None),
+                      entry=state).section is state.section
