@@ -40,6 +40,9 @@ def plot_schedule(rows: list[dict], path: Path, width: float | None = None) -> N
     a.plot(n, col("entry_temperature_mean") - 273.15, "o-", label="entry mean")
     a.plot(n, col("exit_temperature_mean") - 273.15, "s-", label="exit mean")
     a.plot(n, col("exit_temperature_surface") - 273.15, "v--", label="exit surface (gap)")
+    edge = col("next_entry_temperature_edge")        # a [spread] schedule's, after a transport
+    if len(rows) > 1 and np.any(np.isfinite(edge[:-1])):
+        a.plot(n[1:], edge[:-1] - 273.15, "d:", label="entry edge (thickness mean)")
     a.set_ylabel("temperature (°C)")
     a.set_title("temperature")
     a.legend()
