@@ -240,10 +240,15 @@ def _input_text(v) -> str:
     if isinstance(v, float):
         return f"{v:.6g}"
     if isinstance(v, list):
+        if v and all(isinstance(p, list) for p in v) and max(len(p) for p in v) > 8:
+            return f"{len(v)} rows of {len(v[0])}, the first: {_input_text(v[0])}"
         if v and all(isinstance(p, list) for p in v):
             return f"{len(v)} points: " + ", ".join(
                 "(" + ", ".join(_input_text(x) for x in p) + ")" for p in v[:3]) + (
                 ", ..." if len(v) > 3 else "")
+        if len(v) > 8:                   # a long grid (a cross-section's eta): its ends
+            return (f"{len(v)} values: " + ", ".join(_input_text(x) for x in v[:3])
+                    + ", ..., " + _input_text(v[-1]))
         return "[" + ", ".join(_input_text(x) for x in v) + "]"
     if isinstance(v, dict):
         return ", ".join(f"{k} = {_input_text(x)}" for k, x in v.items())

@@ -150,3 +150,16 @@ def test_the_study_figure_is_drawn_against_the_first_numeric_varied_key(tmp_path
     _write(tmp_path / "study.json", {"name": "s", "varied": ["friction.law", "material.m"],
                                      "units": {"material.m": "-"}})
     assert report_table.study_context(tmp_path)["figure_x"] == "material.m"
+
+
+def test_a_long_input_grid_shows_its_length_and_ends():
+    """[hand] an input list longer than 8 (a cross-section's eta grid) reads as its length,
+    its first three values and its last; a table with such rows as its shape and first row;
+    short lists and tables of pairs in full."""
+    from hotroll.results.report_run import _input_text
+
+    assert _input_text([0.0, 0.5, 1.0]) == "[0, 0.5, 1]"
+    assert _input_text([float(i) for i in range(10)]) == "10 values: 0, 1, 2, ..., 9"
+    rows = [[float(i)] * 9 for i in range(3)]
+    assert _input_text(rows) == "3 rows of 9, the first: 9 values: 0, 0, 0, ..., 0"
+    assert _input_text([[0.0, 1.0], [1.0, 2.0]]) == "2 points: (0, 1), (1, 2)"
