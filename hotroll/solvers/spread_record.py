@@ -123,7 +123,8 @@ def _boundary_vertices(mesh, names) -> np.ndarray:
 
 def write_vtk_3d(s3, path: Path, shift: float = 0.0) -> Path:
     """ParaView file (.vtu) of the 3D quarter strip: velocity (m/s), pressure (Pa), equivalent
-    strain rate (1/s) and, where it is carried through the 3D flow, the strain (-) on the
+    strain rate (1/s) and, where they are carried through the 3D flow, the strain (-) and the
+    entry temperature's difference from mid-width's (K, ``temperature_offset``) on the
     deformed mesh, moved by ``shift`` in x."""
     import ngsolve
 
@@ -142,6 +143,9 @@ def write_vtk_3d(s3, path: Path, shift: float = 0.0) -> Path:
         if s3.strain is not None:
             coefs.append(s3.strain.gf)
             names.append("strain")
+        if s3.cooling is not None:
+            coefs.append(s3.cooling.gf)
+            names.append("temperature_offset")
         with atomic(Path(path).with_suffix(".vtu")) as tmp:     # NGSolve appends .vtu
             ngsolve.VTKOutput(s3.mesh, coefs=coefs, names=names,
                               filename=str(tmp.with_suffix("")), subdivision=0).Do()

@@ -1,5 +1,6 @@
 """The ``[spread]`` section's 3D pass (issue 53), from ``exit_section.csv``, ``width_along.csv``
-and ``contact_map.npz``: the exit cross-section (the whole strip, mirrored from the quarter),
+and ``contact_map.npz``: the exit cross-section (the whole strip, mirrored from the quarter;
+coloured by the entry temperature's difference from mid-width's where the pass carries one),
 the half width along the bite at mid-thickness and on the surface, and the contact pressure
 over the arc and the width."""
 from __future__ import annotations
@@ -32,6 +33,17 @@ def fig_spread(run: RunFiles, path: Path) -> Path | None:
     xs = np.concatenate([bb, -bb[::-1], -bb, bb[::-1]]) * MM
     ys = np.concatenate([yy, yy[::-1], -yy, -yy[::-1]]) * MM
     ax.fill(xs, ys, color="tab:blue", alpha=0.3, label="exit section")
+    off = summary.get("exit_temperature_offset")
+    if off:            # the entry's difference from mid-width's, carried to the outlet
+        e, zt, v = (np.asarray(off[k], dtype=float) for k in ("eta", "zeta", "values"))
+        Y = np.repeat((e * yy[-1])[:, None], zt.size, axis=1)
+        Z = np.interp(e * yy[-1], y, half)[:, None] * zt[None, :]
+        lo = min(float(v.min()), -1e-9)
+        for sy in (-1.0, 1.0):
+            for sz in (-1.0, 1.0):
+                mesh = ax.pcolormesh(sz * Z * MM, sy * Y * MM, v, shading="gouraud",
+                                     cmap="Blues_r", vmin=lo, vmax=0.0)
+        fig.colorbar(mesh, ax=ax, label="T - T(mid-width), entry's carried [K]")
     for side in (-1.0, 1.0):
         ax.axvline(side * b0 * MM, color="k", ls="--", lw=1,
                    label="stock width" if side > 0 else None)
