@@ -7,6 +7,7 @@ slab theory of asymmetric rolling (theory/asymmetric.py) as an independent refer
 band measured here."""
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import replace
 
@@ -218,6 +219,27 @@ def test_the_rigid_rotation_fit_is_exact_on_a_rigid_rotation():
     assert out["exit_rotation_fit_residual"] < 1e-10
 
 
+def test_the_surface_curvature_of_an_inclined_parabola_is_the_analytic_one():
+    """[hand] exit_surface_curvature on two traced exit surfaces h = 4 mm apart whose
+    centreline is the parabola y_c = 0.75 s + 0.5 s^2 (s = x - 0.03 m, the fitted zone's
+    middle; the lower surface in its own frame, y mirrored): kappa = y_c'' / (1 + y_c'^2)^(3/2)
+    = 1 / 1.25^3 = 0.512 1/m at s = 0, the slope 0.75 taken in (a flat exit would not tell
+    the exponent)."""
+    from types import SimpleNamespace
+
+    from hotroll.solvers.gap_measure import exit_surface_curvature
+
+    xs = np.linspace(0.02, 0.04, 41)           # the zone: the last half past the axis (x = 0)
+    yc = 0.75 * (xs - 0.03) + 0.5 * (xs - 0.03) ** 2
+    nodes = SimpleNamespace(X0=np.array([[0.0, 0.0], [0.04, 0.0]]),
+                            values=lambda f: f.reshape(2, -1))
+    run = SimpleNamespace(map=SimpleNamespace(nodes=nodes), d=np.zeros(4),
+                          problem=SimpleNamespace(rp=SimpleNamespace(axis_x=0.0)),
+                          shapes={1: SimpleNamespace(exit_x=xs, exit_y=yc + 0.002),
+                                  -1: SimpleNamespace(exit_x=xs, exit_y=-(yc - 0.002))})
+    assert exit_surface_curvature(run) == pytest.approx(0.512, rel=1e-9)
+
+
 def test_the_reference_roll_does_not_depend_on_the_side():
     _, problem, _ = _setup()
     a, b = problem.rp, replace(problem.rp, omega=1.1 * problem.rp.omega)
@@ -235,6 +257,23 @@ def test_what_the_full_strip_does_not_carry_is_refused_by_name():
     assert np.isfinite(problem.h)
 
 
+def test_the_form_takes_its_pass_from_the_slower_roll_on_either_side():
+    """[plumb] GapForm.rp, the pass the readers it inherits from RollingForm take (the thermal
+    coupling's default roll, the penalty contact's soft zone), is the slower roll on either
+    side: the roll whose speed the inlet and outlet bounds take and whose contact length scales
+    the multiplier (s = mu_ref / l_c)."""
+    case, problem, st = _setup()
+    rp = problem.rp
+    fast = replace(rp, omega=1.02 * rp.omega)
+    for slow, rolls in ((-1, {1: fast, -1: rp}), (1, {1: rp, -1: fast})):
+        run = FullSteadyRun(problem, st, case.plate.length, rolls,
+                            {1: problem.friction, -1: problem.friction})
+        form = run.form
+        assert form.rp is run.rolls[slow]
+        assert form.U.Get() == form.rp.u_roll == rp.u_roll
+        assert form.lam_scale == pytest.approx(form.mu_ref / form.rp.contact_length, rel=1e-14)
+
+
 def test_each_flattening_roll_keeps_its_own_relaxation():
     """[plumb] a roll model's under-relaxation (roll.relaxation) reaches that roll's
     FlatteningRoll; the other roll stays rigid (no entry)."""
@@ -249,6 +288,23 @@ def test_each_flattening_roll_keeps_its_own_relaxation():
     assert run.flattening[1].kind == "hitchcock"
 
 
+@functools.cache
+def _tension_pass(elastic: str):
+    """The bundled tension_pass solved by the half model and by the full strip between two
+    equal rolls: (problem, the half run, the full run, its Solution); each solved once for
+    the tests that read it."""
+    from hotroll.examples import example_path
+
+    case = load_case(example_path("tension_pass"), {"contact.strip_youngs_modulus": elastic})
+    problem, _ = build_model(case)
+    st = steady_settings(case)
+    half_run = SteadyRun(problem, st, case.plate.length)
+    half_run.run()
+    run = FullSteadyRun(problem, st, case.plate.length, {1: problem.rp, -1: problem.rp},
+                        {1: problem.friction, -1: problem.friction}, {1: st.a_f, -1: st.a_f})
+    return problem, half_run, run, run.run()
+
+
 @pytest.mark.parametrize("elastic", ["off", "auto"])
 def test_equal_rolls_give_the_half_model_on_a_bundled_pass_with_tensions(elastic):
     """The bundled tension_pass (Hensel-Spittel, a strain field, back and front tension) with
@@ -258,18 +314,9 @@ def test_equal_rolls_give_the_half_model_on_a_bundled_pass_with_tensions(elastic
     measured 5e-6 in force rigid-plastic, 1.8e-5 elastic; hot_strip_finishing 1e-7,
     roughing_slab 1.6e-5), and the elastic contact ends the half model's (measured 1.1e-6 m,
     4e-5 of the contact length, past the gap by 0.69 mm)."""
-    from hotroll.examples import example_path
-
-    case = load_case(example_path("tension_pass"), {"contact.strip_youngs_modulus": elastic})
-    problem, _ = build_model(case)
+    problem, half_run, run, sol = _tension_pass(elastic)
+    half, full = half_run.state.history[-1], sol.history[-1]
     assert (problem.strip_elasticity is not None) == (elastic == "auto")
-    st = steady_settings(case)
-    half_run = SteadyRun(problem, st, case.plate.length)
-    half = half_run.run().history[-1]
-    run = FullSteadyRun(problem, st, case.plate.length, {1: problem.rp, -1: problem.rp},
-                        {1: problem.friction, -1: problem.friction}, {1: st.a_f, -1: st.a_f})
-    sol = run.run()
-    full = sol.history[-1]
     assert sol.status == "steady"
     for side in ("upper", "lower"):
         assert full[f"{side}_roll_force"] == pytest.approx(half["roll_force"], rel=1e-4)
@@ -283,6 +330,29 @@ def test_equal_rolls_give_the_half_model_on_a_bundled_pass_with_tensions(elastic
     for s in (1, -1):
         assert run.shapes[s].end(run.rolls[s]) == pytest.approx(half_end,
                                                                 abs=2e-4 * rp.contact_length)
+
+
+def test_equal_rolls_give_the_half_models_exit_strain_through_the_whole_thickness():
+    """Identity: tension_pass (a strain field) between two equal rolls: the outlet's strain
+    profile over the whole thickness (record_full.exit_profile, eta -1..1) is mirrored
+    (measured 5e-13) and its upper half is the half model's (record_fields.exit_profiles, eta
+    0..1) to the coupling tolerance (measured 2.5e-5). By hand: the mid-plane's strain is the
+    homogeneous compression's (2/sqrt(3)) ln(h0/h1) = 0.332 (8 -> 6 mm, entry strain 0;
+    measured 1.1 % below it, asserted to 2 %), the surfaces' higher by the redundant shear
+    (0.45)."""
+    from hotroll.solvers.record_fields import exit_profiles
+    from hotroll.solvers.record_full import exit_profile
+
+    problem, half_run, run, _ = _tension_pass("off")
+    half, full = exit_profiles(half_run), exit_profile(run)
+    n = len(half["eta"])
+    assert full["eta"][n - 1:] == pytest.approx(half["eta"], abs=1e-15)
+    strain = np.asarray(full["strain"])
+    np.testing.assert_allclose(strain, strain[::-1], rtol=1e-6)
+    np.testing.assert_allclose(strain[n - 1:], half["strain"], rtol=1e-4)
+    homogeneous = problem.entry_strain + 2.0 / math.sqrt(3.0) * math.log(0.008 / 0.006)
+    assert strain[n - 1] == pytest.approx(homogeneous, rel=0.02)
+    assert strain[0] > 1.2 * homogeneous
 
 
 def test_the_through_thickness_shear_mirrors_and_vanishes_on_average_for_equal_rolls(runs):
@@ -350,6 +420,44 @@ def test_each_contact_has_its_own_rolls_elastic_layer():
     assert depths[1] != pytest.approx(depths[-1], rel=0.05)
     y = 0.5 * (depths[1] + depths[-1])
     assert run.form.layer_compliance(y, 1) != run.form.layer_compliance(y, -1)
+
+
+def test_each_contact_end_carries_its_pressure_on_through_its_own_elastic_layer():
+    """[hand] an elastic strip's contact end moved (move_contact_end) on the reground-roll pass
+    (360 against 400 mm, elastic strip: each roll's own layer depth): from a uniform pressure
+    p0 = 2k (reduced) on both arcs at the cold start each end moves past the gap, and the
+    arc's vertices now past its old end take the Winkler layer's p0 - (y_roll - y_roll(x_end))
+    / c_e(y_roll) (docs/theory.md 1e; c_e that roll's own: layer_compliance(y, side)), not p0
+    held (measured 0.03 and 0.05 against p0 = 3.1)."""
+    from hotroll.examples import example_path
+
+    case = load_case(example_path("asymmetric_radii"), {"contact.strip_youngs_modulus": 1.5e11})
+    model, _ = build_model(case)
+    gap = model.gap.at_axis(0.0)
+    model = replace(model, rp=replace(model.rp, axis_x=0.0))
+    run = FullSteadyRun(model, steady_settings(case), case.plate.length, gap.rolls,
+                        gap.frictions, gap.a_f, gap.roll_models)
+    run._cold_start()
+    form = run.form
+    p0 = model.mean_two_k / model.material.K
+    _, dofs = form.multiplier_vertices()
+    form.multiplier.vec.FV().NumPy()[dofs] = p0 / form.lam_scale
+    before = {s: (top.verts[top.vertex_contact],
+                  top.vertex_positions(run.d, top.verts[top.vertex_contact])[:, 0].max())
+              for s, top in run.tops.items()}
+    run.move_contact_end()
+    p = form.vertex_pressure()
+    for s, top in run.tops.items():
+        verts, x_end = before[s]
+        rp = run.rolls[s]
+        assert run.shapes[s].end(rp) > rp.axis_x
+        x = top.vertex_positions(run.d, verts)[:, 0]
+        ahead = x > x_end
+        y = rp.height(x[ahead])
+        winkler = np.maximum(p0 - (y - float(rp.height(x_end))) / form.layer_compliance(y, s),
+                             0.0)
+        assert ahead.any() and np.all(winkler < 0.1 * p0)
+        assert p[verts][ahead] == pytest.approx(winkler, rel=1e-9)
 
 
 def test_equal_rolls_give_the_half_model_on_an_elastic_thin_strip():

@@ -203,3 +203,58 @@ def test_every_element_takes_a_temperature_of_the_strip(runs):
     for name in ("equal", "r110", "r110_swapped", "equal_profile"):
         lo, hi, t_lo, t_hi = runs[name][3]
         assert t_lo - 1e-9 <= lo and hi <= t_hi + 1e-9, name
+
+
+def test_the_full_strips_form_stress_is_the_law_with_a_temperature_dependent_rate_exponent():
+    """[identity] the half model's check (tests/solvers/test_thermal_coupling.py) on the full
+    strip, built and not solved: with Hensel-Spittel's m8 (m = m3 + m8 T_C) the GapForm's
+    Norton-Hoff stress, its consistency and rate offset m(T) - m_ref at each element's
+    temperature, is the law's sigma(eps, edot, T) at every point and rate, in a temperature
+    field from 900 to 1373 K."""
+    from hotroll.fem.forms import strain_rate
+    from hotroll.model.material import edot_squared
+
+    case, problem, st = _problem(**{"material.m8": 1e-4, "material.m3": 0.15})
+    rp = problem.rp
+    run = FullSteadyRun(problem, st, case.plate.length, {1: rp, -1: rp},
+                        {1: problem.friction, -1: problem.friction})
+    run._cold_start()                       # the kinematic guess: a flow to take rates of
+    form, th = run.form, run.thermal
+    assert th.m_varies and form.m_material is not form.m
+    rng = np.random.default_rng(7)
+    th.T_mean.vec.FV().NumPy()[:] = rng.uniform(900.0, T_ENTRY, th.T_mean.space.ndof)
+    th._set_ratio()
+    e2 = edot_squared(strain_rate(form.nonlinear.velocity))
+    sigma = problem.material.K * form.material.sigma_ef_reg(e2, m=form.m_material,
+                                                          K=form.consistency)
+    mesh = run.mesh
+    pts = [mesh(*centre) for centre in
+           (np.mean([mesh.vertices[v.nr].point for v in el.vertices], axis=0)
+            for el in list(mesh.Elements())[::3])]
+    got = np.array([sigma(p) for p in pts])
+    rate = np.sqrt(np.array([e2(p) for p in pts]) + problem.material.eps0**2)   # (2.21)
+    temp = np.array([th.T_mean(p) for p in pts])
+    assert len(pts) > 100 and np.ptp(temp) > 400.0 and np.ptp(np.log(rate)) > 3.0
+    expected = problem.flow_stress.sigma(case.plate.entry_strain, rate, temp)
+    assert got == pytest.approx(np.asarray(expected), rel=1e-9)
+
+
+def test_an_elements_temperature_is_the_k_mean_of_its_vertices_by_hand():
+    """[hand] thermal_sampling.k_means on three elements: element 0 owns 1000 and 1200 K (equal
+    weights), element 1 two vertices at 900 K, element 2 none (the caller gives it its
+    centroid's temperature afterwards; the last element, still one entry of the ne). Without
+    a law the plain weighted means; with K(T) = exp(-T/100) element 0 takes the T whose K is
+    the mean of its vertices' K, 1000 - 100 ln((1 + e^-2)/2) = 1056.6 K (harder than the plain
+    1100 K), element 1's uniform 900 K unchanged."""
+    from hotroll.solvers.thermal_sampling import k_means
+
+    owner = np.array([0, 0, 1, 1])
+    vals = np.array([1000.0, 1200.0, 900.0, 900.0])
+    w = np.array([1.0, 1.0, 1.0, 3.0])
+    plain = k_means(owner, 3, vals, w)
+    assert plain.shape == (3,) and plain[:2] == pytest.approx([1100.0, 900.0], rel=1e-15)
+    got = k_means(owner, 3, vals, w, lambda T: np.exp(-np.asarray(T) / 100.0))
+    assert got.shape == (3,)
+    assert got[0] == pytest.approx(1000.0 - 100.0 * np.log(0.5 * (1.0 + np.exp(-2.0))),
+                                   rel=1e-9)
+    assert got[1] == 900.0

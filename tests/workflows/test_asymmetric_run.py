@@ -113,6 +113,28 @@ def test_the_pass_converged_and_balances(run):
     assert upper["roll_torque"] > lower["roll_torque"]
 
 
+def test_the_contact_edges_are_each_rolls_contact(run):
+    """[id] fields.npz's contact_edges (the figures' contact lines): one row (a, b) per
+    contact edge, the upper roll's then the lower's, each edge's two vertices on one surface
+    (y > 0 the upper's); on each side the edges' lengths on the deformed points add up to
+    that roll's contact length in history.csv (the integral of its contact indicator: measured
+    3.5e-7 and 5.2e-7, the chords against the curved edges)."""
+    import numpy as np
+
+    _, _, last, out = run
+    fields = np.load(out / "fields.npz")
+    edges, pts = fields["contact_edges"], fields["points"]
+    assert edges.ndim == 2 and edges.shape[1] == 2 and len(edges) > 10
+    ya, yb = pts[edges[:, 0], 1], pts[edges[:, 1], 1]
+    assert np.all(ya * yb > 0.0)
+    upper = ya > 0.0
+    n_up = int(upper.sum())
+    assert np.all(upper[:n_up]) and not np.any(upper[n_up:])
+    length = np.linalg.norm(pts[edges[:, 0]] - pts[edges[:, 1]], axis=1)
+    for name, side in (("upper", upper), ("lower", ~upper)):
+        assert length[side].sum() == pytest.approx(last[f"{name}_contact_length"], rel=1e-5)
+
+
 #: (overrides on asymmetric_plate, the key its refusal names)
 REFUSED = [
     ({"solver.method": "transient", "contact.method": "penalty"}, "solver.method"),
