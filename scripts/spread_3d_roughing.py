@@ -4,7 +4,7 @@ mm, C45) across a wide strip, its coarse width grading: the mid-width against pl
 (issue 53, docs/validation/spread_3d.md "The mid-width against plane strain"). One JSON line
 a run appended to OUT.
 
-    python scripts/spread_3d_roughing.py OUT [--half 0.8] [--zone 0.3]
+    python scripts/spread_3d_roughing.py OUT [--half 0.8] [--zone 0.3] [--levels L.npz]
 """
 from __future__ import annotations
 
@@ -17,9 +17,11 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
+import numpy as np  # noqa: E402
 from bench_3d import SIZES, two_d  # noqa: E402
 
 from hotroll.solvers.spread_3d import Spread3D  # noqa: E402
+from hotroll.solvers.spread_contact import level_contact, plane_contact  # noqa: E402
 
 
 def main() -> None:
@@ -27,6 +29,8 @@ def main() -> None:
     ap.add_argument("out", type=Path)
     ap.add_argument("--half", type=float, default=0.8, help="the half width (m)")
     ap.add_argument("--zone", type=float, default=None, help="the edge zone (m; omit: all)")
+    ap.add_argument("--levels", type=Path, default=None,
+                    help="also write the contact per width level and the 2D pass's (.npz)")
     a = ap.parse_args()
     run, _, _, _ = two_d("roughing")
     h = run.problem.h
@@ -36,6 +40,10 @@ def main() -> None:
     s3.solve(progress=lambda r: print(r["message"], flush=True))
     f = s3.figures()
     f.pop("exit_half_width_profile", None)
+    if a.levels is not None:         # x, z (m) and the traction over K per level; the 2D's
+        two, lev = plane_contact(run), level_contact(s3)
+        np.savez(a.levels, x2=two["x"], c2=two["traction"], x3=lev["x"], z=lev["z"],
+                 c3=lev["traction"], K=run.problem.material.K)
     rp = run.problem.rp
     f.update(plane_strain_force=run.state.history[-1]["roll_force"],
              wall=time.perf_counter() - t0, half=a.half, zone=a.zone, l_c=rp.contact_length,
