@@ -401,19 +401,25 @@ def test_the_cross_shear_zone_lies_between_the_two_neutral_points(runs):
     assert runs["r102"][1]["cross_shear_length"] > 0.03 * math.sqrt(R * 0.002)
 
 
-def test_each_contact_has_its_own_rolls_elastic_layer():
-    """[plumb] the strip's elastic layer's largest depth (Problem.strip_layer_depth: 2 R
-    (1 - nu^2) 2k / E, by the roll's radius and the pass's mean strain rate under it) is each
-    roll's own in its contact: the bundled reground-roll pass (360 against 400 mm) with an
-    elastic strip, built, not solved (found in review: both contacts took the [pass] roll's)."""
+def _reground_elastic():
+    """The bundled reground-roll pass (360 against 400 mm) with an elastic strip, its roll
+    axis at x = 0, built as a full strip, not solved: (its model, the run)."""
     from hotroll.examples import example_path
 
     case = load_case(example_path("asymmetric_radii"), {"contact.strip_youngs_modulus": 1.5e11})
     model, _ = build_model(case)
     gap = model.gap.at_axis(0.0)
     model = replace(model, rp=replace(model.rp, axis_x=0.0))
-    run = FullSteadyRun(model, steady_settings(case), case.plate.length, gap.rolls,
-                        gap.frictions, gap.a_f, gap.roll_models)
+    return model, FullSteadyRun(model, steady_settings(case), case.plate.length, gap.rolls,
+                                gap.frictions, gap.a_f, gap.roll_models)
+
+
+def test_each_contact_has_its_own_rolls_elastic_layer():
+    """[plumb] the strip's elastic layer's largest depth (Problem.strip_layer_depth: 2 R
+    (1 - nu^2) 2k / E, by the roll's radius and the pass's mean strain rate under it) is each
+    roll's own in its contact: the bundled reground-roll pass (360 against 400 mm) with an
+    elastic strip, built, not solved (found in review: both contacts took the [pass] roll's)."""
+    model, run = _reground_elastic()
     depths = run.form.strip_depth
     for s, rp in run.rolls.items():
         assert depths[s] == replace(model, rp=rp).strip_layer_depth
@@ -429,14 +435,7 @@ def test_each_contact_end_carries_its_pressure_on_through_its_own_elastic_layer(
     arc's vertices now past its old end take the Winkler layer's p0 - (y_roll - y_roll(x_end))
     / c_e(y_roll) (docs/theory.md 1e; c_e that roll's own: layer_compliance(y, side)), not p0
     held (measured 0.03 and 0.05 against p0 = 3.1)."""
-    from hotroll.examples import example_path
-
-    case = load_case(example_path("asymmetric_radii"), {"contact.strip_youngs_modulus": 1.5e11})
-    model, _ = build_model(case)
-    gap = model.gap.at_axis(0.0)
-    model = replace(model, rp=replace(model.rp, axis_x=0.0))
-    run = FullSteadyRun(model, steady_settings(case), case.plate.length, gap.rolls,
-                        gap.frictions, gap.a_f, gap.roll_models)
+    model, run = _reground_elastic()
     run._cold_start()
     form = run.form
     p0 = model.mean_two_k / model.material.K

@@ -211,30 +211,15 @@ def test_the_full_strips_form_stress_is_the_law_with_a_temperature_dependent_rat
     Norton-Hoff stress, its consistency and rate offset m(T) - m_ref at each element's
     temperature, is the law's sigma(eps, edot, T) at every point and rate, in a temperature
     field from 900 to 1373 K."""
-    from hotroll.fem.forms import strain_rate
-    from hotroll.model.material import edot_squared
+    from test_thermal_coupling import form_stress_at_centres  # the same directory
 
     case, problem, st = _problem(**{"material.m8": 1e-4, "material.m3": 0.15})
     rp = problem.rp
     run = FullSteadyRun(problem, st, case.plate.length, {1: rp, -1: rp},
                         {1: problem.friction, -1: problem.friction})
     run._cold_start()                       # the kinematic guess: a flow to take rates of
-    form, th = run.form, run.thermal
-    assert th.m_varies and form.m_material is not form.m
-    rng = np.random.default_rng(7)
-    th.T_mean.vec.FV().NumPy()[:] = rng.uniform(900.0, T_ENTRY, th.T_mean.space.ndof)
-    th._set_ratio()
-    e2 = edot_squared(strain_rate(form.nonlinear.velocity))
-    sigma = problem.material.K * form.material.sigma_ef_reg(e2, m=form.m_material,
-                                                          K=form.consistency)
-    mesh = run.mesh
-    pts = [mesh(*centre) for centre in
-           (np.mean([mesh.vertices[v.nr].point for v in el.vertices], axis=0)
-            for el in list(mesh.Elements())[::3])]
-    got = np.array([sigma(p) for p in pts])
-    rate = np.sqrt(np.array([e2(p) for p in pts]) + problem.material.eps0**2)   # (2.21)
-    temp = np.array([th.T_mean(p) for p in pts])
-    assert len(pts) > 100 and np.ptp(temp) > 400.0 and np.ptp(np.log(rate)) > 3.0
+    got, rate, temp = form_stress_at_centres(run, problem.material)
+    assert len(got) > 100 and np.ptp(temp) > 400.0 and np.ptp(np.log(rate)) > 3.0
     expected = problem.flow_stress.sigma(case.plate.entry_strain, rate, temp)
     assert got == pytest.approx(np.asarray(expected), rel=1e-9)
 

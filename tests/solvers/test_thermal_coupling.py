@@ -19,6 +19,32 @@ from hotroll.workflows.runner import run_case
 CASE = example_path("thermal_pass")
 RHO_C = 7600.0 * 650.0
 T_ENTRY = 1373.15
+
+
+def form_stress_at_centres(run, material, seed: int = 7):
+    """The run's element temperatures set at random between 900 K and T_ENTRY (its thermal
+    coupling's, the rate exponent's offset with them), then at every third element's centre:
+    the form's Norton-Hoff stress (Pa, its consistency and rate offset at that temperature),
+    the regularised rate sqrt(eps0^2 + edot^2) (2.21) of the run's velocity, and the
+    element's temperature (K). The form must vary its exponent with the temperature."""
+    from hotroll.fem.forms import strain_rate
+    from hotroll.model.material import edot_squared
+
+    form, th = run.form, run.thermal
+    assert th.m_varies and form.m_material is not form.m
+    rng = np.random.default_rng(seed)
+    th.T_mean.vec.FV().NumPy()[:] = rng.uniform(900.0, T_ENTRY, th.T_mean.space.ndof)
+    th._set_ratio()
+    e2 = edot_squared(strain_rate(form.nonlinear.velocity))
+    sigma = material.K * form.material.sigma_ef_reg(e2, m=form.m_material, K=form.consistency)
+    mesh = run.mesh
+    pts = [mesh(*centre) for centre in
+           (np.mean([mesh.vertices[v.nr].point for v in el.vertices], axis=0)
+            for el in list(mesh.Elements())[::3])]
+    got = np.array([sigma(p) for p in pts])
+    rate = np.sqrt(np.array([e2(p) for p in pts]) + material.eps0**2)
+    temp = np.array([th.T_mean(p) for p in pts])
+    return got, rate, temp
 HARD_COULOMB = {"material.A": 1.5e9, "friction.law": "coulomb", "friction.mu": 0.3,
                 "friction.a_f": None}
 
@@ -239,8 +265,6 @@ def test_form_stress_is_the_law_with_a_temperature_dependent_rate_exponent():
     T)/K_ref 3^((m(T)+1)/2) edot^m(T), its consistency and rate offset at each element's
     temperature, is the law's sigma(eps, edot, T) at every point and rate, in a temperature
     field from 900 to 1373 K (exponent 0.24 to 0.29 against m_ref 0.29)."""
-    from hotroll.fem.forms import strain_rate
-    from hotroll.model.material import edot_squared
     from hotroll.solvers.steady import SteadyRun
     from hotroll.workflows.runner import build_model, steady_settings
 
@@ -248,25 +272,9 @@ def test_form_stress_is_the_law_with_a_temperature_dependent_rate_exponent():
     model, _ = build_model(case)
     run = SteadyRun(model, steady_settings(case), case.plate.length)
     run._cold_start()
-    form, th = run.form, run.thermal
     law = model.flow_stress
-    assert th.m_varies and form.m_material is not form.m
-    # the elements' temperatures at random between 900 and 1373 K
-    rng = np.random.default_rng(7)
-    th.T_mean.vec.FV().NumPy()[:] = rng.uniform(900.0, T_ENTRY, th.T_mean.space.ndof)
-    th._set_ratio()
-    e2 = edot_squared(strain_rate(form.nonlinear.velocity))
-    sigma = model.material.K * form.material.sigma_ef_reg(e2, m=form.m_material,
-                                                        K=form.consistency)
-    mesh = run.mesh
-    pts = [mesh(*el_centre) for el_centre in
-           (np.mean([mesh.vertices[v.nr].point for v in el.vertices], axis=0)
-            for el in list(mesh.Elements())[::3])]
-    got = np.array([sigma(p) for p in pts])
-    # the regularised rate (2.21): sqrt(eps0^2 + edot^2)
-    rate = np.sqrt(np.array([e2(p) for p in pts]) + model.material.eps0**2)
-    temp = np.array([th.T_mean(p) for p in pts])
-    assert len(pts) > 100 and np.ptp(temp) > 400.0 and np.ptp(np.log(rate)) > 3.0
+    got, rate, temp = form_stress_at_centres(run, model.material)
+    assert len(got) > 100 and np.ptp(temp) > 400.0 and np.ptp(np.log(rate)) > 3.0
     expected = law.sigma(case.plate.entry_strain, rate, temp)
     assert got == pytest.approx(np.asarray(expected), rel=1e-9)
 
