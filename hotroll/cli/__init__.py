@@ -48,10 +48,38 @@ def _main(
     """Finite-element simulation of hot flat rolling."""
 
 
+#: the launchers' variables that give the number of MPI ranks (Open MPI; MPICH's and Intel
+#: MPI's Hydra; MVAPICH)
+MPI_SIZE_VARIABLES = ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "MV2_COMM_WORLD_SIZE")
+
+
+def mpi_refusal(env) -> str | None:
+    """Why hotroll refuses to run under ``mpirun -n N`` with N > 1 (``env``: the process's
+    environment), or None: every rank would solve the whole case into the same files; the
+    MPI-distributed 3D solve is not built (issue 53, docs/notes/issue53-mpi-spike/)."""
+    for key in MPI_SIZE_VARIABLES:
+        try:
+            n = int(env.get(key, "1"))
+        except ValueError:
+            continue
+        if n > 1:
+            return (f"refused: launched on {n} MPI ranks ({key}={n}): hotroll runs on one "
+                    "process (its threads: solver.threads); every rank would solve the same "
+                    "case into the same files. Run it without mpirun; many cases run in "
+                    "parallel with `hotroll study` (dask.distributed).")
+    return None
+
+
 def main() -> None:
     """The ``hotroll`` command: the app, a full disk (exit code 9, ``files.DiskFullError``) or a
     mesh over the memory limit (exit code 8) ending it with its clear message instead of a
-    traceback."""
+    traceback; refused under MPI with more than one rank (exit code 2, ``mpi_refusal``)."""
+    import os
+
+    why = mpi_refusal(os.environ)
+    if why is not None:
+        err_console.print(Text(why, style="red"), soft_wrap=True)
+        raise SystemExit(2)
     try:
         app()
     except DiskFullError as e:
