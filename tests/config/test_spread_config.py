@@ -29,6 +29,11 @@ def test_a_spread_case_loads_and_resolves_its_layers():
     cold = load_case(BASE, {**STEADY, **grade, "spread.temperature_profile": [
         [0.0, "1100 degC"], [1.0, "1000 degC"]]})
     assert cold.spread.temperature_profile == [(0.0, 1373.15), (1.0, 1273.15)]
+    # ... and over the cross-section, its temperatures with their units too
+    section = load_case(BASE, {**STEADY, **grade, "spread.temperature_section": {
+        "eta": [0.0, 1.0], "zeta": [0.0, 1.0],
+        "values": [["1100 degC", "1050 degC"], ["1100 degC", 1300.0]]}})
+    assert section.spread.temperature_section.values == [[1373.15, 1323.15], [1373.15, 1300.0]]
     # flat up to an edge zone's cut: taken
     zoned = load_case(BASE, {**STEADY, **grade, "spread.edge_zone": 0.004,
                              "spread.temperature_profile": [[0.0, 1373.15], [0.2, 1373.15],
