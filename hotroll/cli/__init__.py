@@ -57,6 +57,8 @@ def mpi_refusal(env) -> str | None:
     """Why hotroll refuses to run under ``mpirun -n N`` with N > 1 (``env``: the process's
     environment), or None: every rank would solve the whole case into the same files; the
     MPI-distributed 3D solve is not built (issue 53, docs/notes/issue53-mpi-spike/)."""
+    if env.get("HOTROLL_ALLOW_MPI") == "1":       # a single hotroll under an MPI parent
+        return None
     for key in MPI_SIZE_VARIABLES:
         try:
             n = int(env.get(key, "1"))
@@ -66,7 +68,8 @@ def mpi_refusal(env) -> str | None:
             return (f"refused: launched on {n} MPI ranks ({key}={n}): hotroll runs on one "
                     "process (its threads: solver.threads); every rank would solve the same "
                     "case into the same files. Run it without mpirun; many cases run in "
-                    "parallel with `hotroll study` (dask.distributed).")
+                    "parallel with `hotroll study` (dask.distributed). (One hotroll started "
+                    "by an MPI program's rank inherits its variables: HOTROLL_ALLOW_MPI=1.)")
     return None
 
 

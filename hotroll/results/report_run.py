@@ -241,7 +241,9 @@ def _input_text(v) -> str:
         return f"{v:.6g}"
     if isinstance(v, list):
         if v and all(isinstance(p, list) for p in v) and max(len(p) for p in v) > 8:
-            return f"{len(v)} rows of {len(v[0])}, the first: {_input_text(v[0])}"
+            n = {len(p) for p in v}
+            width = n.pop() if len(n) == 1 else f"{min(n)} to {max(n)}"
+            return f"{len(v)} rows of {width}, the first: {_input_text(v[0])}"
         if v and all(isinstance(p, list) for p in v):
             return f"{len(v)} points: " + ", ".join(
                 "(" + ", ".join(_input_text(x) for x in p) + ")" for p in v[:3]) + (

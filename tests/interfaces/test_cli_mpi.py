@@ -24,6 +24,7 @@ def test_more_than_one_rank_is_refused_naming_the_launchers_variable(key):
     assert "hotroll study" in why
     assert mpi_refusal({key: "1"}) is None and mpi_refusal({key: "x"}) is None
     assert mpi_refusal({}) is None
+    assert mpi_refusal({key: "3", "HOTROLL_ALLOW_MPI": "1"}) is None
 
 
 def test_hotroll_under_two_ranks_exits_2_before_any_computation(tmp_path):

@@ -288,11 +288,19 @@ def test_each_flattening_roll_keeps_its_own_relaxation():
     assert run.flattening[1].kind == "hitchcock"
 
 
-@functools.cache
 def _tension_pass(elastic: str):
     """The bundled tension_pass solved by the half model and by the full strip between two
     equal rolls: (problem, the half run, the full run, its Solution); each solved once for
-    the tests that read it."""
+    the tests that read it, except in mutmut's stats run (casebuild.shared_scope: each test
+    that reads it solves it, so that mutmut links the solvers to every such test)."""
+    import os
+
+    if os.environ.get("MUTANT_UNDER_TEST") == "stats":
+        return _solve_tension_pass(elastic)
+    return _cached_tension_pass(elastic)
+
+
+def _solve_tension_pass(elastic: str):
     from hotroll.examples import example_path
 
     case = load_case(example_path("tension_pass"), {"contact.strip_youngs_modulus": elastic})
@@ -303,6 +311,9 @@ def _tension_pass(elastic: str):
     run = FullSteadyRun(problem, st, case.plate.length, {1: problem.rp, -1: problem.rp},
                         {1: problem.friction, -1: problem.friction}, {1: st.a_f, -1: st.a_f})
     return problem, half_run, run, run.run()
+
+
+_cached_tension_pass = functools.cache(_solve_tension_pass)
 
 
 @pytest.mark.parametrize("elastic", ["off", "auto"])

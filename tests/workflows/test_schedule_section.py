@@ -187,3 +187,34 @@ def test_the_exit_state_keeps_the_chill_and_carries_a_section_the_pass_did_not_t
     iso_sch = schedule_from_dict(iso)
     assert exit_state(iso_sch, pass_case(iso_sch, 1, state), _exit(case, None),
                       entry=state).section is state.section
+
+
+def test_the_exit_section_figure_draws_the_carried_offset(rolled, monkeypatch, tmp_path):
+    """[plumb] fig_spread.png's exit section of pass 2: the outlet's offset (summary key
+    exit_temperature_offset) drawn in the four quadrants as it is, over the outlet's heights
+    (eta x the exit half thickness) and across to the exit half width (zeta 0 at mid-width)."""
+    from matplotlib.axes import Axes
+
+    from hotroll.results.figures.run_files import RunFiles
+    from hotroll.results.figures.spread import fig_spread
+
+    _, rows, out = rolled
+    seen, original = [], Axes.pcolormesh
+
+    def spy(self, *args, **kw):
+        if kw.get("cmap") == "RdBu_r":
+            seen.append(args)
+        return original(self, *args, **kw)
+
+    monkeypatch.setattr(Axes, "pcolormesh", spy)
+    assert fig_spread(RunFiles(out / rows[1]["case"]), tmp_path / "f.png") is not None
+    off = _summary(out, rows[1])["exit_temperature_offset"]
+    v = np.asarray(off["values"])
+    assert len(seen) == 4
+    half = 0.5 * rows[1]["exit_width"]
+    for Z, Y, drawn in seen:
+        assert np.array_equal(np.asarray(drawn), v)
+        assert np.all(np.asarray(Z)[:, 0] == 0.0)
+        assert np.abs(np.asarray(Z)[:, -1]).mean() == pytest.approx(1e3 * half, rel=0.01)
+        assert np.abs(np.asarray(Y)).max() == pytest.approx(0.5e3 * rows[1]["exit_thickness"],
+                                                            rel=0.05)

@@ -38,11 +38,15 @@ def fig_spread(run: RunFiles, path: Path) -> Path | None:
         e, zt, v = (np.asarray(off[k], dtype=float) for k in ("eta", "zeta", "values"))
         Y = np.repeat((e * yy[-1])[:, None], zt.size, axis=1)
         Z = np.interp(e * yy[-1], y, half)[:, None] * zt[None, :]
-        lo = min(float(v.min()), -1e-9)
+        from matplotlib.colors import CenteredNorm
+
+        # colder edges blue, hotter red, mid-width's white (either sign: a heated edge too)
+        half_range = max(float(np.nanmax(np.abs(v))) if np.any(np.isfinite(v)) else 0.0, 1e-9)
+        norm = CenteredNorm(0.0, half_range)
         for sy in (-1.0, 1.0):
             for sz in (-1.0, 1.0):
                 mesh = ax.pcolormesh(sz * Z * MM, sy * Y * MM, v, shading="gouraud",
-                                     cmap="Blues_r", vmin=lo, vmax=0.0)
+                                     cmap="RdBu_r", norm=norm)
         fig.colorbar(mesh, ax=ax, label="T - T(mid-width), entry's carried [K]")
     for side in (-1.0, 1.0):
         ax.axvline(side * b0 * MM, color="k", ls="--", lw=1,
