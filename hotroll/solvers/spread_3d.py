@@ -37,8 +37,12 @@ from hotroll.solvers.spread_fields import cooled_flow_stress, frozen_flow_stress
 from hotroll.solvers.spread_tops import LevelTops
 
 #: the contact's ends first move once the surfaces' last move is within this many of their
-#: tolerances (the 2D pass's rule: couplings.ContactEnd.after_others), then every round
-AFTER_OTHERS = 10.0
+#: tolerances, then every round. The 2D pass's rule (couplings.ContactEnd.after_others) is
+#: 10; in 3D the ends move from the first round (inf): the same settled criteria, fewer
+#: rounds (measured at c47ee5e, bench_3d.py cold and quiet: the roughing pass's coarse grading
+#: 12 -> 8 rounds, 60 -> 45 Newton iterations, 736 -> 530 s, spread 4.328 -> 4.330 mm; the
+#: narrow bar 8 -> 5-7 rounds, 32-34 -> 23-28 iterations, spreads the same to 1e-3 mm)
+AFTER_OTHERS = math.inf
 
 #: how the 3D strip takes the strain of a strain-dependent flow stress: carried through its
 #: own flow (the edge's hardening) or the 2D pass's in every layer
@@ -166,10 +170,10 @@ class Spread3D:
                     break
                 change, ended = 0.0, 0.0
                 if self.ends is not None:     # each level's contact end, then its tops
-                    # as the 2D pass's end (couplings.ContactEnd.after_others): first moved
-                    # once the surfaces are within 10 tolerances (their last round's move),
-                    # then every round (waiting again after each move took a search step
-                    # every 2-3 rounds: the roughing pass's edge zone 1.5 h steps apart)
+                    # first moved once the surfaces are within AFTER_OTHERS tolerances
+                    # (their last round's move), then every round (waiting again after each
+                    # move took a search step every 2-3 rounds: the roughing pass's edge
+                    # zone 1.5 h steps apart)
                     started = started or moved <= AFTER_OTHERS * tol_face
                     ended = self.ends.update() if started else math.inf
                 if self.tops is not None:     # the tops first: the face is solved on them
