@@ -16,7 +16,7 @@ from pydantic import Field, field_validator
 from hotroll.config.base import PosFloat, Section, field
 from hotroll.config.roll_sides import UPPER
 from hotroll.config.sections import check_profile
-from hotroll.model.profile import ProfileError
+from hotroll.model.profile import ProfileError, ThicknessProfile
 from hotroll.model.section import SectionProfile
 
 #: b0/h0 the 3D pass takes: below, a bar narrower than a quarter of its thickness (an edger's
@@ -190,14 +190,12 @@ def entry_section(case) -> SectionProfile | None:
         return None
     if s.temperature_section is not None:
         return s.temperature_section.profile()
-    prof = case.plate.entry_profiles()[0]
-    eta = (0.0, 1.0) if prof is None else prof.eta
-    base = (np.full(2, case.plate.temperature) if prof is None
-            else np.asarray(prof.values))
-    zeta = np.array([z for z, _ in s.temperature_profile])
-    add = np.array([t for _, t in s.temperature_profile]) - s.temperature_profile[0][1]
-    return SectionProfile(tuple(eta), tuple(zeta),
-                          tuple(tuple(r) for r in base[:, None] + add[None, :]))
+    prof = (case.plate.entry_profiles()[0]
+            or ThicknessProfile.uniform(case.plate.temperature))
+    add = [t - s.temperature_profile[0][1] for _, t in s.temperature_profile]
+    return SectionProfile.across(prof, {"eta": [0.0, 1.0],
+                                        "zeta": [z for z, _ in s.temperature_profile],
+                                        "values": [add, add]})
 
 
 def temperature_matters(law, t: float) -> bool:
