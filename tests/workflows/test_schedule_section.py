@@ -218,3 +218,26 @@ def test_the_exit_section_figure_draws_the_carried_offset(rolled, monkeypatch, t
         assert np.abs(np.asarray(Z)[:, -1]).mean() == pytest.approx(1e3 * half, rel=0.01)
         assert np.abs(np.asarray(Y)).max() == pytest.approx(0.5e3 * rows[1]["exit_thickness"],
                                                             rel=0.05)
+
+
+def test_the_schedule_figure_draws_the_entry_edge_temperature(rolled, monkeypatch, tmp_path):
+    """[plumb] schedule.png's temperature panel: the entry edge's temperature of pass 2 is
+    the transport's row value (next_entry_temperature_edge, in degC) drawn at pass 2."""
+    from matplotlib.axes import Axes
+
+    from hotroll.results.schedule_plot import plot_schedule
+
+    _, rows, _ = rolled
+    seen, original = [], Axes.plot
+
+    def spy(self, *args, **kw):
+        if kw.get("label") == "entry edge (thickness mean)":
+            seen.append(args)
+        return original(self, *args, **kw)
+
+    monkeypatch.setattr(Axes, "plot", spy)
+    plot_schedule(rows, tmp_path / "s.png", width=rows[0]["entry_width"])
+    assert len(seen) == 1
+    x, y = seen[0][0], seen[0][1]
+    assert list(x) == [2]
+    assert y[0] == pytest.approx(rows[0]["next_entry_temperature_edge"] - 273.15, rel=1e-12)
