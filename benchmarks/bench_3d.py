@@ -1,17 +1,18 @@
 """The 3D strip's cost (issue 53: a narrow-bar pass, b0/h0 = 1, in under 3 minutes; a
 quarter-model roughing pass in under 10 minutes cold and 6 GB), at three width gradings.
 
-    python benchmarks/bench_3d.py [--case narrow|roughing] [--sizes coarse,medium,fine]
+    python benchmarks/bench_3d.py [--case narrow|roughing] [--sizes coarsest,coarse,medium,fine]
                                   [--solver umfpack|sparsecholesky+gmres]
 
 ``narrow``: Case R of ../shared/notes/asymmetric-rolling.md (R = 250 mm, 10 -> 8 mm, Tresca
 0.3, Norton-Hoff m = 0.05, h = 1 mm) with a stock 10 mm wide. ``roughing``: the bundled
 roughing_slab (R = 0.6 m, 200 -> 170 mm, its Hensel-Spittel grade and friction) with the
-issue's width 1.5 m (the 3D strip takes the 2D pass's strain frozen across the width).
+issue's width 1.5 m (the 3D strip carries the strain through its own flow, the default).
 Each size is one process's run after the 2D pass: ``Spread3D`` set-up and solve
 (solvers/spread_3d.py), cold (the first 3D forms of the process are compiled in it). Sizes:
 the edge layer and the largest layer in units of the 2D contact mesh size h: coarse (2h, 8h),
-medium (h, 4h), fine (h/2, 2h). Prints a table: DOFs, layers, Newton iterations, rounds, wall
+medium (h, 4h), fine (h/2, 2h), and coarsest (4h, 16h) for a third size of the roughing
+pass (its fine grading does not fit in 24 GB). Prints a table: DOFs, layers, Newton iterations, rounds, wall
 s (2D, 3D set-up, 3D solve), peak resident memory of the process (GB), spread. The linear
 solver: UMFPACK by default, or ``--solver`` (fem/forms.py: LINEAR_SOLVERS). Time on 2 cores
 with nothing else running.
@@ -36,7 +37,8 @@ from hotroll.solvers.spread_3d import Spread3D  # noqa: E402
 from hotroll.solvers.steady import SteadyRun  # noqa: E402
 from hotroll.workflows.build import build_model, steady_settings  # noqa: E402
 
-SIZES = {"coarse": (2.0, 8.0), "medium": (1.0, 4.0), "fine": (0.5, 2.0)}
+SIZES = {"coarsest": (4.0, 16.0), "coarse": (2.0, 8.0), "medium": (1.0, 4.0),
+         "fine": (0.5, 2.0)}
 
 
 def two_d(kind: str):

@@ -83,9 +83,13 @@ def norton_hoff_tangent(material: NortonHoff, m, w, u, p, v, q, K=1.0):
 # refactorisation and solve there: 22 ms against LDL^T's 6 ms (2 threads); kept as GMRES's
 # preconditioner across Newton steps instead, its factors took 4-12 iterations of 2.8 ms (its
 # solve) on 22 of 42 changed Jacobians and missed 12 on the other 20: slower than factorising.
-# Whole passes: docs/validation/speed.md "Issue 50". The others remain fallbacks (a run that
-# needs them is not reproducible to the bit).
-LINEAR_SOLVERS = ("umfpack", "sparsecholesky+gmres", "pardiso")
+# Whole passes: docs/validation/speed.md "Issue 50". The other remains a fallback (a run that
+# needs it is not reproducible to the bit). MKL PARDISO is not in the list (issue 53): only
+# there with ``pip install mkl``, 1.12x UMFPACK on the 3D roughing pass held to one thread,
+# and NGSolve 6.2.2608's wrapper crashes when it refactorises with fewer MKL threads than it
+# analysed with, which the parallel regions' per-step thread count allows
+# (docs/validation/spread_3d.md, "The roughing pass").
+LINEAR_SOLVERS = ("umfpack", "sparsecholesky+gmres")
 
 
 @dataclass

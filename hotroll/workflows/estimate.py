@@ -44,12 +44,14 @@ SECONDS_A, SECONDS_B, STEADY_ITERATIONS = 1.35e-5, 4.3e-8, 30
 #: bundled narrow_bar (5 layers)
 DOFS_PER_LEVEL, DOFS_PER_LAYER = 6.5, 6.0
 #: ... its memory, a N^p (the 3D factorisation's fill grows faster than N), and its wall
-#: seconds, c N^q for the whole 3D pass: least-squares fits in log-log to the narrow-bar bench
-#: (1.2 GB at 4.7e4 unknowns, benchmarks/bench_3d.py at d7372d1), the bundled narrow_bar (49 s
-#: at 4.1e4, the machine shared) and the roughing bench (3.26 / 8.76 GB and 305 / 1131 s at
-#: 1.01e5 / 1.73e5, f6884ab, docs/validation/spread_3d.md): within 20 % of each
-BYTES_3D_COEF, BYTES_3D_EXP = 24.4, 1.63
-SECONDS_3D_COEF, SECONDS_3D_EXP = 4.8e-9, 2.17
+#: seconds, c N^q for the whole 3D pass (set-up and solve): least-squares fits in log-log to
+#: benchmarks/bench_3d.py's three narrow-bar sizes (1.8-4.7e4 unknowns, 11-49 s, 0.35-1.20
+#: GB) and three roughing sizes (6.9e4-1.73e5, 199-1907 s, 1.72-6.92 GB), the code with the
+#: ends moving from the first round (c47ee5e-ac7ef0e, docs/validation/spread_3d.md "The
+#: roughing pass"): memory within 13 % of each, seconds 0.7-1.5x (the roughing pass takes
+#: more iterations per unknown than the bar)
+BYTES_3D_COEF, BYTES_3D_EXP = 949.0, 1.311
+SECONDS_3D_COEF, SECONDS_3D_EXP = 4.77e-10, 2.397
 #: the report's scheme: seconds per step and unknown on one core (0.49 s per step with 2
 #: threads on C2, 6.8e4 unknowns, docs/results.md; 1.6 x for one thread); the steps: end
 #: time / dt (an upper bound: the run stops at the steady state, often a third of it)
