@@ -1,5 +1,5 @@
 """The 3D strip's cost (issue 53: a narrow-bar pass, b0/h0 = 1, in under 3 minutes; a
-quarter-model roughing pass in under 10 minutes cold and 6 GB), at three width gradings.
+quarter-model roughing pass in under 10 minutes cold and 6 GB), at three or four width gradings.
 
     python benchmarks/bench_3d.py [--case narrow|roughing] [--sizes coarsest,coarse,medium,fine]
                                   [--solver umfpack|sparsecholesky+gmres]

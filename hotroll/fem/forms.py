@@ -85,7 +85,7 @@ def norton_hoff_tangent(material: NortonHoff, m, w, u, p, v, q, K=1.0):
 # solve) on 22 of 42 changed Jacobians and missed 12 on the other 20: slower than factorising.
 # Whole passes: docs/validation/speed.md "Issue 50". The other remains a fallback (a run that
 # needs it is not reproducible to the bit). MKL PARDISO is not in the list (issue 53): only
-# there with ``pip install mkl``, 1.12x UMFPACK on the 3D roughing pass held to one thread,
+# there with ``pip install mkl``, 1.13x UMFPACK on the 3D roughing pass held to one thread,
 # and NGSolve 6.2.2608's wrapper crashes when it refactorises with fewer MKL threads than it
 # analysed with, which the parallel regions' per-step thread count allows
 # (docs/validation/spread_3d.md, "The roughing pass").

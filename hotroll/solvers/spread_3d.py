@@ -64,7 +64,7 @@ class Spread3D:
     ``ends``: with unilateral contact and the tops per level, each width level's contact end
     found from its own pressure (``solvers/spread_ends.py``; False, or ``tops=False``: the 2D
     pass's end in every level).
-    ``linear_solver``: Newton's first linear solver (``fem/forms.LINEAR_SOLVERS``; the others
+    ``linear_solver``: Newton's first linear solver (``fem/forms.LINEAR_SOLVERS``; the other
     after it where it fails). ``strain``: a strain-dependent flow stress's strain carried
     through the 3D flow ("transported", with a free edge) or the 2D pass's ("frozen")."""
 

@@ -44,13 +44,14 @@ SECONDS_A, SECONDS_B, STEADY_ITERATIONS = 1.35e-5, 4.3e-8, 30
 #: bundled narrow_bar (5 layers)
 DOFS_PER_LEVEL, DOFS_PER_LAYER = 6.5, 6.0
 #: ... its memory, a N^p (the 3D factorisation's fill grows faster than N), and its wall
-#: seconds, c N^q for the whole 3D pass (set-up and solve): least-squares fits in log-log to
-#: benchmarks/bench_3d.py's three narrow-bar sizes (1.8-4.7e4 unknowns, 11-49 s, 0.35-1.20
-#: GB) and three roughing sizes (6.9e4-1.73e5, 199-1907 s, 1.72-6.92 GB), the code with the
-#: ends moving from the first round (c47ee5e-ac7ef0e, docs/validation/spread_3d.md "The
-#: roughing pass"): memory within 13 % of each, seconds 0.7-1.5x (the roughing pass takes
-#: more iterations per unknown than the bar)
-BYTES_3D_COEF, BYTES_3D_EXP = 949.0, 1.311
+#: seconds, c N^q for the whole 3D pass (set-up and solve), fitted to benchmarks/bench_3d.py's
+#: three narrow-bar sizes (1.8-4.7e4 unknowns, 11-49 s, 0.35-1.20 GB) and three roughing
+#: sizes (6.9e4-1.73e5, 199-1907 s, 1.72-6.92 GB), the code with the ends moving from the
+#: first round (c47ee5e-ac7ef0e, docs/validation/spread_3d.md "The roughing pass"): the
+#: peak memory as 0.14 GB (the process's, in BASE_BYTES) + a N^p, within 7 % of each; the
+#: seconds by least squares in log-log, 0.7-1.5x of each (the roughing pass takes more
+#: iterations per unknown than the bar)
+BYTES_3D_COEF, BYTES_3D_EXP = 145.0, 1.470
 SECONDS_3D_COEF, SECONDS_3D_EXP = 4.77e-10, 2.397
 #: the report's scheme: seconds per step and unknown on one core (0.49 s per step with 2
 #: threads on C2, 6.8e4 unknowns, docs/results.md; 1.6 x for one thread); the steps: end

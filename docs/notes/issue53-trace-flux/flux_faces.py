@@ -17,7 +17,7 @@ for h in [float(a) for a in sys.argv[1:]]:
     mesh = run.mesh
     u = run.form.nonlinear.velocity
     n = ng.specialcf.normal(2)
-    fl = {b: ng.Integrate(u * n, mesh, ng.BND, definedon=mesh.Boundaries(b), order=8) for b in ("in", "top", "exit", "out")}
+    fl = {b: ng.Integrate(u * n, mesh, ng.BND, definedon=mesh.Boundaries(b), order=8) for b in ("in", "top", "exit", "arc", "out")}
     q = -fl["in"]
     two = run.state.history[-1]
     print(h, r.status, {k: f"{v/q:.3e}" for k, v in fl.items()}, "force", two["roll_force"], "slip", two["forward_slip"], "torque", two["roll_torque"], "x_c", run.shape.x_c, flush=True)
