@@ -59,13 +59,16 @@ def test_the_held_edge_is_the_2d_pass(passes):
 
 
 def test_a_free_edge_settles_as_a_stream_surface(passes):
-    """[measured] the lateral face carries no flux: 1e-10 of the inflow (the SUPG rows of B
-    summed over its free DOFs are that flux but for the inlet's rows, where u_z ~ 0); in and
-    out agree to 1e-3: the top keeps the 2D pass's traced shape, through which the 2D pass
-    itself leaks 5.9e-4 of its inflow on this mesh (2.9e-4 at h = 0.5 mm: first order in h)."""
+    """[measured] the lateral face carries no flux: 2.7e-7 of the inflow. It is the stream
+    surface of the flow one solve before the last (the SUPG rows of B summed over its free
+    DOFs are that flow's flux through it but for the inlet's rows, where u_z ~ 0: 1e-10 of
+    the inflow, measured before the settled shape got its own flow), and the last solve, on
+    the settled shape, moved the flow by less than the surfaces' tolerance. In and out agree
+    to 1e-3: the top keeps the 2D pass's traced shape, through which the 2D pass itself leaks
+    5.9e-4 of its inflow on this mesh (2.9e-4 at h = 0.5 mm: first order in h)."""
     _, _, free = passes
     assert free["settled"] and free["rounds"] >= 2
-    assert abs(free["flux_edge"]) <= 1e-10 * free["flux_in"]
+    assert abs(free["flux_edge"]) <= 1e-6 * free["flux_in"]
     assert free["flux_out"] == pytest.approx(free["flux_in"], rel=1e-3)
 
 
