@@ -72,6 +72,22 @@ def test_a_free_edge_settles_as_a_stream_surface(passes):
     assert free["flux_out"] == pytest.approx(free["flux_in"], rel=1e-3)
 
 
+def test_the_settled_shape_has_its_own_flow(solved):
+    """[identity] the flow a settled pass returns is its final shape's: one more Newton step
+    from it moves the velocity by less than Newton's tolerance (the flow of the shape before
+    the last surface update, returned before: the aluminium bar's velocity 1.4e-3 U off,
+    docs/validation/spread_3d.md "The settled shape's own flow"). The state is put back."""
+    from hotroll.fem.nonlinear import newton
+
+    run, _, free = solved
+    nl = free.form.nonlinear
+    keep = nl.gf.vec.CreateVector()
+    keep.data = nl.gf.vec
+    st = newton(nl, run.s.tol, 1)
+    nl.gf.vec.data = keep
+    assert st.update <= run.s.tol
+
+
 def test_each_round_is_reported(solved):
     """[plumb] a progress report per round, its words naming the round, the unknowns, Newton
     and the free surfaces' move in h against the tolerance; the last one's move within it."""
