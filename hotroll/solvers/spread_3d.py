@@ -13,7 +13,8 @@ is carried through the 3D flow (``solvers/spread_fields.py``). Newton on the cur
 the surfaces' update, the ends' search and the carried fields' transport alternate until
 they settle (the surfaces' largest move below ``surface_tol`` h, the 2D pass's tolerance of
 its traced tops; the ends' below the 2D pass's; the carried fields' change below
-``strain_rtol``). With ``edge_held`` the face is held (u_z = 0): plane strain, the 2D answer.
+``strain_rtol``), then Newton once more on the settled shape (its own flow, which the figures
+read). With ``edge_held`` the face is held (u_z = 0): plane strain, the 2D answer.
 """
 from __future__ import annotations
 
