@@ -206,7 +206,7 @@ class Spread3D:
                         and (self.ends is None or ended <= self.ends.tol)):
                     # the flow of the settled shape: the last Newton solved the shape before
                     # this round's update (within the tolerances, but the figures are read on
-                    # the moved mesh: an aluminium bar's power balance 3.2e-3 -> 3.5e-5,
+                    # the moved mesh: an aluminium bar's power balance 3.2e-3 -> 2.9e-5,
                     # docs/validation/spread_3d.md), as the 2D pass returns the flow of its
                     # final shape
                     st = newton(self.form.nonlinear, s.tol, s.max_it)

@@ -189,6 +189,20 @@ def test_the_exit_state_keeps_the_chill_and_carries_a_section_the_pass_did_not_t
                       entry=state).section is state.section
 
 
+def _spy(monkeypatch, cls, name: str, keep) -> list:
+    """The positional arguments of every call of ``cls.name`` whose keywords ``keep`` accepts
+    (the call itself goes on)."""
+    seen, original = [], getattr(cls, name)
+
+    def spy(self, *args, **kw):
+        if keep(kw):
+            seen.append(args)
+        return original(self, *args, **kw)
+
+    monkeypatch.setattr(cls, name, spy)
+    return seen
+
+
 def test_the_exit_section_figure_draws_the_carried_offset(rolled, monkeypatch, tmp_path):
     """[plumb] fig_spread.png's exit section of pass 2: the outlet's offset (summary key
     exit_temperature_offset) drawn in the four quadrants as it is, over the outlet's heights
@@ -199,14 +213,7 @@ def test_the_exit_section_figure_draws_the_carried_offset(rolled, monkeypatch, t
     from hotroll.results.figures.spread import fig_spread
 
     _, rows, out = rolled
-    seen, original = [], Axes.pcolormesh
-
-    def spy(self, *args, **kw):
-        if kw.get("cmap") == "RdBu_r":
-            seen.append(args)
-        return original(self, *args, **kw)
-
-    monkeypatch.setattr(Axes, "pcolormesh", spy)
+    seen = _spy(monkeypatch, Axes, "pcolormesh", lambda kw: kw.get("cmap") == "RdBu_r")
     assert fig_spread(RunFiles(out / rows[1]["case"]), tmp_path / "f.png") is not None
     off = _summary(out, rows[1])["exit_temperature_offset"]
     v = np.asarray(off["values"])
@@ -228,14 +235,8 @@ def test_the_schedule_figure_draws_the_entry_edge_temperature(rolled, monkeypatc
     from hotroll.results.schedule_plot import plot_schedule
 
     _, rows, _ = rolled
-    seen, original = [], Axes.plot
-
-    def spy(self, *args, **kw):
-        if kw.get("label") == "entry edge (thickness mean)":
-            seen.append(args)
-        return original(self, *args, **kw)
-
-    monkeypatch.setattr(Axes, "plot", spy)
+    seen = _spy(monkeypatch, Axes, "plot",
+                lambda kw: kw.get("label") == "entry edge (thickness mean)")
     plot_schedule(rows, tmp_path / "s.png", width=rows[0]["entry_width"])
     assert len(seen) == 1
     x, y = seen[0][0], seen[0][1]
