@@ -48,7 +48,7 @@ DOFS_PER_LEVEL, DOFS_PER_LAYER = 6.5, 6.0
 #: three narrow-bar sizes (1.8-4.7e4 unknowns, 11-49 s, 0.35-1.20 GB) and three roughing
 #: sizes (6.9e4-1.73e5, 199-1907 s, 1.72-6.92 GB), the code with the ends moving from the
 #: first round (c47ee5e-ac7ef0e, docs/validation/spread_3d.md "The roughing pass"): the
-#: peak memory as 0.14 GB (the process's, in BASE_BYTES) + a N^p, within 7 % of each; the
+#: peak memory as 0.14 GB (the process's, in BASE_BYTES) + a N^p, within 10 % of each; the
 #: seconds by least squares in log-log, 0.7-1.5x of each (the roughing pass takes more
 #: iterations per unknown than the bar)
 BYTES_3D_COEF, BYTES_3D_EXP = 145.0, 1.470
