@@ -10,7 +10,7 @@ growing through the thickness to ``core_factor * h`` on the axis and to ``h_far`
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -27,6 +27,7 @@ class MeshSpec:
     h_far: float | None = None  # size far from the roll (None: automatic)
     core_factor: float = 2.0    # size on the symmetry axis relative to h
     grading: float = 0.3
+    corner: float = 1.0         # h / the size at the contact's start (``_refine_corner``)
 
     def far(self, rp: RollPass) -> float:
         return self.h_far if self.h_far else min(rp.half_entry / 4.0, 15.0 * self.h)
@@ -128,6 +129,7 @@ def _graded_mesh(geometry, rp: RollPass, spec: MeshSpec, x_lo: float, x_hi: floa
         n = max(2, int(math.ceil(yt / h)))
         for y in np.linspace(yt, 0.0, n):
             mp.RestrictH(float(x), float(y), 0.0, float(h + (hc - h) * (1.0 - y / yt)))
+    _refine_corner(mp, rp, h, spec.corner)
     with parallel():            # netgen's optimisation threaded: the same mesh to the bit
         ngmesh = geometry.GenerateMesh(mp=mp)
     if shift:
@@ -135,10 +137,17 @@ def _graded_mesh(geometry, rp: RollPass, spec: MeshSpec, x_lo: float, x_hi: floa
     return ngsolve.Mesh(ngmesh)
 
 
+def _refine_corner(mp, rp: RollPass, h: float, ratio: float) -> None:
+    """Mesh size h / ``ratio`` at the contact's start (the touching point x_touch on the entry
+    top), graded back to h by netgen's grading: the flow turns onto the roll there within the
+    first element (the velocity's corner singularity), and the traced free top leaks mass
+    through that element in proportion to its size (docs/theory.md 4b)."""
+    if ratio > 1.0:
+        mp.RestrictH(float(rp.x_touch), float(rp.half_entry), 0.0, float(h / ratio))
+
+
 def _in_roll_frame(rp: RollPass) -> RollPass:
     """The same pass with the roll axis at x = 0."""
-    from dataclasses import replace
-
     return replace(rp, axis_x=0.0)
 
 
@@ -167,7 +176,9 @@ def build_plate_mesh(rp: RollPass, length: float, spec: MeshSpec):
     """Generate the graded NGSolve mesh (straight-sided; the arc is restored by the P2 geometry)."""
     r0 = _in_roll_frame(rp)
     _, _, x_lo, x_hi = plate_zone(r0, length, spec.fine_length)
-    return _graded_mesh(plate_geometry(r0, length), r0, spec, x_lo, x_hi, shift=rp.axis_x)
+    # (no refinement at the touching point: the transient plate's contact start moves)
+    return _graded_mesh(plate_geometry(r0, length), r0, replace(spec, corner=1.0), x_lo, x_hi,
+                        shift=rp.axis_x)
 
 
 #: The last steady meshes made, by what they are made from (``build_steady_mesh``).

@@ -69,7 +69,8 @@ def build_model(case: Case):
     h = case.mesh.h
     end_time = sv.end_time or default_end_time(rp)
     spec = MeshSpec(h=h, fine_length=plate_fine_length(rp, h, end_time),
-                    h_far=case.mesh.h_far, grading=case.mesh.grading)
+                    h_far=case.mesh.h_far, grading=case.mesh.grading,
+                    corner=case.mesh.corner_refinement)
     material, flow = reference_material(case)
     t_profile, e_profile = case.plate.entry_profiles()
     model = Problem(rp, case.plate.length, material,

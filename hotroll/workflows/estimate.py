@@ -116,6 +116,19 @@ def triangles(rp, h: float, h_far: float, x0: float, x1: float, fine_lo: float, 
     return float(np.trapezoid(per_x, xs))
 
 
+def corner_triangles(h: float, ratio: float, grading: float) -> float:
+    """The triangles the contact start's refinement adds (``fem/mesh._refine_corner``): the
+    size from h / ratio at the corner growing by the grading back to h, s = h/ratio + g r, over
+    the half disc below the entry top, less the uniform mesh's there: (pi / (sqrt3/4 g^2))
+    (ln ratio + 1 / ratio - 1) - the half disc of radius (h - h/ratio) / g at size h."""
+    if ratio <= 1.0:
+        return 0.0
+    c, hc = math.sqrt(3.0) / 4.0, h / ratio
+    graded = math.pi / (c * grading**2) * (math.log(ratio) + 1.0 / ratio - 1.0)
+    radius = (h - hc) / grading
+    return graded - 0.5 * math.pi * radius**2 / (c * h**2)
+
+
 def estimate(case) -> Estimate:
     """The estimate for a validated case (its method's mesh; the temperature's own mesh of a
     [thermal] case is small beside it and not counted; with [spread] the 3D pass's unknowns,
@@ -133,6 +146,9 @@ def estimate(case) -> Estimate:
         x0, x1, lo, hi = plate_zone(rp, case.plate.length, plate_fine_length(rp, h, end))
         core = spec.core_factor
     tri = MESHER_FACTOR * triangles(rp, h, far, x0, x1, lo, hi, core, case.mesh.grading)
+    if case.solver.method == "steady":
+        tri += MESHER_FACTOR * corner_triangles(h, case.mesh.corner_refinement,
+                                                case.mesh.grading)
     if not case.roll_gap().symmetric:      # the full-thickness strip: the half strip mirrored
         tri *= 2
     dofs = DOFS_PER_TRIANGLE * tri
