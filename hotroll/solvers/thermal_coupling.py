@@ -43,7 +43,7 @@ from hotroll.fem.strip_mesh import ThermalStrip, layer_thickness
 from hotroll.fem.thermal_field import TemperatureField
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 from hotroll.solvers.thermal_feedback import FlowStressFeedback
-from hotroll.solvers.thermal_sampling import k_means, strip_samples
+from hotroll.solvers.thermal_sampling import cell_means, k_means, strip_samples
 
 SUBSAMPLES = 4   # points per strip row interval for the flux integral along a column
 CHORD_BELOW = 1e-3   # update_steady keeps the heat equation's factors below this change
@@ -133,6 +133,7 @@ class ThermalCoupling(FlowStressFeedback):
                           for t in ((top, lower) if full else (top,))]
         chis = [IfPos(x - lo, IfPos(hi - x, 1.0, 0.0), 0.0) for _, lo, hi in self._surfaces]
         self._chi = IfPos(y, chis[0], chis[1]) if full else chis[0]
+        self._x_cf = x
         self._mech_logical = self.strip.logical(top.X0)   # the mechanics' vertices
         # the strip's vertices and its columns' flux points, found once in the mechanics'
         # reference mesh; the top row's vertices. Every SUBSAMPLES-th row of flux points is
@@ -156,8 +157,8 @@ class ThermalCoupling(FlowStressFeedback):
         # temperature at their centroid), and where the fields that jump between elements
         # are sampled from both sides (solvers/thermal_sampling.py)
         samples = strip_samples(strip, self._find, self.mesh.ne)
-        self._inside, self._owner, self._empty = samples.inside, samples.owner, samples.empty
-        self._mid, self._surface_sides = samples.mid, samples.surface
+        self._owner, self._empty = samples.owner, samples.empty
+        self._mid, self._cells, self._surface_cells = samples.mid, samples.cells, samples.surface
         centroids = top.X0[mech_tris[self._empty]].mean(axis=1)
         self._empty_logical = self.strip.logical(centroids)
         # where those are in the strip mesh: searched once (its logical coordinates do not
@@ -246,17 +247,10 @@ class ThermalCoupling(FlowStressFeedback):
         flux = self.fine_column_flux(both)[::SUBSAMPLES]
         strip.set_stream_function(flux, total=float(flux[-1, 0]))
         self._flow = None
-        qs = self._at(self._plastic_cf, self._inside)[:, 0]
-        if self._mid is not None:
-            rows, above, below = self._mid
-            qs[rows] = 0.5 * (self._at(self._plastic_cf, above)[:, 0]
-                              + self._at(self._plastic_cf, below)[:, 0])
-        self._qs.vec.FV().NumPy()[:] = qs
-        qf = np.zeros(strip.nv)
-        rows = self._surface_rows
-        qf[rows] = 0.5 * sum(self._at(self._friction_cf, p)[:, 0] for p in self._surface_sides)
-        self._qfs.vec.FV().NumPy()[:] = qf
+        self._qs.vec.FV().NumPy()[:] = cell_means(
+            self._at(self._plastic_cf, self._cells[0])[:, 0], self._cells[1])
         d = self._disp.vec.FV().NumPy()
+        ranges = []
         for top, lo_p, hi_p in self._surfaces:
             rows = np.nonzero(top.edge_contact)[0]
             lo = hi = 0.0
@@ -266,6 +260,19 @@ class ThermalCoupling(FlowStressFeedback):
                 lo, hi = float(xs.min()) - tol, float(xs.max()) + tol
             lo_p.Set(lo)
             hi_p.Set(hi)
+            ranges.append((lo, hi))
+        # the friction flux: each surface vertex's mean over the part of its dual segment in
+        # its roll's contact (the flux is the friction law's only there; the surfaces' points
+        # lower first on the full strip, as _surface_rows)
+        pts, w = self._surface_cells
+        q, at = self._at(self._friction_cf, pts)[:, 0], self._at(self._x_cf, pts)[:, 0]
+        lo, hi = (np.repeat([r[i] for r in ranges[::-1]], len(q) // len(ranges))
+                  for i in (0, 1))
+        inside = ((at >= lo) & (at <= hi)).reshape(-1, len(w)) * w
+        qf = np.zeros(strip.nv)
+        qf[self._surface_rows] = ((q.reshape(-1, len(w)) * inside).sum(1)
+                                  / np.maximum(inside.sum(1), 1e-300))
+        self._qfs.vec.FV().NumPy()[:] = qf
 
     def _element_flow(self):
         """The strip's ``element_flow`` (barycentric gradients, Jacobians, curl psi per

@@ -11,13 +11,18 @@ upper and lower halves by 3e-4 in the exit shear strain and 5e-7 in force, and c
 - each vertex's element is the one holding a point a little inside its own strip cell
   (downstream by 1e-3 of its column spacing, upstream on the outlet's column; towards the
   mid-plane or symmetry line by 1e-3 of the thinnest row), whose mirror image is the mirror
-  image's; the plastic heat density is read there;
+  image's;
 - the full strip's mid-plane row lies on elements' edges all along: each vertex there counts
-  half in the element above and half in the one below, and its plastic heat density is the
-  mean of the two;
-- a surface vertex on a mechanics vertex (the contact's start, a break of both meshes) reads
-  the friction flux's mean just before and just after it (the shear flow stress k jumps
-  there): each surface vertex the mean of the points 1e-3 of a column spacing either side.
+  half in the element above and half in the one below;
+- the heat sources are means over each vertex's dual cell (from the midpoints to its
+  neighbours, ``CELL_POINTS`` Gauss points a direction, none on the mid-plane, each the
+  mirror image of the mirror vertex's): the plastic power density over the cell, the
+  friction flux over the surface's dual segment where it lies in its roll's contact
+  (``ThermalCoupling._transfer``). A value read at the vertex itself (until 2026-11-29)
+  carried a peak narrower than a strip cell (the contact's start on a mesh refined there,
+  ``mesh.corner_refinement``) over the whole cell: plastic heat +2.9 %, friction heat +23 %
+  on thermal_pass at 16x; with the means -0.2 % and -2.1 % (and at 1x +0.02 % and -0.3 %,
+  against +0.24 % and +2.2 % read at the vertices).
 
 With these the full strip of two equal rolls is its own mirror image to round-off (its exit
 shear, forces and curvature 1e-14 apart: thermal_pass). ``k_means``: an element's temperature
@@ -33,12 +38,33 @@ import numpy as np
 NUDGE = 1e-3
 
 
+#: Gauss points per direction over a vertex's dual cell (the heat sources' cell means)
+CELL_POINTS = 4
+
+
 class StripSamples(NamedTuple):
     inside: np.ndarray       # each strip vertex's point inside its cell (mesh points)
     owner: np.ndarray        # the mechanics element of each strip vertex (that point's)
     empty: np.ndarray        # the mechanics elements no strip vertex counts in
     mid: tuple | None        # full strip: (mid-plane row's vertices, points above, below)
-    surface: list            # the surface rows' points just before and just after
+    cells: tuple             # (mesh points, weights): each vertex's dual cell's Gauss points
+    surface: tuple           # (mesh points, weights): each surface vertex's dual segment's
+
+
+def _dual_gauss(axis: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """(points (len, n), weights (n,), summing to 1): Gauss-Legendre over each node's dual
+    interval of the sorted ``axis`` (from the midpoint before to the midpoint after, the ends
+    at the axis's ends)."""
+    mid = 0.5 * (axis[1:] + axis[:-1])
+    lo, hi = np.concatenate([axis[:1], mid]), np.concatenate([mid, axis[-1:]])
+    g, w = np.polynomial.legendre.leggauss(n)
+    return 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * g[None, :], 0.5 * w
+
+
+def cell_means(values: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """Each vertex's mean from its cell's points' ``values`` (vertex-major, ``weights`` per
+    point of a cell)."""
+    return values.reshape(-1, len(weights)) @ weights
 
 
 def strip_samples(strip, find: Callable, n_elements: int) -> StripSamples:
@@ -67,14 +93,21 @@ def strip_samples(strip, find: Callable, n_elements: int) -> StripSamples:
         mid = (rows, *sides)
         owner[rows] = np.asarray(sides[0]["nr"], dtype=int)
         counted.append(np.asarray(sides[1]["nr"], dtype=int))
-    gap = np.diff(X)
-    dx = NUDGE * np.minimum(np.append(gap, gap[-1]), np.insert(gap, 0, gap[0]))
     surfaces = (-1.0, 1.0) if strip.full else (1.0,)
-    surface = [find(np.concatenate([np.stack([x, e * strip.top_height(x)], -1)
-                                    for e in surfaces]))
-               for x in (np.clip(X + s * dx, X[0], X[-1]) for s in (-1.0, 1.0))]
     empty = np.setdiff1d(np.arange(n_elements), np.concatenate(counted))
-    return StripSamples(inside, owner, empty, mid, surface)
+    # the heat sources at each vertex: their means over its dual cell (plastic density) and
+    # dual segment of the surface (friction flux), Gauss points inside, none on the mid-plane
+    # (CELL_POINTS even) and each the mirror image of the mirror vertex's
+    gx, wx = _dual_gauss(X, CELL_POINTS)
+    ge, we = _dual_gauss(eta, CELL_POINTS)
+    PX = np.broadcast_to(gx[None, :, :, None], (len(eta), len(X), CELL_POINTS, CELL_POINTS))
+    PE = np.broadcast_to(ge[:, None, None, :], PX.shape)
+    cells = (find(np.stack([PX.ravel(), PE.ravel() * strip.top_height(PX.ravel())], -1)),
+             np.outer(wx, we).ravel())
+    sx = gx.ravel()
+    surface = (find(np.concatenate([np.stack([sx, e * strip.top_height(sx)], -1)
+                                    for e in surfaces])), wx)
+    return StripSamples(inside, owner, empty, mid, cells, surface)
 
 
 def k_means(owner: np.ndarray, ne: int, vals: np.ndarray, w: np.ndarray,

@@ -13,7 +13,14 @@ import pytest
 from hotroll.config.case import load_case
 from hotroll.examples import example_path
 from hotroll.files import DiskFullError
-from hotroll.workflows.estimate import ResourceError, check, estimate
+from hotroll.workflows.estimate import (
+    DOFS_PER_TRIANGLE,
+    MESHER_FACTOR,
+    ResourceError,
+    check,
+    corner_triangles,
+    estimate,
+)
 
 ENV = {**os.environ, "NGS_NUM_THREADS": "1"}
 
@@ -29,6 +36,7 @@ def _case(name: str = "example1", **over):
     ("hot_aluminium", {}),
     ("roughing_slab", {"pass.exit_thickness": 0.15}),
     ("tension_pass", {"mesh.grading": 0.5}),
+    ("hot_strip_finishing", {"mesh.corner_refinement": 16.0}),
     ("example2", {"mesh.h_contact": 0.02, "solver.method": "transient"}),
 ])
 def test_the_estimate_counts_the_mesh_before_it_is_made(name, over):
@@ -56,10 +64,15 @@ def test_the_estimate_counts_the_mesh_before_it_is_made(name, over):
 
 def test_the_estimate_grows_as_the_mesh_is_refined():
     """Every size scales with h below half_entry / 60 (the far size 15 h): 2D, 4 x the
-    unknowns for h / 2."""
-    coarse, fine = estimate(_case(**{"mesh.h_contact": 0.002})), estimate(
-        _case(**{"mesh.h_contact": 0.001}))
-    assert fine.dofs / coarse.dofs == pytest.approx(4.0, rel=0.05)
+    unknowns for h / 2, the contact start's refinement aside (here 16x: its triangles the
+    same at any h, ``corner_triangles``)."""
+    cases = [_case(**{"mesh.h_contact": h, "mesh.corner_refinement": 16.0})
+             for h in (0.002, 0.001)]
+    coarse, fine = (estimate(c) for c in cases)
+    corner = [DOFS_PER_TRIANGLE * MESHER_FACTOR * corner_triangles(
+        c.mesh.h, c.mesh.corner_refinement, c.mesh.grading) for c in cases]
+    assert corner[0] == pytest.approx(corner[1], rel=1e-12) and corner[0] > 0.0
+    assert (fine.dofs - corner[1]) / (coarse.dofs - corner[0]) == pytest.approx(4.0, rel=0.05)
     assert fine.memory_bytes > coarse.memory_bytes and fine.seconds > coarse.seconds
 
 
