@@ -2,7 +2,7 @@
 quarter-model roughing pass in under 10 minutes cold and 6 GB), at three or four width gradings.
 
     python benchmarks/bench_3d.py [--case narrow|roughing] [--sizes coarsest,coarse,medium,fine]
-                                  [--solver umfpack|sparsecholesky+gmres]
+                                  [--solver umfpack|sparsecholesky+gmres] [--corner 16]
 
 ``narrow``: Case R of ../shared/notes/asymmetric-rolling.md (R = 250 mm, 10 -> 8 mm, Tresca
 0.3, Norton-Hoff m = 0.05, h = 1 mm) with a stock 10 mm wide. ``roughing``: the bundled
@@ -14,7 +14,8 @@ the edge layer and the largest layer in units of the 2D contact mesh size h: coa
 medium (h, 4h), fine (h/2, 2h), and coarsest (4h, 16h) for a third size of the roughing
 pass (its fine grading does not fit in 24 GB). Prints a table: DOFs, layers, Newton iterations, rounds, wall
 s (2D, 3D set-up, 3D solve), peak resident memory of the process (GB), spread. The linear
-solver: UMFPACK by default, or ``--solver`` (fem/forms.py: LINEAR_SOLVERS). Time on 2 cores
+solver: UMFPACK by default, or ``--solver`` (fem/forms.py: LINEAR_SOLVERS); ``--corner``: the
+2D mesh refined at the contact's start (``mesh.corner_refinement``, default 1: none). Time on 2 cores
 with nothing else running.
 """
 from __future__ import annotations
@@ -23,6 +24,7 @@ import argparse
 import resource
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -41,12 +43,14 @@ SIZES = {"coarsest": (4.0, 16.0), "coarse": (2.0, 8.0), "medium": (1.0, 4.0),
          "fine": (0.5, 2.0)}
 
 
-def two_d(kind: str):
+def two_d(kind: str, corner: float):
     if kind == "narrow":
         case, problem, st = case_r(0.05, 1e-3)
+        problem = replace(problem, mesh=replace(problem.mesh, corner=corner))
         half_width = 0.005
     else:
-        case = load_case(example_path("roughing_slab"), {"output.figures": False})
+        case = load_case(example_path("roughing_slab"), {"output.figures": False,
+                                                         "mesh.corner_refinement": corner})
         problem, _ = build_model(case)
         st = steady_settings(case)
         half_width = 0.75
@@ -62,15 +66,17 @@ def main() -> None:
     ap.add_argument("--sizes", default="coarse,medium,fine")
     ap.add_argument("--solver", default="umfpack", choices=LINEAR_SOLVERS,
                     help="the 3D Newton's linear solver (fem/forms.py: LINEAR_SOLVERS)")
+    ap.add_argument("--corner", type=float, default=1.0,
+                    help="mesh.corner_refinement of the 2D mesh the 3D one is extruded from")
     a = ap.parse_args()
-    run, half_width, status, wall2 = two_d(a.case)
+    run, half_width, status, wall2 = two_d(a.case, a.corner)
     h = run.problem.h
     print(f"{a.case}: 3D linear solver {a.solver}; 2D pass {status}, {run.form.fes.ndof} DOFs, "
-          f"h = {h * 1e3:.3g} mm, "
+          f"h = {h * 1e3:.3g} mm, corner refinement {a.corner:g}, "
           f"{wall2:.1f} s")
     print("| size | layers | DOFs | Newton its | rounds | 3D set-up s | 3D solve s | peak GB | "
-          "spread mm |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "spread mm | (in - out - edge) / in |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for size in a.sizes.split(","):
         edge, largest = SIZES[size]
         s3 = Spread3D(run, half_width, edge=min(edge * h, half_width), largest=largest * h,
@@ -80,7 +86,9 @@ def main() -> None:
         peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2
         print(f"| {size} | {len(s3.z) - 1} | {fig['dofs']} | {fig['newton_iterations']} | "
               f"{fig['rounds']} | {s3.setup_time:.1f} | {s3.solve_time:.1f} | {peak:.2f} | "
-              f"{fig.get('spread', float('nan')) * 1e3:.3f} |", flush=True)
+              f"{fig.get('spread', float('nan')) * 1e3:.3f} | "
+              f"{(fig['flux_in'] - fig['flux_out'] - fig['flux_edge']) / fig['flux_in']:.1e} |",
+              flush=True)
 
 
 if __name__ == "__main__":
