@@ -5,6 +5,7 @@ mm, C45) across a wide strip, its coarse width grading: the mid-width against pl
 a run appended to OUT.
 
     python scripts/spread_3d_roughing.py OUT [--half 0.8] [--zone 0.3] [--levels L.npz]
+        [--corner 16]
 """
 from __future__ import annotations
 
@@ -31,8 +32,10 @@ def main() -> None:
     ap.add_argument("--zone", type=float, default=None, help="the edge zone (m; omit: all)")
     ap.add_argument("--levels", type=Path, default=None,
                     help="also write the contact per width level and the 2D pass's (.npz)")
+    ap.add_argument("--corner", type=float, default=1.0,
+                    help="mesh.corner_refinement of the 2D mesh (default 1: none)")
     a = ap.parse_args()
-    run, _, _, _ = two_d("roughing")
+    run, _, _, _ = two_d("roughing", a.corner)
     h = run.problem.h
     edge, largest = SIZES["coarse"]
     t0 = time.perf_counter()
@@ -47,6 +50,7 @@ def main() -> None:
     rp = run.problem.rp
     f.update(plane_strain_force=run.state.history[-1]["roll_force"],
              wall=time.perf_counter() - t0, half=a.half, zone=a.zone, l_c=rp.contact_length,
+             corner=a.corner,
              ends=None if s3.ends is None else s3.ends.ends().tolist())
     print(json.dumps(f))
     with a.out.open("a") as fh:

@@ -255,7 +255,7 @@ class MeshConfig(Section):
     corner_refinement: float = field(
         1.0, "the steady strip's mesh at the contact's start, where the flow turns onto the "
         "roll, this many times finer than h_contact, graded back to it: 1 none; 16 takes the "
-        "traced top's mass leak from ~5e-4 to ~5e-5 of the inflow (docs/theory.md 4b)", "",
+        "traced top's mass leak from 5-10e-4 of the inflow to below 1e-4 (docs/theory.md 4e)", "",
         "in [1, 64]", ge=1, le=64)
 
     _auto_h: float = PrivateAttr(default=float("nan"))   # set by Case from the pass geometry

@@ -141,7 +141,7 @@ def _refine_corner(mp, rp: RollPass, h: float, ratio: float) -> None:
     """Mesh size h / ``ratio`` at the contact's start (the touching point x_touch on the entry
     top), graded back to h by netgen's grading: the flow turns onto the roll there within the
     first element (the velocity's corner singularity), and the traced free top leaks mass
-    through that element in proportion to its size (docs/theory.md 4b)."""
+    through that element in proportion to its size (docs/theory.md 4e)."""
     if ratio > 1.0:
         mp.RestrictH(float(rp.x_touch), float(rp.half_entry), 0.0, float(h / ratio))
 

@@ -11,9 +11,10 @@ the top for the roll-chill layer), the mechanics on theirs. Each coupling update
    through every section, so the advected heat balances exactly (the mechanics' discrete
    velocity has a mass-flux error of ~1e-3, which times rho c T would be a heat source the
    size of the plastic heat);
-3. evaluates the plastic power density and the friction flux of the mechanics' fields at the
-   strip's vertices (found once in the reference mesh, evaluated on the deformed one), and
-   takes the contact as the x-range of the contact edges;
+3. evaluates the plastic power density and the friction flux of the mechanics' fields as
+   means over each strip vertex's dual cell and its surface's dual segment in contact
+   (Gauss points found once in the reference mesh, evaluated on the deformed one:
+   solvers/thermal_sampling.py), and takes the contact as the x-range of the contact edges;
 4. solves the steady temperature there and carries it back: as each mechanics element's mean
    (the strip's vertices inside it, weighted by their lumped areas), which the flow stress
    reads, and as the values at the mechanics' vertices (the profiles, fields.npz). A vertex
@@ -43,7 +44,7 @@ from hotroll.fem.strip_mesh import ThermalStrip, layer_thickness
 from hotroll.fem.thermal_field import TemperatureField
 from hotroll.model.thermal_properties import ThermalBoundary, ThermalProperties
 from hotroll.solvers.thermal_feedback import FlowStressFeedback
-from hotroll.solvers.thermal_sampling import cell_means, k_means, strip_samples
+from hotroll.solvers.thermal_sampling import cell_means, contact_means, k_means, strip_samples
 
 SUBSAMPLES = 4   # points per strip row interval for the flux integral along a column
 CHORD_BELOW = 1e-3   # update_steady keeps the heat equation's factors below this change
@@ -265,13 +266,9 @@ class ThermalCoupling(FlowStressFeedback):
         # its roll's contact (the flux is the friction law's only there; the surfaces' points
         # lower first on the full strip, as _surface_rows)
         pts, w = self._surface_cells
-        q, at = self._at(self._friction_cf, pts)[:, 0], self._at(self._x_cf, pts)[:, 0]
-        lo, hi = (np.repeat([r[i] for r in ranges[::-1]], len(q) // len(ranges))
-                  for i in (0, 1))
-        inside = ((at >= lo) & (at <= hi)).reshape(-1, len(w)) * w
         qf = np.zeros(strip.nv)
-        qf[self._surface_rows] = ((q.reshape(-1, len(w)) * inside).sum(1)
-                                  / np.maximum(inside.sum(1), 1e-300))
+        qf[self._surface_rows] = contact_means(self._at(self._friction_cf, pts)[:, 0],
+                                               self._at(self._x_cf, pts)[:, 0], ranges[::-1], w)
         self._qfs.vec.FV().NumPy()[:] = qf
 
     def _element_flow(self):

@@ -18,11 +18,11 @@ upper and lower halves by 3e-4 in the exit shear strain and 5e-7 in force, and c
   neighbours, ``CELL_POINTS`` Gauss points a direction, none on the mid-plane, each the
   mirror image of the mirror vertex's): the plastic power density over the cell, the
   friction flux over the surface's dual segment where it lies in its roll's contact
-  (``ThermalCoupling._transfer``). A value read at the vertex itself (until 2026-11-29)
-  carried a peak narrower than a strip cell (the contact's start on a mesh refined there,
-  ``mesh.corner_refinement``) over the whole cell: plastic heat +2.9 %, friction heat +23 %
-  on thermal_pass at 16x; with the means -0.2 % and -2.1 % (and at 1x +0.02 % and -0.3 %,
-  against +0.24 % and +2.2 % read at the vertices).
+  (``ThermalCoupling._transfer``). A value read at one point (until 2026-11-29: 1e-3 of a
+  cell inside it, beside a surface vertex) carried a peak narrower than a strip cell (the
+  contact's start on a mesh refined there, ``mesh.corner_refinement``) over the whole cell:
+  plastic heat +2.9 %, friction heat +23 % on thermal_pass at 16x; with the means -0.2 % and
+  -2.1 % (and at 1x +0.02 % and -0.3 %, against +0.24 % and +2.2 % read at points).
 
 With these the full strip of two equal rolls is its own mirror image to round-off (its exit
 shear, forces and curvature 1e-14 apart: thermal_pass). ``k_means``: an element's temperature
@@ -34,7 +34,7 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-#: the nudge into a cell, in units of its size (and of a column spacing on the surface)
+#: the nudge into a cell, in units of its size
 NUDGE = 1e-3
 
 
@@ -43,8 +43,8 @@ CELL_POINTS = 4
 
 
 class StripSamples(NamedTuple):
-    inside: np.ndarray       # each strip vertex's point inside its cell (mesh points)
-    owner: np.ndarray        # the mechanics element of each strip vertex (that point's)
+    owner: np.ndarray        # the mechanics element of each strip vertex (a point's inside
+                             # its cell)
     empty: np.ndarray        # the mechanics elements no strip vertex counts in
     mid: tuple | None        # full strip: (mid-plane row's vertices, points above, below)
     cells: tuple             # (mesh points, weights): each vertex's dual cell's Gauss points
@@ -65,6 +65,17 @@ def cell_means(values: np.ndarray, weights: np.ndarray) -> np.ndarray:
     """Each vertex's mean from its cell's points' ``values`` (vertex-major, ``weights`` per
     point of a cell)."""
     return values.reshape(-1, len(weights)) @ weights
+
+
+def contact_means(values: np.ndarray, x: np.ndarray, ranges: list[tuple[float, float]],
+                  weights: np.ndarray) -> np.ndarray:
+    """Each surface vertex's mean of ``values`` over the points of its dual segment (at x,
+    vertex-major, ``weights`` per point) that lie in its surface's contact range (``ranges``
+    (lo, hi) per surface, in the points' order); 0 where none does."""
+    n = len(values) // len(ranges)
+    lo, hi = (np.repeat([r[i] for r in ranges], n) for i in (0, 1))
+    w = ((x >= lo) & (x <= hi)).reshape(-1, len(weights)) * weights
+    return (values.reshape(-1, len(weights)) * w).sum(1) / np.maximum(w.sum(1), 1e-300)
 
 
 def strip_samples(strip, find: Callable, n_elements: int) -> StripSamples:
@@ -107,7 +118,7 @@ def strip_samples(strip, find: Callable, n_elements: int) -> StripSamples:
     sx = gx.ravel()
     surface = (find(np.concatenate([np.stack([sx, e * strip.top_height(sx)], -1)
                                     for e in surfaces])), wx)
-    return StripSamples(inside, owner, empty, mid, cells, surface)
+    return StripSamples(owner, empty, mid, cells, surface)
 
 
 def k_means(owner: np.ndarray, ne: int, vals: np.ndarray, w: np.ndarray,

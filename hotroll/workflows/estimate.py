@@ -28,6 +28,10 @@ from hotroll.solvers.steady_settings import SteadySettings
 DOFS_PER_TRIANGLE = 4.5
 #: measured: the meshes hold this many times the integral's triangles (0.82-0.91 on 9 cases)
 MESHER_FACTOR = 0.87
+#: measured: the unknowns the refinement at the contact's start adds (ratio 16, grading 0.3)
+#: over ``corner_triangles``' fan: 245, 281, 364, 389 on hot_strip_finishing, Case R,
+#: roughing_slab, narrow_bar's 2D pass against the fan's 441 (0.56-0.88; their mean)
+CORNER_FACTOR = 0.73
 #: peak resident memory of a run: fixed part (Python, NGSolve, the modules) and per unknown
 #: (matrix, sparse LU fill, vectors). Measured, Example 1 steady, one thread: 189 MB at 2.3e3
 #: unknowns, 208 MB at 1.2e4, 285 MB at 4.7e4, 457 MB at 1.2e5, 862 MB at 2.7e5
@@ -120,13 +124,14 @@ def corner_triangles(h: float, ratio: float, grading: float) -> float:
     """The triangles the contact start's refinement adds (``fem/mesh._refine_corner``): the
     size from h / ratio at the corner growing by the grading back to h, s = h/ratio + g r, over
     the half disc below the entry top, less the uniform mesh's there: (pi / (sqrt3/4 g^2))
-    (ln ratio + 1 / ratio - 1) - the half disc of radius (h - h/ratio) / g at size h."""
+    (ln ratio + 1 / ratio - 1) - the half disc of radius (h - h/ratio) / g at size h, times
+    CORNER_FACTOR (netgen grades around a point size more steeply than that)."""
     if ratio <= 1.0:
         return 0.0
     c, hc = math.sqrt(3.0) / 4.0, h / ratio
     graded = math.pi / (c * grading**2) * (math.log(ratio) + 1.0 / ratio - 1.0)
     radius = (h - hc) / grading
-    return graded - 0.5 * math.pi * radius**2 / (c * h**2)
+    return CORNER_FACTOR * (graded - 0.5 * math.pi * radius**2 / (c * h**2))
 
 
 def estimate(case) -> Estimate:

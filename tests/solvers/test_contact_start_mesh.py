@@ -1,6 +1,6 @@
 """The mesh refined at the contact's start (``mesh.corner_refinement``, fem/mesh.py
 ``_refine_corner``): the flow turns onto the roll within the first element there, and the
-traced free top leaks mass through that element in proportion to its size (docs/theory.md 4b).
+traced free top leaks mass through that element in proportion to its size (docs/theory.md 4e).
 
 Case R (R = 250 mm, 10 -> 8 mm, Tresca 0.3, Norton-Hoff m = 0.05), h = 1 mm. Labels:
 [exact] mass conservation (the continuum's flux in = flux out); [convergence] the figures'
@@ -53,8 +53,8 @@ def test_the_contact_start_is_meshed_finer(runs):
 def test_the_refined_start_stops_the_tops_leak(runs):
     """[exact, bound] the 2D pass's (in - out) / in: 5.8e-4 and 2.9e-4 without the refinement
     (first order in h: all of it through the corner element, docs/notes/issue53-trace-flux);
-    with it below 5e-5 at both sizes (measured 6.2e-6 and -1.1e-5: the surfaces'
-    tolerance, 1e-3 h)."""
+    with it below 5e-5 at both sizes (measured 6.2e-6 and -1.1e-5, inside the band the
+    surfaces' 1e-3 h leaves: 2.9e-5 at 1 mm with the surfaces to 1e-5 h)."""
     assert _leak(runs[(1.0, H)]) > 4e-4
     assert _leak(runs[(1.0, 0.5 * H)]) == pytest.approx(0.5 * _leak(runs[(1.0, H)]), rel=0.2)
     for h in (H, 0.5 * H):
@@ -75,7 +75,7 @@ def test_the_refined_start_converges_faster(runs):
 
 def test_the_3d_pass_conserves_mass_to_1e_4(runs):
     """[exact, bound] the narrow bar (b0/h0 = 1) in 3D on the refined 2D mesh, its edge layer
-    h/2 wide (the 2D pass's leak carried into every width level): (in - out - edge) / in below
+    b0/2 wide (one layer) (the 2D pass's leak carried into every width level): (in - out - edge) / in below
     the issue's 1e-4 (measured 1.2e-5; 5.5e-4 without the refinement on the
     benchmark's coarse grading)."""
     s3 = Spread3D(runs[(16.0, H)], B0, edge=0.5 * B0)
