@@ -163,7 +163,14 @@ class RollPass:
 
     @property
     def contact_length(self) -> float:
-        """Projected contact length l_c = axis_x - x_touch."""
+        """Projected contact length l_c = axis_x - x_touch; a rigid roll's computed without
+        axis_x (the same bits wherever the frame puts the roll: the steady mesh's lengths
+        follow from it, and netgen's mesh around a refined contact start changed with their
+        last bit: Case R's force 1.1e-4 apart with the axis at 1 m and at -7.5 m, now 2e-10).
+        A flattened roll's keeps the difference (its lowest point's choice between near-equal
+        dips remembers the last call: asked for here, the swapped stand's mirror moved 3e-9)."""
+        if self.shape is None:
+            return math.sqrt(self.radius**2 - (self.centre[1] - self.half_entry) ** 2)
         return self.axis_x - self.x_touch
 
     @property

@@ -83,3 +83,19 @@ def test_the_3d_pass_conserves_mass_to_1e_4(runs):
     f = s3.figures()
     leak = (f["flux_in"] - f["flux_out"] - f["flux_edge"]) / f["flux_in"]
     assert abs(leak) < 1e-4
+
+
+def test_the_refined_mesh_does_not_depend_on_the_frame(runs):
+    """[exact] the roll's axis moved from x = 1 m to -7.5 m: the same mesh (netgen meshes in
+    the roll's frame) and the same force and torque to 1e-8 (measured 2e-10). The mesh's
+    lengths follow from the contact length, which took the last bit of the axis's position
+    until it was computed without it: the refined corner's mesh then changed (350 against
+    348 vertices) and the force 1.1e-4."""
+    ref = runs[(16.0, H)]
+    case, problem, st = _setup(**{"mesh.corner_refinement": 16.0, "pass.roll_axis_x": -7.5})
+    moved = SteadyRun(problem, st, case.plate.length)
+    assert moved.run().status == "steady"
+    assert (moved.mesh.nv, moved.mesh.ne) == (ref.mesh.nv, ref.mesh.ne)
+    a, b = ref.state.history[-1], moved.state.history[-1]
+    for key in ("roll_force", "roll_torque", "forward_slip"):
+        assert b[key] == pytest.approx(a[key], rel=1e-8), key
