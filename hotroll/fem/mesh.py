@@ -27,7 +27,8 @@ class MeshSpec:
     h_far: float | None = None  # size far from the roll (None: automatic)
     core_factor: float = 2.0    # size on the symmetry axis relative to h
     grading: float = 0.3
-    corner: float = 1.0         # h / the size at the contact's start (``_refine_corner``)
+    corner: float = 1.0         # h / the size at the contact's start (the steady strip's:
+                                # ``_refine_corner``)
 
     def far(self, rp: RollPass) -> float:
         return self.h_far if self.h_far else min(rp.half_entry / 4.0, 15.0 * self.h)
@@ -112,11 +113,12 @@ def strip_face(rp: RollPass, x0: float, x1: float, side: int = 1, suffix: str = 
 
 
 def _graded_mesh(geometry, rp: RollPass, spec: MeshSpec, x_lo: float, x_hi: float,
-                 shift: float = 0.0):
+                 shift: float = 0.0, corner: float = 1.0):
     """Mesh ``geometry`` with size h on the top over [x_lo, x_hi], growing to
     ``core_factor * h`` on the axis and to ``spec.far`` elsewhere; then move it by ``shift``
     in x (the geometry is meshed in the roll's frame, so the mesh does not depend on where
-    the case puts the roll axis)."""
+    the case puts the roll axis); ``corner``: h / the size at the touching point
+    (``_refine_corner``)."""
     import ngsolve
     from netgen.meshing import MeshingParameters
 
@@ -129,7 +131,7 @@ def _graded_mesh(geometry, rp: RollPass, spec: MeshSpec, x_lo: float, x_hi: floa
         n = max(2, int(math.ceil(yt / h)))
         for y in np.linspace(yt, 0.0, n):
             mp.RestrictH(float(x), float(y), 0.0, float(h + (hc - h) * (1.0 - y / yt)))
-    _refine_corner(mp, rp, h, spec.corner)
+    _refine_corner(mp, rp, h, corner)
     with parallel():            # netgen's optimisation threaded: the same mesh to the bit
         ngmesh = geometry.GenerateMesh(mp=mp)
     if shift:
@@ -177,8 +179,7 @@ def build_plate_mesh(rp: RollPass, length: float, spec: MeshSpec):
     r0 = _in_roll_frame(rp)
     _, _, x_lo, x_hi = plate_zone(r0, length, spec.fine_length)
     # (no refinement at the touching point: the transient plate's contact start moves)
-    return _graded_mesh(plate_geometry(r0, length), r0, replace(spec, corner=1.0), x_lo, x_hi,
-                        shift=rp.axis_x)
+    return _graded_mesh(plate_geometry(r0, length), r0, spec, x_lo, x_hi, shift=rp.axis_x)
 
 
 #: The last steady meshes made, by what they are made from (``build_steady_mesh``).
@@ -202,7 +203,7 @@ def build_steady_mesh(rp: RollPass, upstream: float, downstream: float, spec: Me
         r0 = _in_roll_frame(rp)
         _, _, x_lo, x_hi = steady_zone(r0, upstream, downstream, margin)
         mesh = _graded_mesh(steady_geometry(r0, upstream, downstream), r0, spec, x_lo, x_hi,
-                            shift=rp.axis_x)
+                            shift=rp.axis_x, corner=spec.corner)
         while len(_STEADY_MESHES) >= _KEEP_MESHES:
             _STEADY_MESHES.pop(next(iter(_STEADY_MESHES)))
         kept = _STEADY_MESHES[key] = mesh.ngmesh.Copy()

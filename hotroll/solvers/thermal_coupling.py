@@ -134,7 +134,6 @@ class ThermalCoupling(FlowStressFeedback):
                           for t in ((top, lower) if full else (top,))]
         chis = [IfPos(x - lo, IfPos(hi - x, 1.0, 0.0), 0.0) for _, lo, hi in self._surfaces]
         self._chi = IfPos(y, chis[0], chis[1]) if full else chis[0]
-        self._x_cf = x
         self._mech_logical = self.strip.logical(top.X0)   # the mechanics' vertices
         # the strip's vertices and its columns' flux points, found once in the mechanics'
         # reference mesh; the top row's vertices. Every SUBSAMPLES-th row of flux points is
@@ -265,10 +264,12 @@ class ThermalCoupling(FlowStressFeedback):
         # the friction flux: each surface vertex's mean over the part of its dual segment in
         # its roll's contact (the flux is the friction law's only there; the surfaces' points
         # lower first on the full strip, as _surface_rows)
+        from ngsolve import x
+
         pts, w = self._surface_cells
         qf = np.zeros(strip.nv)
         qf[self._surface_rows] = contact_means(self._at(self._friction_cf, pts)[:, 0],
-                                               self._at(self._x_cf, pts)[:, 0], ranges[::-1], w)
+                                               self._at(x, pts)[:, 0], ranges[::-1], w)
         self._qfs.vec.FV().NumPy()[:] = qf
 
     def _element_flow(self):
