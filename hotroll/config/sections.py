@@ -253,9 +253,9 @@ class MeshConfig(Section):
                                     "m", "> 0 and >= h_contact")
     grading: float = field(0.3, "mesh grading (size growth rate)", "", "in (0, 1]", gt=0, le=1)
     corner_refinement: float = field(
-        1.0, "the steady strip's mesh at the contact's start, where the flow turns onto the "
-        "roll, this many times finer than h_contact, graded back to it: 1 none; 16 takes the "
-        "traced top's mass leak from 5-10e-4 of the inflow to below 1e-4 (docs/theory.md 4e)", "",
+        16.0, "the steady strip's mesh at the contact's start, where the flow turns onto the "
+        "roll, this many times finer than h_contact, graded back to it: 16 takes the traced top's "
+        "mass leak from 5-10e-4 of the inflow (1: none) to below 1e-4 (docs/theory.md 4e)", "",
         "in [1, 64]", ge=1, le=64)
 
     _auto_h: float = PrivateAttr(default=float("nan"))   # set by Case from the pass geometry

@@ -132,13 +132,15 @@ def test_what_the_3d_pass_cannot_run_is_refused_by_key(extra, message):
 
 
 def test_a_3d_pass_without_the_contact_start_refined_is_warned():
-    """[plumb] a [spread] case on a mesh not refined at the contact's start is warned, naming
-    the key and the fix (its 3D mass balance carries the 2D top's leak there: 5-10e-4,
-    docs/theory.md 4e); with 16 it is not, nor is a plane-strain case at 1."""
+    """[plumb] a [spread] case on a mesh not refined at the contact's start (set to 1) is
+    warned, naming the key and the fix (its 3D mass balance carries the 2D top's leak there:
+    5-10e-4, docs/theory.md 4e); at the default (16) it is not, nor is a plane-strain case
+    at 1."""
     def lines(over):
         return [w for w in load_case(BASE, over).warnings()
                 if w.startswith("mesh.corner_refinement")]
     plane = {k: v for k, v in STEADY.items() if not k.startswith(("spread.", "pass.width"))}
-    assert len(lines(STEADY)) == 1 and "16" in lines(STEADY)[0]
-    assert lines({**STEADY, "mesh.corner_refinement": 16}) == []
-    assert lines(plane) == []
+    one = {"mesh.corner_refinement": 1}
+    assert len(lines({**STEADY, **one})) == 1 and "16" in lines({**STEADY, **one})[0]
+    assert lines(STEADY) == []
+    assert lines({**plane, **one}) == []

@@ -203,7 +203,10 @@ def test_exact_contact_has_no_leak_and_no_penalty_on_the_roll(finishing_runs):
         assert s["leak_to_slip"] < 0.05, k
         leaks.append(s["mass_flux_error"])
         assert abs(s["penalty_share"]) < 1e-9, k
-    assert leaks[1] < 0.85 * leaks[0]      # measured 1.43e-4 -> 1.03e-4
+    # on the default mesh refined at the contact's start the traced tops' leak is down to
+    # their own 1e-3 h tolerance's band (measured 7.6e-6, 8.1e-6; 1.43e-4 -> 1.03e-4 without
+    # the refinement: first order in h, tests/solvers/test_contact_start_mesh.py)
+    assert max(abs(x) for x in leaks) < 5e-5, leaks
 
 
 # --- unilateral contact ------------------------------------------------------------------------
@@ -262,19 +265,32 @@ def test_the_separation_point_converges_with_the_mesh():
 def test_the_roughing_slab_is_not_held_by_a_pulling_roll():
     """The bundled roughing_slab (200 -> 170 mm, Tresca 0.9): held to the arc its multiplier
     ends at -114 MPa (issue 50); by default the strip leaves the roll before the gap, no
-    tensile pressure anywhere on the arc, the run settles."""
+    tensile pressure anywhere on the arc, the run settles. [hand] the end is iterated to
+    p = 0 within its tolerance in x (an elastic strip's 1e-2 h, solvers/couplings.py:
+    ContactEnd), so the pressure left at the end is at most about the slope there times that
+    tolerance: asserted below twice the last arc segment's slope times it (measured 4.9e5 Pa
+    against 9.6e5 Pa; the entry corner's peak, 3.4e8 Pa on the refined mesh, says nothing
+    about the end)."""
     import tomllib
 
     from hotroll.examples import example_path
+    from hotroll.solvers.couplings import ContactEnd
+    from hotroll.solvers.steady_settings import SteadySettings
 
     d = tomllib.loads(example_path("roughing_slab.toml").read_text())
-    s, prof = solve(with_(d, **{"solver.threads": 1, "output.figures": False,
-                                "output.vtk": False}))
+    d = with_(d, **{"solver.threads": 1, "output.figures": False, "output.vtk": False})
+    s, prof = solve(d)
     assert s["exit_code"] == 0, s["failure"]
     assert s["contact_end_kind"] == "separation"
     p = -prof["normal_stress"]
     assert p.min() >= -1e-3 * p.max()
-    assert abs(p[-1]) <= 1e-3 * p.max()
+    case = case_from_dict(d)
+    assert case.strip_elasticity is not None
+    tol_x = ContactEnd.TOLERANCE_ELASTIC * SteadySettings().surface_tol * s["h_contact"]
+    x = prof["x"]
+    slope = (p[-2] - p[-1]) / (x[-1] - x[-2])
+    assert slope > 0.0
+    assert abs(p[-1]) <= 2.0 * slope * tol_x
 
 
 def test_the_separated_top_stays_off_the_roll(example1_unilateral):

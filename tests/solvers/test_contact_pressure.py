@@ -50,6 +50,16 @@ def lab_meshes():
     return [_solve("hot_strip_finishing", **LAB, **{"mesh.h_contact": h}) for h in MESHES]
 
 
+@pytest.fixture(scope=shared_scope)
+def lab_meshes_uniform():
+    """The same without the refinement at the contact's start: the corner's element h, so
+    the meshes are alike near the corner (refined, netgen's first arc edge is 79 %, 98 % and
+    86 % of h/16: the corner's nodal value follows those, not h)."""
+    return [_solve("hot_strip_finishing", **LAB, **{"mesh.h_contact": h,
+                                                     "mesh.corner_refinement": 1.0})
+            for h in MESHES]
+
+
 @pytest.mark.parametrize("name,over", [("hot_strip_finishing", LAB), ("hot_strip_finishing", {}),
                                        ("thin_strip", {}), ("roughing_slab", {})],
                          ids=["lab", "finishing", "thin_strip", "roughing_slab"])
@@ -65,12 +75,15 @@ def test_no_vertex_dips_below_its_neighbours_on_the_arc(name, over):
 
 
 def test_the_entry_pressure_converges_and_the_corner_grows_at_most_as_h_to_the_minus_m(
-        lab_meshes):
+        lab_meshes, lab_meshes_uniform):
     """The lab pass on three meshes (h, h/2, h/4): ``entry_pressure`` converges (each change
-    at most 0.7 of the one before); the corner's nodal value grows by at most 2^m per halving
-    (5 % slack; m = 0.127 at 1000 degC: measured 1.08 and 1.11 against 1.09); no dips on any."""
-    entry = [res.summary["entry_pressure"] for _, res in lab_meshes]
-    assert abs(entry[2] - entry[1]) <= 0.7 * abs(entry[1] - entry[0])
+    at most 0.7 of the one before: measured 0.22 on the default mesh refined at the contact's
+    start, 0.61 without); on the meshes without the refinement (the corner's element h) the
+    corner's nodal value grows by at most 2^m per halving (5 % slack; m = 0.127 at 1000 degC:
+    measured 1.08 and 1.12 against 1.09); no dips on any."""
+    for meshes in (lab_meshes_uniform, lab_meshes):
+        entry = [res.summary["entry_pressure"] for _, res in meshes]
+        assert abs(entry[2] - entry[1]) <= 0.7 * abs(entry[1] - entry[0])
     # [definition] the mean over the first 5 % of the arc's length, by hand from contact.csv
     c = lab_meshes[0][1].contact
     x, y, p = (np.asarray(c[k]) for k in ("x", "y", "normal_stress"))
@@ -78,8 +91,8 @@ def test_the_entry_pressure_converges_and_the_corner_grows_at_most_as_h_to_the_m
     t = np.linspace(0.0, 0.05 * s[-1], 2001)
     assert entry[0] == pytest.approx(-np.trapezoid(np.interp(t, s, p), t) / t[-1], rel=1e-4)
     m = lab_meshes[0][1].summary["m"]
-    corners = [_vertices(res)[1][0] for _, res in lab_meshes]
+    corners = [_vertices(res)[1][0] for _, res in lab_meshes_uniform]
     for a, b in zip(corners, corners[1:]):
         assert 1.0 < b / a <= 1.05 * 2.0**m
-    for _, res in lab_meshes:
+    for _, res in lab_meshes + lab_meshes_uniform:
         assert _largest_dip(_vertices(res)[1]) <= 0.05

@@ -124,7 +124,12 @@ def test_tresca_shear_is_factor_times_k(tresca):
     summary, contact, fields = tresca
     assert summary["converged"] and summary["power_balance_error"] < 1e-2
     v = contact["vertex"] == 1
-    sliding = v & (np.abs(contact["v_slip"]) > 10 * 1e-3 * summary["roll_surface_speed"])
+    # past the first h of the arc: the flow turns onto the roll at the contact's start (the
+    # velocity's corner singularity, the mesh refined 16x there), the strain rate varies
+    # steeply across its small surface elements, and the two k below differ there by up to
+    # 12 % (0.2-0.7 h from the start; within 4 % beyond h)
+    beyond = contact["x"] > contact["x"][0] + summary["h_contact"]
+    sliding = v & beyond & (np.abs(contact["v_slip"]) > 10 * 1e-3 * summary["roll_surface_speed"])
     assert sliding.sum() >= 5
     k = _k_from_fields(contact[sliding], fields)
     ratio = np.abs(contact["shear_stress"][sliding]) / k
@@ -150,8 +155,10 @@ def test_coulomb_shear_is_mu_p_below_the_cap(coulomb):
     # where mu p exceeds k the shear is capped at k (sticking friction); the form takes k at
     # its quadrature points from the element's strain rate, k here is sigma_ef of the written
     # P1 strain rate: they differ by up to 13 % node by node where the rate varies steeply
-    # across the surface element, 4 % in the median
-    stick = (contact["vertex"] == 1) & (0.3 * p > 1.2 * k)
+    # across the surface element, 4 % in the median; "exceeds" by 5 % (beyond the 1 % kink
+    # rounding and the median difference: on the mesh refined at the contact's start mu p
+    # sits at 1.05-1.09 k over the first 4 h, 3 of its vertices above 1.2 k before)
+    stick = (contact["vertex"] == 1) & (0.3 * p > 1.05 * k)
     assert stick.sum() >= 3
     ratio = np.abs(contact["shear_stress"][stick]) / k[stick]
     assert np.median(ratio) == pytest.approx(1.0, abs=0.07)

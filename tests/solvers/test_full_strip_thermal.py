@@ -125,15 +125,19 @@ def test_the_faster_roll_heats_its_surface_more(runs):
 def test_heat_balance_and_chill(runs):
     """Identity of the steady heat equation: advected out - in - conducted in = plastic +
     friction heat - heat to the rolls - heat to the air (the reported error without the
-    inlet's conduction: measured 2.5e-3, as the half model's; the gap with it 1e-8 of the heat
-    to the rolls for equal rolls, 3.5e-7 at r = 1.1); both surfaces chilled below
+    inlet's conduction: measured 2.5e-3, as the half model's). With it the gap is the heat
+    equation's residual after the fixed point's last (one, chord) step, so it is bounded by
+    the temperature's tolerance thermal_rtol (1e-4) of the heat to the rolls, as the half
+    model's test (test_thermal_coupling): measured 7e-9 / 3.6e-6 (equal / r = 1.1, 16x),
+    5.7e-8 and 1.5e-8 at r = 1.1 with thermal_rtol / 10 and / 100, 1e-15 once the last
+    flow's heat equation is solved to convergence; both surfaces chilled below
     the mean, the mean below the entry temperature."""
     for name in ("equal", "r110"):
         s = runs[name][1]
         gap = (s["advected_out"] - s["advected_in"] - s["conducted_in"]
                - (s["plastic_heat"] + s["friction_heat_to_strip"] - s["heat_to_roll"]
                   - s["heat_to_air"]))
-        assert abs(gap) < 1e-6 * s["heat_to_roll"], name
+        assert abs(gap) < 1e-4 * s["heat_to_roll"], name
         assert s["heat_balance_error"] < 5e-3
         assert max(s["exit_temperature_surface"], s["exit_temperature_surface_lower"]) \
             < s["exit_temperature_mean"] < T_ENTRY

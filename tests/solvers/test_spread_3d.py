@@ -275,7 +275,10 @@ def test_the_top_traced_per_level_leaks_what_the_2d_pass_leaks():
     time); with the 2D pass's top kept in every level it was 1.7e-3 (the top ahead of the
     bite let the strip in). [hand] the contact starts later where the strip spreads: x_c(z) behind the
     2D pass's in every level, the most at the edge."""
-    case, problem, st = _setup(**{"friction.factor": 0.8})
+    # on the mesh not refined at the contact's start, where the 2D top's leak is large beside
+    # the width levels' own tracing error (refined, the 2D leak is 2e-5 and one width layer's
+    # levels add 1.1e-4: tests/solvers/test_contact_start_mesh.py bounds the whole)
+    case, problem, st = _setup(**{"friction.factor": 0.8, "mesh.corner_refinement": 1.0})
     run = SteadyRun(problem, st, case.plate.length)
     assert run.run().status == "steady"
     two = run.state.history[-1]

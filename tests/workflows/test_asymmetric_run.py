@@ -241,8 +241,10 @@ def test_one_flattening_roll_has_its_figures_in_its_entry(tmp_path):
     """[plumb] [roll.lower] model = "hitchcock" (the upper rigid), on a coarse mesh: the
     model reaches the full strip (GapRolls.roll_models), the lower roll's `rolls` entry
     carries its flattening figures with their units, the upper's none; [hand] its equivalent
-    radius is Hitchcock's R (1 + C F'/dh) of its own force (C = 16 (1 - nu^2)/(pi E), dh 5 mm)
-    to the fit's accuracy over the contact (measured 7e-8)."""
+    radius is Hitchcock's R (1 + C F'/dh) of its own force (C = 16 (1 - nu^2)/(pi E), dh 5 mm):
+    exactly of the force of its last update (5e-14), which the reported force, the converged
+    flow's, follows to the fixed point's tolerance (measured 3.7e-6 at 1x, 4.0e-5 at 16x;
+    asserted 1e-4), of which R' carries the share C F'/(dh + C F') = 3.4 %."""
     import math
 
     from hotroll.workflows.runner import run_case
@@ -257,8 +259,9 @@ def test_one_flattening_roll_has_its_figures_in_its_entry(tmp_path):
     assert "roll_model" not in upper and lower["roll_model"] == "hitchcock"
     assert lower["roll_updates"] >= 1 and lower["roll_flattening"] > 0.0
     C = 16.0 * (1.0 - 0.3**2) / (math.pi * 2.1e11)
+    share = C * lower["roll_force"] / (0.005 + C * lower["roll_force"])
     assert lower["roll_equivalent_radius"] == pytest.approx(
-        0.4 * (1.0 + C * lower["roll_force"] / 0.005), rel=1e-6)
+        0.4 * (1.0 + C * lower["roll_force"] / 0.005), rel=1e-4 * share)
     assert s["units"]["rolls.roll_flattening"] == "m"
     assert s["units"]["rolls.roll_equivalent_radius"] == "m"
 
