@@ -2,7 +2,7 @@
 quarter-model roughing pass in under 10 minutes cold and 6 GB), at three or four width gradings.
 
     python benchmarks/bench_3d.py [--case narrow|roughing] [--sizes coarsest,coarse,medium,fine]
-                                  [--solver umfpack|sparsecholesky+gmres] [--corner 16]
+                                  [--solver umfpack|sparsecholesky+gmres] [--corner 1]
 
 ``narrow``: Case R of ../shared/notes/asymmetric-rolling.md (R = 250 mm, 10 -> 8 mm, Tresca
 0.3, Norton-Hoff m = 0.05, h = 1 mm) with a stock 10 mm wide. ``roughing``: the bundled
@@ -16,7 +16,7 @@ pass (its fine grading does not fit in 24 GB). Prints a table: DOFs, layers, New
 s (2D, 3D set-up, 3D solve), peak resident memory of the process (GB), spread, and the
 mass balance (out + edge - in) / in (``SpreadResult``'s sign). The linear
 solver: UMFPACK by default, or ``--solver`` (fem/forms.py: LINEAR_SOLVERS); ``--corner``: the
-2D mesh refined at the contact's start (``mesh.corner_refinement``, default 1: none). Time on 2 cores
+2D mesh refined at the contact's start (``mesh.corner_refinement``, default 16 as a case's; 1: none). Time on 2 cores
 with nothing else running.
 """
 from __future__ import annotations
@@ -44,7 +44,7 @@ SIZES = {"coarsest": (4.0, 16.0), "coarse": (2.0, 8.0), "medium": (1.0, 4.0),
          "fine": (0.5, 2.0)}
 
 
-def two_d(kind: str, corner: float = 1.0):
+def two_d(kind: str, corner: float = 16.0):
     if kind == "narrow":
         case, problem, st = case_r(0.05, 1e-3)
         problem = replace(problem, mesh=replace(problem.mesh, corner=corner))
@@ -67,7 +67,7 @@ def main() -> None:
     ap.add_argument("--sizes", default="coarse,medium,fine")
     ap.add_argument("--solver", default="umfpack", choices=LINEAR_SOLVERS,
                     help="the 3D Newton's linear solver (fem/forms.py: LINEAR_SOLVERS)")
-    ap.add_argument("--corner", type=float, default=1.0,
+    ap.add_argument("--corner", type=float, default=16.0,
                     help="mesh.corner_refinement of the 2D mesh the 3D one is extruded from")
     a = ap.parse_args()
     run, half_width, status, wall2 = two_d(a.case, a.corner)

@@ -5,7 +5,7 @@ mm, C45) across a wide strip, its coarse width grading: the mid-width against pl
 a run appended to OUT.
 
     python scripts/spread_3d_roughing.py OUT [--half 0.8] [--zone 0.3] [--levels L.npz]
-        [--corner 16]
+        [--corner 1]
 """
 from __future__ import annotations
 
@@ -32,8 +32,8 @@ def main() -> None:
     ap.add_argument("--zone", type=float, default=None, help="the edge zone (m; omit: all)")
     ap.add_argument("--levels", type=Path, default=None,
                     help="also write the contact per width level and the 2D pass's (.npz)")
-    ap.add_argument("--corner", type=float, default=1.0,
-                    help="mesh.corner_refinement of the 2D mesh (default 1: none)")
+    ap.add_argument("--corner", type=float, default=16.0,
+                    help="mesh.corner_refinement of the 2D mesh (default 16 as a case's; 1: none)")
     a = ap.parse_args()
     run, _, _, _ = two_d("roughing", a.corner)
     h = run.problem.h

@@ -21,7 +21,10 @@ from that run. Issue 52 made the symmetry line hold v_y = 0 exactly (a642130: th
 guess's projection error had stayed on it, 2e-4 U on Case R): an intended correction, measured
 against the summary before (force 2.1e-4, torque 1.5e-4, forward slip 5.9e-4, the power
 balance's error 3.4e-4 -> 3.3e-5; docs/validation/recut.md); the golden summary is that run's
-(made with ``scripts/summary_diff.py run`` at a642130).
+(made with ``scripts/summary_diff.py run`` at a642130). Issue 53 made the steady mesh refined
+16x at the contact's start the default (an intended change of the discretisation: force
+-2.9e-5, torque +8.3e-4, forward slip 4.098 -> 4.054 %, mass_flux_error 2.6e-4 -> 5.5e-5;
+docs/validation/corner-default.md); the golden summary is that run's (e1514be).
 
 The whole set (every bundled example, the schedule and a study) is compared by
 ``python scripts/summary_diff.py run DIR`` on two commits and ``... compare BEFORE AFTER``
