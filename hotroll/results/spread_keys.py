@@ -49,6 +49,11 @@ class SpreadKeys:
         "on the arc at mid-width against the plane-strain pass's, RMS over the 2D contact "
         "pressure's (the bite only: how far the middle of the strip is from plane strain)",
         group=_G, when=_W)
+    midplane_contact_pressure_l2_deviation: float = _f(
+        "-", "mid-width contact pressure deviation (L2)", "the same difference in the L2 norm "
+        "along the arc over the 2D contact pressure's (the vertex RMS weighs each vertex "
+        "alike, so it weighs the singular contact start more on a mesh refined there)",
+        group=_G, when=_W)
     exit_temperature_offset: dict | None = _f(
         None, "exit temperature across the width", "the 3D pass's outlet: the temperature "
         "less mid-width's at the same height (K), `values` one row per `eta` (0 the centre, "

@@ -346,6 +346,12 @@ class Spread3D:
                                                            / np.abs(c2).max())
         out["midplane_contact_pressure_rms_deviation"] = float(
             np.sqrt(np.mean((c3 - c2) ** 2)) / np.sqrt(np.mean(c2 ** 2)))
+        # ... and in L2 along the arc (trapezoid over the 2D vertices' x): the vertex RMS
+        # weighs each vertex alike, so a mesh refined at the contact's start weighs its
+        # singular corner more; the L2 norm is the mesh's limit
+        x = np.asarray(two["x"], dtype=float)
+        out["midplane_contact_pressure_l2_deviation"] = float(
+            np.sqrt(np.trapezoid((c3 - c2) ** 2, x) / np.trapezoid(c2 ** 2, x)))
         V2 = g2.components[0]
         u2 = V2.vec.FV().NumPy()
         mid = np.zeros_like(u2)

@@ -81,6 +81,7 @@ def spread_record(s3) -> SpreadResult:
                                       "midplane_pressure_rms_deviation",
                                       "midplane_contact_pressure_deviation",
                                       "midplane_contact_pressure_rms_deviation",
+                                      "midplane_contact_pressure_l2_deviation",
                                       "midplane_velocity_deviation")},
         power_balance_error=fig["power_balance_error"], settled=bool(fig["settled"]),
         rounds=int(fig["rounds"]), newton_iterations=int(fig["newton_iterations"]),

@@ -55,6 +55,7 @@ def test_the_held_edge_is_the_2d_pass(passes):
     assert held["midplane_pressure_deviation"] <= 1e-3
     assert 0.0 <= held["midplane_pressure_rms_deviation"] <= 1e-3
     assert 0.0 <= held["midplane_contact_pressure_rms_deviation"] <= 1e-3
+    assert 0.0 <= held["midplane_contact_pressure_l2_deviation"] <= 1e-3
     assert "spread" not in held
 
 
@@ -208,6 +209,7 @@ def test_the_mid_width_deviation_by_hand(solved):
     assert dev["midplane_pressure_rms_deviation"] == pytest.approx(c, rel=1e-9)
     assert dev["midplane_contact_pressure_deviation"] == pytest.approx(c, rel=1e-9)
     assert dev["midplane_contact_pressure_rms_deviation"] == pytest.approx(c, rel=1e-9)
+    assert dev["midplane_contact_pressure_l2_deviation"] == pytest.approx(c, rel=1e-9)
     # [identity] each level's nodal forces over their lengths are the 2D pass's, at the 2D
     # pass's positions (the edge held): the multiplier scaled by 1 + c, the traction too
     assert traction3.shape == (len(held.z), len(traction2))
