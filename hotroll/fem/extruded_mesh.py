@@ -81,6 +81,16 @@ def extrude(mesh2d, z: np.ndarray, region: str = "strip"):
                                axis=2).reshape(-1, 4)
         ng.AddElements(dim=2, index=ng.AddRegion(name, dim=2), base=0,
                        data=quads.astype(np.int32))
+    # the 2D mesh's named points (the contact's start, ``mesh.strip_face``): lines across the
+    # layers (BBND edges of the same name)
+    from ngsolve import BBND
+
+    for el in mesh2d.Elements(BBND):
+        if el.mat in ("start",):
+            v = el.vertices[0].nr
+            lines = np.stack([np.arange(nl) * nv + v, np.arange(1, nl + 1) * nv + v], axis=1)
+            ng.AddElements(dim=1, index=ng.AddRegion(el.mat, dim=1), base=0,
+                           data=lines.astype(np.int32))
     return ngsolve.Mesh(ng)
 
 

@@ -70,6 +70,15 @@ def build_full_mesh(reference: RollPass, upstream: float, downstream: float, spe
                 names[nm] = ng.AddRegion(nm, dim=1)
             ng.AddElements(dim=1, index=names[nm], base=0,
                            data=np.array([ab], dtype=np.int32))
+    # the contacts' starts, named points (``mesh.strip_face``): where the arc meets the top
+    from netgen.meshing import Element0D, PointId
+
+    ends = {nm: set(ab.tolist()) for nm in ("arc", "top")
+            for ab in [seg_nodes[[n == nm for n in seg_names]].ravel()]}
+    start = sorted(ends["arc"] & ends["top"])
+    for k, (name, v) in enumerate([("start", start[0]), ("start" + SUFFIX[-1], mirror[start[0]])]):
+        ng.SetCD2Name(k + 1, name)
+        ng.Add(Element0D(PointId(int(v) + 1), index=k + 1))
     return ngsolve.Mesh(ng)
 
 

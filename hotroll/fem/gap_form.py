@@ -81,6 +81,7 @@ class GapForm(RollingForm):
     lower} each a ``RollPass`` in its own frame (centre above), ``frictions`` the same."""
 
     MULTIPLIER_ON = ARCS
+    START = "start|startl"
 
     def __init__(self, mesh, rolls: dict[int, RollPass], material: NortonHoff,
                  frictions: dict[int, FrictionLaw], h: float, tensions: tuple = (0.0, 0.0),
@@ -200,30 +201,36 @@ class GapForm(RollingForm):
                     pressure=self.pressure(w, lam) if law.uses_pressure else None,
                     k=k if law.uses_k else None)
 
-    def constraint(self, u, v, lam, xi, regularise: float = 0.0, u_w=None, lam_w=None):
-        """s (lambda~ v.n + xi u.n) on both arcs (``RollingForm.constraint``); with the strip's
-        compliance each surface sits c_e p below its plastic flow's, c_e = compliance
-        min(|y|, strip_depth of that roll): |y| the surface's distance from the exit mid-plane, the half
-        thickness where the strip is centred between the rolls (the pass line puts it there;
-        unequal radii shift the bite's middle by dh (R2 - R1) / (2 (R1 + R2)), 1 % of the
-        half thickness at 360/400 mm and 25 -> 20 mm)."""
-        from ngsolve import ds
+    def layer_depth(self):
+        """(c_e's depth, its gradient) on both arcs (``RollingForm.constraint``): c_e =
+        compliance min(|y|, strip_depth of that roll): |y| the surface's distance from the exit
+        mid-plane, the half thickness where the strip is centred between the rolls (the pass
+        line puts it there; unequal radii shift the bite's middle by dh (R2 - R1) / (2 (R1 +
+        R2)), 1 % of the half thickness at 360/400 mm and 25 -> 20 mm)."""
+        from ngsolve import CF, IfPos, y
 
-        n, t = self.roll_frame()
-        term = self._lam * (lam * (v * n) + xi * (u * n))
-        if regularise:
-            term = term - regularise * self._lam * lam * xi
-        if self.compliance:
-            from ngsolve import IfPos, y
+        half, slope = IfPos(y, y, -y), CF((0.0, 1.0)) * IfPos(y, 1.0, -1.0)
+        if self.strip_depth is None:
+            return half, slope
+        cap = by_side(self.strip_depth[1], self.strip_depth[-1])
+        return IfPos(half - cap, cap, half), IfPos(half - cap, 0.0, 1.0) * slope
 
-            half = IfPos(y, y, -y)
-            if self.strip_depth is None:
-                depth = half
-            else:
-                cap = by_side(self.strip_depth[1], self.strip_depth[-1])
-                depth = IfPos(half - cap, cap, half)
-            term = term - self.elastic_rate(u, lam, xi, t, depth, u_w, lam_w)
-        return term * ds(ARCS, bonus_intorder=2)
+    def roll_curvature(self):
+        """Each roll's surface curvature along its t (``RollingForm.roll_curvature``)."""
+        from ngsolve import grad, sqrt, x, y
+
+        kappa = []
+        for side in (1, -1):
+            rp = self.rolls[side]
+            cx, cy = rp.centre
+            if rp.shape is not None:
+                cx = self.roll_cx_side[side]
+            kappa.append(1.0 / sqrt((x - cx) ** 2 + (y - side * cy) ** 2))
+        kappa = by_side(*kappa)
+        if self.roll_tilt is None:
+            return kappa
+        _, t = self.roll_frame()
+        return kappa + grad(self.roll_tilt) * t
 
     def boundary(self, u, w, v, friction: bool = True, lam=None):
         """Friction on both arcs, the bounds (3.2a,b) on the free surfaces and the cut faces,

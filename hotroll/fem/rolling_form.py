@@ -61,6 +61,8 @@ class RollingForm(FrictionTerms):
 
     #: the boundary the contact multiplier lives on (taylor_hood's ``multiplier_on``)
     MULTIPLIER_ON = "arc"
+    #: the contact's start (a named point of the mesh, ``mesh.strip_face``)
+    START = "start"
     #: the space dimension (a 3D strip: ``fem/rolling_form_3d.py``)
     dim = 2
 
@@ -319,42 +321,90 @@ class RollingForm(FrictionTerms):
         """s (lambda~ v.n + xi u.n) on the arc: the contact pressure's work and the weak
         impermeability int xi u.n = 0; ``regularise`` adds -delta s lambda~ xi (matrix only).
 
-        With the strip's compliance (``compliance``): the strip's surface sits c_e p below its
-        plastic flow's (its elastic thickness strain, c_e = (h/2)(1 - nu_s^2)/E_s, h = 2y the
-        local thickness; at most ``strip_depth``), so the roll is impermeable to u.n - c_e
-        (u.t) dp/ds (the elastic surface's rate along the flow): int w u.n - c_e (u.t) dp/ds
-        = 0, w the test function
-        upwinded along t (each segment's constant dp/ds on its downstream node: an advection
-        of p along a rigid stretch). ``u_w``, ``lam_w``: the Jacobian at that iterate along
-        (u, lam)."""
+        With the strip's compliance (``compliance``): the strip's surface sits delta = c_e p
+        below its plastic flow's (its elastic thickness strain, c_e = (h/2)(1 - nu_s^2)/E_s,
+        h = 2y the local thickness; at most ``strip_depth``): the plastic flow's surface lies
+        delta beyond the roll, and the layer between carries the flux F = delta (u.t). The
+        roll is impermeable to the plastic flow less what that layer takes up, u.n = dF/ds
+        (linearised across the thin layer, incompressible), weakly: int w [u.n - dF/ds] ds -
+        F(start) xi(start) = 0, w the test function upwinded along t (each segment's dF/ds
+        on its downstream node, ``elastic_rate``) and F's jump from 0 on the free top to
+        F(start) at the contact's start a point term there (``layer_start``): with xi = 1,
+        int u.n = F(end), the layer's flux at the end (0 where p_end = 0): the volume is
+        conserved. ``u_w``, ``lam_w``: the Jacobian at that iterate along (u, lam)."""
         from ngsolve import ds
 
         n, t = self.roll_frame()
         term = self._lam * (lam * (v * n) + xi * (u * n))
         if regularise:
             term = term - regularise * self._lam * lam * xi
-        if self.compliance:
-            from ngsolve import IfPos, y
+        if not self.compliance:
+            return term * ds(self.MULTIPLIER_ON, bonus_intorder=2)
+        depth, slope = self.layer_depth()
+        term = term - self.elastic_rate(u, lam, xi, t, depth, u_w, lam_w, slope=slope, n=n)
+        return (term * ds(self.MULTIPLIER_ON, bonus_intorder=2)
+                - self.layer_start(u, lam, xi, t, depth, u_w, lam_w))
 
-            depth = y if self.strip_depth is None else IfPos(y - self.strip_depth,
-                                                               self.strip_depth, y)
-            term = term - self.elastic_rate(u, lam, xi, t, depth, u_w, lam_w)
-        return term * ds("arc", bonus_intorder=2)
+    def layer_depth(self):
+        """(c_e's depth d, a CF; its gradient, a vector CF): d = min(y, strip_depth)."""
+        from ngsolve import CF, IfPos, y
 
-    def elastic_rate(self, u, lam, xi, t, depth, u_w=None, lam_w=None):
-        """The strip's elastic surface rate in the constraint, s c_e (u.t) dp/ds w (``depth``:
-        c_e's half thickness, a CF; w the test function upwinded along t; ``u_w``, ``lam_w``:
-        the Jacobian at that iterate along (u, lam))."""
+        e_y = CF((0.0, 1.0) + (0.0,) * (self.dim - 2))
+        if self.strip_depth is None:
+            return y, e_y
+        return (IfPos(y - self.strip_depth, self.strip_depth, y),
+                IfPos(y - self.strip_depth, 0.0, 1.0) * e_y)
+
+    def roll_curvature(self):
+        """The roll surface's curvature along t (dt/ds = kappa n): 1/r, plus a flattened
+        roll's tilt's rate along t."""
+        from ngsolve import grad, sqrt, x, y
+
+        cx, cy = self.rp.centre
+        if self.roll_tilt is not None:
+            cx = self.roll_cx
+        kappa = 1.0 / sqrt((x - cx) ** 2 + (y - cy) ** 2)
+        if self.roll_tilt is None:
+            return kappa
+        _, t = self.roll_frame()
+        return kappa + grad(self.roll_tilt) * t
+
+    def layer_flux_rate(self, u, du, lam, dlam, t, n, depth, slope):
+        """dF/ds of the layer's flux F = c_e lambda~ (u.t) per unit s K (bilinear in (u, lam)):
+        ``du`` u's derivative matrix on the surface, ``dlam`` lambda~'s derivative along t."""
+        c = self.compliance * depth
+        dut = (du * t) * t + self.roll_curvature() * (u * n)      # d(u.t)/ds
+        return c * ((u * t) * dlam + lam * dut) + self.compliance * (slope * t) * lam * (u * t)
+
+    def elastic_rate(self, u, lam, xi, t, depth, u_w=None, lam_w=None, slope=None, n=None):
+        """The layer's flux rate in the constraint, s^2 K^-1 dF/ds w (``depth``: c_e's half
+        thickness, a CF, ``slope`` its gradient; w the test function upwinded along t;
+        ``u_w``, ``lam_w``: the Jacobian at that iterate along (u, lam))."""
         from ngsolve import grad
 
-        c = self.compliance * depth * self._lam       # c_e K s: per unit lambda~
         w = xi + 0.5 * self.arc_step() * (xi.Trace().Deriv() * t)
         ds_lam = lam.Trace().Deriv() * t
+        du = u.Trace().Deriv()
         if u_w is None:
-            rate = (u * t) * ds_lam
+            rate = self.layer_flux_rate(u, du, lam, ds_lam, t, n, depth, slope)
         else:
-            rate = (u * t) * (grad(lam_w) * t) + (u_w * t) * ds_lam
-        return self._lam * c * rate * w
+            rate = (self.layer_flux_rate(u, du, lam_w, grad(lam_w) * t, t, n, depth, slope)
+                    + self.layer_flux_rate(u_w, grad(u_w), lam, ds_lam, t, n, depth, slope))
+        return self._lam * self._lam * rate * w
+
+    def layer_start(self, u, lam, xi, t, depth, u_w=None, lam_w=None):
+        """The layer's flux at the contact's start, s^2 K^-1 F xi there (a point integral on
+        the ``START`` points, ``mesh.strip_face``)."""
+        from ngsolve import BBND
+        from ngsolve.comp import DifferentialSymbol
+
+        c = self.compliance * depth
+        if u_w is None:
+            flux = c * lam * (u * t)
+        else:
+            flux = c * (lam_w * (u * t) + lam * (u_w * t))
+        point = DifferentialSymbol(BBND)(definedon=self.mesh.BBoundaries(self.START))
+        return (self._lam * self._lam * flux * xi) * point
 
     def arc_step(self):
         """The contact element's length along t (the elastic rate's upwinding): the arc
