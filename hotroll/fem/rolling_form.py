@@ -403,7 +403,11 @@ class RollingForm(FrictionTerms):
             flux = c * lam * (u * t)
         else:
             flux = c * (lam_w * (u * t) + lam * (u_w * t))
-        point = DifferentialSymbol(BBND)(definedon=self.mesh.BBoundaries(self.START))
+        region = self.mesh.BBoundaries(self.START)
+        if not any(region.Mask()):       # a mesh without the named start: no silent zero
+            raise ValueError(f"the elastic layer needs the contact's start as a named mesh "
+                             f"point ({self.START!r}); the mesh has {self.mesh.GetBBoundaries()}")
+        point = DifferentialSymbol(BBND)(definedon=region)
         return (self._lam * self._lam * flux * xi) * point
 
     def arc_step(self):
