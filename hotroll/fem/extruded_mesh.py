@@ -86,7 +86,7 @@ def extrude(mesh2d, z: np.ndarray, region: str = "strip"):
     from ngsolve import BBND
 
     for el in mesh2d.Elements(BBND):
-        if el.mat in ("start",):
+        if el.mat == "start":
             v = el.vertices[0].nr
             lines = np.stack([np.arange(nl) * nv + v, np.arange(1, nl + 1) * nv + v], axis=1)
             ng.AddElements(dim=1, index=ng.AddRegion(el.mat, dim=1), base=0,

@@ -215,22 +215,19 @@ class GapForm(RollingForm):
         cap = by_side(self.strip_depth[1], self.strip_depth[-1])
         return IfPos(half - cap, cap, half), IfPos(half - cap, 0.0, 1.0) * slope
 
-    def roll_curvature(self):
-        """Each roll's surface curvature along its t (``RollingForm.roll_curvature``)."""
-        from ngsolve import grad, sqrt, x, y
+    def centre_distance(self):
+        """The distance from each roll's centre (``RollingForm.centre_distance``; the lower
+        roll's centre below)."""
+        from ngsolve import sqrt, x, y
 
-        kappa = []
+        r = []
         for side in (1, -1):
             rp = self.rolls[side]
             cx, cy = rp.centre
             if rp.shape is not None:
                 cx = self.roll_cx_side[side]
-            kappa.append(1.0 / sqrt((x - cx) ** 2 + (y - side * cy) ** 2))
-        kappa = by_side(*kappa)
-        if self.roll_tilt is None:
-            return kappa
-        _, t = self.roll_frame()
-        return kappa + grad(self.roll_tilt) * t
+            r.append(sqrt((x - cx) ** 2 + (y - side * cy) ** 2))
+        return by_side(*r)
 
     def boundary(self, u, w, v, friction: bool = True, lam=None):
         """Friction on both arcs, the bounds (3.2a,b) on the free surfaces and the cut faces,

@@ -109,14 +109,12 @@ def strip_face(rp: RollPass, x0: float, x1: float, side: int = 1, suffix: str = 
             ed.name = "top" + suffix
         else:
             ed.name = "arc" + suffix
-    # the arc's ends as named points (BBND elements): the contact's start, where the strip's
-    # elastic layer is compressed at once (``RollingForm.constraint``), and the gap's end
+    # the contact's start as a named point (a BBND element), where the strip's elastic layer
+    # is compressed at once (``RollingForm.constraint``)
     for vx in face.vertices:
         p = vx.p
         if abs(p.x - xt) < 1e-9 * scale and abs(side * p.y - h0) < 1e-12 * max(1.0, h0):
             vx.name = "start" + suffix
-        elif abs(p.x - rp.axis_x) < 1e-9 * scale and abs(side * p.y - h1) < 1e-12 * max(1.0, h1):
-            vx.name = "gap" + suffix
     return face
 
 

@@ -355,15 +355,22 @@ class RollingForm(FrictionTerms):
         return (IfPos(y - self.strip_depth, self.strip_depth, y),
                 IfPos(y - self.strip_depth, 0.0, 1.0) * e_y)
 
-    def roll_curvature(self):
-        """The roll surface's curvature along t (dt/ds = kappa n): 1/r, plus a flattened
-        roll's tilt's rate along t."""
-        from ngsolve import grad, sqrt, x, y
+    def centre_distance(self):
+        """r, the distance from the roll's centre (a CF; a flattened roll's centre moves with
+        its lowest point, ``roll_cx``)."""
+        from ngsolve import sqrt, x, y
 
         cx, cy = self.rp.centre
         if self.roll_tilt is not None:
             cx = self.roll_cx
-        kappa = 1.0 / sqrt((x - cx) ** 2 + (y - cy) ** 2)
+        return sqrt((x - cx) ** 2 + (y - cy) ** 2)
+
+    def roll_curvature(self):
+        """The roll surface's curvature along t (dt/ds = kappa n): 1/r, plus a flattened
+        roll's tilt's rate along t."""
+        from ngsolve import grad
+
+        kappa = 1.0 / self.centre_distance()
         if self.roll_tilt is None:
             return kappa
         _, t = self.roll_frame()
