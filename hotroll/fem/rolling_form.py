@@ -341,7 +341,7 @@ class RollingForm(FrictionTerms):
         if not self.compliance:
             return term * ds(self.MULTIPLIER_ON, bonus_intorder=2)
         depth, slope = self.layer_depth()
-        term = term - self.elastic_rate(u, lam, xi, t, depth, u_w, lam_w, slope=slope, n=n)
+        term = term - self.elastic_rate(u, lam, xi, t, n, depth, slope, u_w, lam_w)
         return (term * ds(self.MULTIPLIER_ON, bonus_intorder=2)
                 - self.layer_start(u, lam, xi, t, depth, u_w, lam_w))
 
@@ -383,7 +383,7 @@ class RollingForm(FrictionTerms):
         dut = (du * t) * t + self.roll_curvature() * (u * n)      # d(u.t)/ds
         return c * ((u * t) * dlam + lam * dut) + self.compliance * (slope * t) * lam * (u * t)
 
-    def elastic_rate(self, u, lam, xi, t, depth, u_w=None, lam_w=None, slope=None, n=None):
+    def elastic_rate(self, u, lam, xi, t, n, depth, slope, u_w=None, lam_w=None):
         """The layer's flux rate in the constraint, s^2 K^-1 dF/ds w (``depth``: c_e's half
         thickness, a CF, ``slope`` its gradient; w the test function upwinded along t;
         ``u_w``, ``lam_w``: the Jacobian at that iterate along (u, lam))."""
