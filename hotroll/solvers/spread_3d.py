@@ -9,11 +9,13 @@ top, traced per width level with the contact's start x_c(z) (``solvers/spread_to
 contact end (``solvers/spread_ends.py``). The friction parameter and the tensions stay as the
 2D pass left them; the temperature a flow stress takes is the 2D pass's plus the entry's
 difference across the width where one is given, and a strain-dependent flow stress's strain
-is carried through the 3D flow (``solvers/spread_fields.py``). Newton on the current shape,
-the surfaces' update, the ends' search and the carried fields' transport alternate until
-they settle (the surfaces' largest move below ``surface_tol`` h, the 2D pass's tolerance of
-its traced tops; the ends' below the 2D pass's; the carried fields' change below
-``strain_rtol``), then Newton once more on the settled shape (its own flow, which the figures
+is carried through the 3D flow (``solvers/spread_fields.py``). The surfaces' update, the
+ends' search and the carried fields' transport are Newton's coupling, as the 2D pass's are
+its own (``solvers/steady_solve.py``): a round after each Newton step once the step is below
+the 2D pass's ``couple_below`` U, until they settle (the surfaces' largest move below
+``surface_tol`` h, the 2D pass's tolerance of its traced tops; the ends' below the 2D pass's;
+the carried fields' change below ``strain_rtol``); Newton then converges the flow of the
+settled shape to ``tol`` (its own flow, which the figures
 read). With ``edge_held`` the face is held (u_z = 0): plane strain, the 2D answer.
 """
 from __future__ import annotations
@@ -36,14 +38,8 @@ from hotroll.solvers.spread_contact import level_contact, plane_contact
 from hotroll.solvers.spread_ends import LevelEnds
 from hotroll.solvers.spread_fields import cooled_flow_stress, frozen_flow_stress, strain_3d
 from hotroll.solvers.spread_tops import LevelTops
-
-#: the contact's ends first move once the surfaces' last move is within this many of their
-#: tolerances, then every round. The 2D pass's rule (couplings.ContactEnd.after_others) is
-#: 10; in 3D the ends move from the first round (inf): the same settled criteria, fewer
-#: rounds (measured at c47ee5e, bench_3d.py cold and quiet: the roughing pass's coarse grading
-#: 12 -> 8 rounds, 60 -> 45 Newton iterations, 736 -> 530 s, spread 4.328 -> 4.330 mm; the
-#: narrow bar 8 -> 5-7 rounds, 32-34 -> 23-28 iterations, spreads the same to 1e-3 mm)
-AFTER_OTHERS = math.inf
+from hotroll.solvers.steady_solve import COUPLE_BELOW_ELASTIC
+from hotroll.solvers.threads import solver_threads
 
 #: how the 3D strip takes the strain of a strain-dependent flow stress: carried through its
 #: own flow (the edge's hardening) or the 2D pass's in every layer
@@ -152,71 +148,82 @@ class Spread3D:
         self.setup_time, self.solve_time = time.perf_counter() - t0, 0.0
 
     def solve(self, max_rounds: int = 30, progress=None) -> bool:
-        """Newton and the surfaces' update (with the ends' search and the carried fields'
-        transport) in turn until Newton converged, the surfaces moved less than surface_tol
-        h, the ends less than their tolerance and the carried fields changed less than
-        strain_rtol; True if settled. ``progress``: called with a report (its words in
-        ``message``) after each round."""
+        """Newton with the surfaces' update (with the ends' search and the carried fields'
+        transport) as its coupling, as the 2D pass couples its own (``solvers/steady_solve``):
+        a round each Newton step once the update is below the 2D pass's ``couple_below`` U,
+        until the surfaces moved less than surface_tol h, the ends less than their tolerance
+        and the carried fields changed less than strain_rtol; then Newton converges the flow
+        of that settled shape to ``tol`` (the figures read it, as the 2D pass returns the flow
+        of its final shape). True if settled. ``progress``: called with a report (its words
+        in ``message``) after each round. Its threads as the 2D pass's solve
+        (``solvers/threads.solver_threads``: an outer call's, else "auto"; BLAS 1 thread)."""
+        with solver_threads():
+            return self._solve(max_rounds, progress)
+
+    def _solve(self, max_rounds: int, progress) -> bool:
         t0 = time.perf_counter()
         s = self.run2d.s
-        tol_face = s.surface_tol * self.problem.h
-        moved, started = math.inf, False  # the surfaces' last move (m); the ends moving
         try:
-            for _ in range(max_rounds):
+            if self.face is None:
                 st = newton(self.form.nonlinear, s.tol, s.max_it)
-                self.rounds += 1
-                self.iterations += st.iterations
-                if self.face is None:
-                    self.settled = st.converged
-                    break
-                change, ended = 0.0, 0.0
-                if self.ends is not None:     # each level's contact end, then its tops
-                    # first moved once the surfaces are within AFTER_OTHERS tolerances
-                    # (their last round's move), then every round (waiting again after each
-                    # move took a search step every 2-3 rounds: the roughing pass's edge
-                    # zone 1.5 h steps apart)
-                    started = started or moved <= AFTER_OTHERS * tol_face
-                    ended = self.ends.update() if started else math.inf
-                if self.tops is not None:     # the tops first: the face is solved on them
-                    change = self.tops.update()
-                    self.tops.displace(self.disp)
-                    self.face.set_shape(self.tops.d2[-1])
-                change = max(change, self.face.update(self.form.nonlinear.velocity))
-                moved = change
-                self.face.displace(self.disp)
-                self.mesh.SetDeformation(self.disp)
-                # the strain along the new flow on the new shape (its change over the largest)
-                strained = max(0.0 if field is None
-                               else field.transport(self.form.nonlinear.velocity)
-                               for field in (self.strain, self.cooling))
-                if progress is not None:
-                    progress({"stage": "spread", "spread_round": self.rounds, "message": (
-                        f"3D pass round {self.rounds} ({self.form.fes.ndof} unknowns): Newton "
-                        f"{'converged' if st.converged else 'NOT converged'} after "
-                        f"{st.iterations} iterations, the free surfaces moved "
-                        f"{change / self.problem.h:.3g} h (tolerance {s.surface_tol:g} h)"
-                        + ("" if self.ends is None else
-                           ", the contact's ends wait for the surfaces" if math.isinf(ended)
-                           else f", the contact's ends moved {ended / self.problem.h:.3g} h "
-                           f"(tolerance {self.ends.tol / self.problem.h:.3g} h)")
-                        + ("" if self.strain is None and self.cooling is None else
-                           f", the carried fields changed {strained:.3g} (tolerance "
-                           f"{s.strain_rtol:g})"))})
-                if (st.converged and change <= tol_face and strained <= s.strain_rtol
-                        and (self.ends is None or ended <= self.ends.tol)):
-                    # the flow of the settled shape: the last Newton solved the shape before
-                    # this round's update (within the tolerances, but the figures are read on
-                    # the moved mesh: an aluminium bar's power balance 3.2e-3 -> 2.9e-5,
-                    # docs/validation/spread_3d.md), as the 2D pass returns the flow of its
-                    # final shape
-                    st = newton(self.form.nonlinear, s.tol, s.max_it)
-                    self.iterations += st.iterations
-                    self.settled = st.converged
-                    break
+                self.settled = st.converged
+            else:
+                state = {"settled": False}
+
+                def couple(update: float) -> bool:
+                    if state["settled"] or self.rounds >= max_rounds:
+                        return False
+                    state["settled"] = self._round(update, progress)
+                    if self.form.friction_dual is not None:   # the form's data moved
+                        self.form.friction_dual.restart()
+                    return True
+
+                st = newton(self.form.nonlinear, s.tol, s.max_it + 3 * max_rounds,
+                            couple=couple, couple_below=s.couple_below, full_step=True)
+                self.settled = st.converged and state["settled"]
+            self.iterations += st.iterations
         except LinearSolveError as e:         # the pass's record says why (settled False)
             self.settled, self.failure = False, f"a linear solve failed: {e}"
         self.solve_time += time.perf_counter() - t0
         return self.settled
+
+    def _round(self, update: float, progress=None) -> bool:
+        """One update of the surfaces, the ends and the carried fields on the flow whose last
+        Newton update was ``update`` (over U); True when all moved within their tolerances.
+        With the strip's compliance the ends, which read the contact pressure, wait for a flow
+        converged to ``COUPLE_BELOW_ELASTIC`` (the 2D pass's rule)."""
+        s = self.run2d.s
+        tol_face = s.surface_tol * self.problem.h
+        self.rounds += 1
+        change, ended = 0.0, 0.0
+        if self.ends is not None:     # each level's contact end, then its tops
+            tight = self.form.compliance and update > COUPLE_BELOW_ELASTIC
+            ended = math.inf if tight else self.ends.update()
+        if self.tops is not None:     # the tops first: the face is solved on them
+            change = self.tops.update()
+            self.tops.displace(self.disp)
+            self.face.set_shape(self.tops.d2[-1])
+        change = max(change, self.face.update(self.form.nonlinear.velocity))
+        self.face.displace(self.disp)
+        self.mesh.SetDeformation(self.disp)
+        # the strain along the new flow on the new shape (its change over the largest)
+        strained = max(0.0 if field is None
+                       else field.transport(self.form.nonlinear.velocity)
+                       for field in (self.strain, self.cooling))
+        if progress is not None:
+            progress({"stage": "spread", "spread_round": self.rounds, "message": (
+                f"3D pass round {self.rounds} ({self.form.fes.ndof} unknowns) at a Newton "
+                f"update of {update:.3g} of the roll speed: the free surfaces moved "
+                f"{change / self.problem.h:.3g} h (tolerance {s.surface_tol:g} h)"
+                + ("" if self.ends is None else
+                   ", the contact's ends wait for a tighter flow" if math.isinf(ended)
+                   else f", the contact's ends moved {ended / self.problem.h:.3g} h "
+                   f"(tolerance {self.ends.tol / self.problem.h:.3g} h)")
+                + ("" if self.strain is None and self.cooling is None else
+                   f", the carried fields changed {strained:.3g} (tolerance "
+                   f"{s.strain_rtol:g})"))})
+        return (change <= tol_face and strained <= s.strain_rtol
+                and (self.ends is None or ended <= self.ends.tol))
 
     def figures(self) -> dict:
         """The pass's figures (SI, per roll and the whole strip; an edge zone's with the 2D
