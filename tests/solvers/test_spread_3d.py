@@ -269,17 +269,18 @@ def test_an_alternating_multiplier_reads_a_third_of_itself(solved):
     assert np.array_equal(lev["traction"][:, [0, -1]], lev["multiplier"][:, [0, -1]])
 
 
-def test_the_top_traced_per_level_leaks_what_the_2d_pass_leaks():
-    """[identity of the tracing, measured] Tresca 0.8 (the strip pulled sideways ahead of the
-    bite): with the top traced per width level (solvers/spread_tops.py) the 3D pass's
-    (out + edge - in) / in is the 2D pass's own tracing error (3.5e-4 both with two width
-    layers, first order in h; one layer here, two levels: mid-width and edge, the suite's
-    time); with the 2D pass's top kept in every level it was 1.7e-3 (the top ahead of the
-    bite let the strip in). [hand] the contact starts later where the strip spreads: x_c(z) behind the
-    2D pass's in every level, the most at the edge."""
-    # on the mesh not refined at the contact's start, where the 2D top's leak is large beside
-    # the width levels' own tracing error (refined, the 2D leak is 2e-5 and one width layer's
-    # levels add 1.1e-4: tests/solvers/test_contact_start_mesh.py bounds the whole)
+def test_the_top_traced_per_level_leaks_near_what_the_2d_pass_leaks():
+    """[measured bound] Tresca 0.8 (the strip pulled sideways ahead of the bite): with the top
+    traced per width level (solvers/spread_tops.py) the 3D pass's (out + edge - in) / in is
+    the 2D pass's tracing error and the levels' own (the top's slope across the width between
+    two levels, first order in the layer's width): 2.3e-4 here with one layer (two levels:
+    mid-width and edge, the suite's time), the 2D pass's 9.5e-5 (with the trapezoidal trace
+    before the cubic one both were 3.5e-4); with the 2D pass's top kept in every level it was
+    1.7e-3 (the top ahead of the bite let the strip in): below 3e-4 and 3 x the 2D pass's.
+    [hand] the contact starts later where the strip spreads: x_c(z) behind the 2D pass's in
+    every level, the most at the edge."""
+    # on the mesh not refined at the contact's start (refined, one width layer's levels add
+    # 1.1e-4: tests/solvers/test_contact_start_mesh.py bounds the whole)
     case, problem, st = _setup(**{"friction.factor": 0.8, "mesh.corner_refinement": 1.0})
     run = SteadyRun(problem, st, case.plate.length)
     assert run.run().status == "steady"
@@ -289,7 +290,7 @@ def test_the_top_traced_per_level_leaks_what_the_2d_pass_leaks():
     assert s3.solve()
     f = s3.figures()
     leak3 = (f["flux_in"] - f["flux_out"] - f["flux_edge"]) / f["flux_in"]
-    assert abs(leak3) <= 1.5 * abs(leak2) + 1e-5
+    assert abs(leak3) <= min(3e-4, 3.0 * abs(leak2))
     shift = s3.tops.contact_starts() - run.shape.x_c
     assert shift[0] > 0.0 and shift[-1] == shift.max()
 

@@ -66,8 +66,9 @@ def test_the_gap_pass_scales_exactly_with_the_flow_stress_and_the_modulus(runs):
     and Newton's tolerance), three times the force (to the contact end's tolerance)."""
     soft, scaled = runs["soft"], runs["scaled"]
     assert scaled["gauge_thickness"] == pytest.approx(soft["gauge_thickness"], rel=1e-7)
-    # (the contact's end is settled to 1e-3 h: measured 1.9e-6 of the force between the two)
-    assert scaled["roll_force_total"] == pytest.approx(3 * soft["roll_force_total"], rel=5e-6)
+    # (the couplings settle to 1e-3 h along the two runs' paths, which part in the last bits:
+    # measured 1.9e-6 of the force with the trapezoidal trace, 6.5e-6 with the cubic one)
+    assert scaled["roll_force_total"] == pytest.approx(3 * soft["roll_force_total"], rel=2e-5)
     assert scaled["gauge_solves"] == soft["gauge_solves"]
 
 
