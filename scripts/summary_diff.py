@@ -43,6 +43,14 @@ def run(out: Path, only: list[str]) -> int:
         if only and name not in only:
             continue
         target = out / kind / name
+        if target.exists() and any(target.iterdir()):
+            # a schedule or a study resumes the passes it finds there: another commit's
+            # results would be compared as this one's (it happened: a /tmp kept from a session
+            # before held a schedule solved by older code)
+            print(f"  {target} is not empty: a schedule or study would resume from it; "
+                  "give an empty OUT", flush=True)
+            bad += 1
+            continue
         cmd = [str(exe), kind, name, "--out", str(target)]
         if kind == "study":
             cmd.append("--serial")
