@@ -12,12 +12,13 @@ Each size is one process's run after the 2D pass: ``Spread3D`` set-up and solve
 (solvers/spread_3d.py), cold (the first 3D forms of the process are compiled in it). Sizes:
 the edge layer and the largest layer in units of the 2D contact mesh size h: coarse (2h, 8h),
 medium (h, 4h), fine (h/2, 2h), and coarsest (4h, 16h) for a third size of the roughing
-pass (its fine grading does not fit in 24 GB). Prints a table: DOFs, layers, Newton iterations, rounds, wall
-s (2D, 3D set-up, 3D solve), peak resident memory of the process (GB), spread, and the
-mass balance (out + edge - in) / in (``SpreadResult``'s sign). The linear
-solver: UMFPACK by default, or ``--solver`` (fem/forms.py: LINEAR_SOLVERS); ``--corner``: the
-2D mesh refined at the contact's start (``mesh.corner_refinement``, default 16 as a case's; 1: none). Time on 2 cores
-with nothing else running.
+pass (its fine grading does not fit in 24 GB). Prints a table: DOFs, layers, Newton iterations,
+rounds, the Jacobian's factorisations (and in brackets the Newton directions solved on kept
+factors, ``Spread3D.reuse_steps``), wall s (2D, 3D set-up, 3D solve), peak resident memory of
+the process (GB), spread, and the mass balance (out + edge - in) / in (``SpreadResult``'s
+sign). The linear solver: UMFPACK by default, or ``--solver`` (fem/forms.py: LINEAR_SOLVERS);
+``--corner``: the 2D mesh refined at the contact's start (``mesh.corner_refinement``, default
+16 as a case's; 1: none). Time on 2 cores with nothing else running.
 """
 from __future__ import annotations
 
@@ -75,9 +76,9 @@ def main() -> None:
     print(f"{a.case}: 3D linear solver {a.solver}; 2D pass {status}, {run.form.fes.ndof} DOFs, "
           f"h = {h * 1e3:.3g} mm, corner refinement {a.corner:g}, "
           f"{wall2:.1f} s")
-    print("| size | layers | DOFs | Newton its | rounds | 3D set-up s | 3D solve s | peak GB | "
-          "spread mm | (out + edge - in) / in |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| size | layers | DOFs | Newton its | rounds | factorisations (kept) | 3D set-up s | "
+          "3D solve s | peak GB | spread mm | (out + edge - in) / in |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for size in a.sizes.split(","):
         edge, largest = SIZES[size]
         s3 = Spread3D(run, half_width, edge=min(edge * h, half_width), largest=largest * h,
@@ -86,7 +87,8 @@ def main() -> None:
         fig = s3.figures()
         peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2
         print(f"| {size} | {len(s3.z) - 1} | {fig['dofs']} | {fig['newton_iterations']} | "
-              f"{fig['rounds']} | {s3.setup_time:.1f} | {s3.solve_time:.1f} | {peak:.2f} | "
+              f"{fig['rounds']} | {fig['factorisations']} ({fig['reused']}) | "
+              f"{s3.setup_time:.1f} | {s3.solve_time:.1f} | {peak:.2f} | "
               f"{fig.get('spread', float('nan')) * 1e3:.3f} | "
               f"{(fig['flux_out'] + fig['flux_edge'] - fig['flux_in']) / fig['flux_in']:.1e} |",
               flush=True)

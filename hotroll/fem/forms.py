@@ -115,6 +115,9 @@ class NonlinearProblem:
     #: the largest forcing term of the inexact Newton (``fem/nonlinear.py``): a direction's
     #: relative residual
     linear_rtol: float = 1e-2
+    #: GMRES iterations a Newton direction may take on the kept factors of an earlier
+    #: Jacobian before they are refactorised (``fem/nonlinear.py``; 0: refactorised every step)
+    reuse_steps: int = 0
     gf: object = field(init=False)
     gf_w: object = field(init=False)
     a_newton: object = field(init=False)

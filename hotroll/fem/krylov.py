@@ -78,7 +78,6 @@ class PreconditionedGMRES:
 
     def _solve(self, r, out, rtol: float, weights) -> None:
         import numpy as np
-        from ngsolve.krylovspace import GMResSolver
 
         w = self._free.astype(float) if weights is None else np.where(self._free, weights, 0.0)
         started = False
@@ -87,29 +86,56 @@ class PreconditionedGMRES:
                 self.iterations = 0
                 return
             started = True            # GMRES from there: out = P y with y = r
-        w2 = w * w
-
-        def inner(x, y):
-            return float(np.dot(w2 * x.FV().NumPy(), y.FV().NumPy()))
-
-        # stopped on ||r - A out|| <= rtol ||r|| (an absolute bound: from the factors' solution
-        # GMRES's first residual is not r's, and a relative one would be relative to it)
-        size = float(np.sqrt(inner(r, r)))
-        solver = GMResSolver(mat=self.mat @ self.pre, freedofs=self._freedofs, innerproduct=inner,
-                             tol=0.0, atol=rtol * size, maxiter=MAX_STEPS, printrates=False)
-        y = r.CreateVector()
-        try:
-            if started:
-                y.data = r
-            else:
-                y[:] = 0.0
-            solver.Solve(rhs=r, sol=y, initialize=False)
-            out.data = self.pre * y
-        except Exception:  # noqa: BLE001 - NGSolve raises plain exceptions (a singular
-            # Hessenberg system on a broken state): no solution, the accuracy test fails
-            out.FV().NumPy()[:] = float("nan")
-        self.iterations = solver.iterations
+        self.iterations = gmres(self.mat, self.pre, self._freedofs, r, out, rtol, w,
+                                MAX_STEPS, started)
         self.direct = self.iterations <= 1
+
+
+class _OffTrack(Exception):
+    """GMRES's residual fell too slowly to reach its target within its iterations."""
+
+
+def gmres(mat, pre, freedofs, r, out, rtol: float, w, maxiter: int,
+          started: bool = False, on_track: bool = False) -> int:
+    """out = pre y with y from GMRES on mat pre y = r (right preconditioning), stopped on
+    ||r - mat out|| <= rtol ||r|| in the norm of the row weights ``w`` (zero off the free
+    rows) or after ``maxiter`` iterations; ``started``: from y = r, else from 0. ``on_track``:
+    also given up after k >= 2 iterations whose residual is above the geometric path to the
+    target in ``maxiter`` iterations, ||r_k|| > ||r|| rtol^(k / maxiter). Returns NGSolve's
+    count of the iterations (the start's residual counted as one); out is NaN where GMRES
+    broke down or gave up (the caller's accuracy test fails)."""
+    import numpy as np
+    from ngsolve.krylovspace import GMResSolver
+
+    w2 = w * w
+
+    def inner(x, y):
+        return float(np.dot(w2 * x.FV().NumPy(), y.FV().NumPy()))
+
+    # stopped on ||r - A out|| <= rtol ||r|| (an absolute bound: from the factors' solution
+    # GMRES's first residual is not r's, and a relative one would be relative to it)
+    size = float(np.sqrt(inner(r, r)))
+    def track(iterations: int, residual: float) -> None:
+        k = iterations - 1                  # NGSolve counts the start's residual as one
+        if k >= 2 and residual > size * rtol ** (k / maxiter):
+            raise _OffTrack
+
+    solver = GMResSolver(mat=mat @ pre, freedofs=freedofs, innerproduct=inner,
+                         tol=0.0, atol=rtol * size, maxiter=maxiter, printrates=False,
+                         callback=track if on_track else None)
+    y = r.CreateVector()
+    try:
+        if started:
+            y.data = r
+        else:
+            y[:] = 0.0
+        solver.Solve(rhs=r, sol=y, initialize=False)
+        out.data = pre * y
+    except Exception:  # noqa: BLE001 - NGSolve raises plain exceptions (a singular
+        # Hessenberg system on a broken state), or off track: no solution, the accuracy
+        # test fails
+        out.FV().NumPy()[:] = float("nan")
+    return solver.iterations
 
 
 def apply_inverse(inv, r, out, rtol: float = TOL, weights=None) -> None:

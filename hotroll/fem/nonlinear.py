@@ -26,6 +26,12 @@ GMRES (``fem/krylov.py``) stops on the same residual in the same norm, so where 
 not depend on the roll speed or the units (the exact scalings hold). Measured on the ten
 stands: the same Newton steps on every pass, GMRES's iterations about halved (issue 34 session
 10, docs/validation/speed.md). A direct solver's solution is exact to rounding either way.
+With ``reuse_steps`` (the large 3D meshes', ``solvers/spread_3d.REUSE_STEPS``) a direction is
+first sought by GMRES on the new Jacobian preconditioned by the kept factors of an earlier one
+(``krylov.gmres``, given up once its residual falls behind the geometric path to the forcing
+term in that many iterations), the same accuracy test deciding; only where that fails are the
+factors refactorised (the roughing pass: a refactorisation 12.7 s, a solve with the factors
+0.65 s).
 """
 from __future__ import annotations
 
@@ -36,7 +42,7 @@ from typing import Callable, Protocol
 import numpy as np
 
 from hotroll.fem.forms import NonlinearProblem
-from hotroll.fem.krylov import apply_inverse, make_inverse
+from hotroll.fem.krylov import PreconditionedGMRES, apply_inverse, gmres, make_inverse
 from hotroll.fem.reproducible import parallel
 
 
@@ -91,6 +97,8 @@ class SolveStats:
     time_assembly: float = 0.0
     time_linear: float = 0.0
     multiplier_update: float = 0.0   # last max |d lambda| / velocity_scale (contact multiplier)
+    factorisations: int = 0          # direct solvers' (re)factorisations
+    reused: int = 0                  # directions solved on an earlier Jacobian's factors
 
 
 class _Workspace:
@@ -171,9 +179,15 @@ def _linear_step(form, problem, ws, stats, residual_ready: bool = False,
     t1 = time.perf_counter()
     rnorm = max(ws.norm(ws.r), 1e-300)
     cached = problem.inverses.get(id(jacobian))
-    if not (cached is not None and _update_and_solve(cached, jacobian, ws, rnorm, rtol)):
+    reuse = getattr(problem, "reuse_steps", 0)
+    if (cached is not None and reuse > 0 and not isinstance(cached, PreconditionedGMRES)
+            and _reuse_and_solve(cached, jacobian, problem, ws, rnorm, rtol, reuse)):
+        stats.reused += 1
+    elif not (cached is not None and _update_and_solve(cached, jacobian, ws, rnorm, rtol,
+                                                       stats)):
         for name in problem.linear_solvers:
             try:
+                stats.factorisations += 1
                 inv = make_inverse(jacobian.mat, problem.freedofs, name)
             except Exception:  # noqa: BLE001 - NGSolve raises plain exceptions (zero pivot, no MKL)
                 continue
@@ -196,9 +210,23 @@ def _accurate(inv, form, ws, rnorm: float, rtol: float) -> bool:
     return res <= rtol * rnorm
 
 
-def _update_and_solve(inv, form, ws, rnorm: float, rtol: float) -> bool:
+def _reuse_and_solve(inv, form, problem, ws, rnorm: float, rtol: float, steps: int) -> bool:
+    """du from GMRES on the new matrix preconditioned by a direct solver's kept factors of an
+    earlier one, at most ``steps`` iterations; True if it reached ``rtol`` (``_accurate``'s
+    test), else the factors are refactorised by the caller."""
+    w = np.where(ws.free, ws.weights(), 0.0)
+    gmres(form.mat, inv, problem.freedofs, ws.r, ws.du, GMRES_MARGIN * rtol, w, steps,
+          on_track=True)
+    ws.check.data = form.mat * ws.du - ws.r
+    res = ws.norm(ws.check)
+    ws.achieved = res / rnorm
+    return res <= rtol * rnorm
+
+
+def _update_and_solve(inv, form, ws, rnorm: float, rtol: float, stats) -> bool:
     """Refactorise a kept inverse for the matrix's new values; False if that fails."""
     try:
+        stats.factorisations += 1
         inv.Update()
     except Exception:  # noqa: BLE001
         return False

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from test_full_strip import _setup  # the same directory (pytest puts it on the path)
 
-from hotroll.solvers.spread_3d import Spread3D
+from hotroll.solvers.spread_3d import REUSE_STEPS, Spread3D
 from hotroll.solvers.spread_contact import level_contact, plane_contact
 from hotroll.solvers.steady import SteadyRun
 
@@ -324,28 +324,36 @@ def test_the_3d_pass_gives_the_same_bits_at_any_thread_count(solved, monkeypatch
     same spread, force and fluxes to the bit with either linear solver (coloured assembly;
     UMFPACK sequential; the LDL^T factors of the preconditioned GMRES made and applied in one
     thread, ``fem/reproducible.one_thread``: its 1- and 2-thread runs, and two 2-thread runs,
-    differed in the last bits before; one width layer). The two solvers: the same fixed point
+    differed in the last bits before; one width layer), and with Newton's directions on kept
+    factors (``reuse_steps``, the large 3D meshes' default). The three: the same fixed point
     to the couplings' tolerance (their Newton paths differ, so the surfaces settle at
-    different points within surface_tol h: measured 1.1e-9 m of spread, force 3e-6)."""
+    different points within surface_tol h: measured 1.1e-9 m of spread, force 3e-6 for the
+    GMRES solver)."""
     from hotroll.fem import reproducible
     from hotroll.solvers.threads import solver_threads
 
     monkeypatch.setattr(reproducible, "others_running", lambda: 0)
     run, _, _ = solved
-    out = {}
-    for solver in ("umfpack", "sparsecholesky+gmres"):
+    out, reused = {}, {}
+    for solver in ("umfpack", "sparsecholesky+gmres", "kept"):
         for n in (1, 2):
             with solver_threads(n):
-                s3 = Spread3D(run, B0, edge=B0, linear_solver=solver)
+                s3 = Spread3D(run, B0, edge=B0,
+                              linear_solver="umfpack" if solver == "kept" else solver,
+                              reuse_steps=REUSE_STEPS if solver == "kept" else None)
                 assert s3.solve()
                 f = s3.figures()
                 out[solver, n] = tuple(f[k] for k in ("spread", "roll_force", "roll_torque",
                                                       "flux_in", "flux_out"))
+                reused[solver] = f["reused"]
             assert reproducible.threads_used()[-1] == n or n > reproducible.cores()
         assert out[solver, 1] == out[solver, 2]
-    a, b = out["umfpack", 1], out["sparsecholesky+gmres", 1]
-    assert abs(b[0] - a[0]) <= run.s.surface_tol * run.problem.h
-    assert b[1] == pytest.approx(a[1], rel=1e-5)
+    a = out["umfpack", 1]
+    assert reused["umfpack"] == 0 and reused["kept"] > 0
+    for other in ("sparsecholesky+gmres", "kept"):
+        b = out[other, 1]
+        assert abs(b[0] - a[0]) <= run.s.surface_tol * run.problem.h
+        assert b[1] == pytest.approx(a[1], rel=1e-5)
 
 
 def test_an_unknown_3d_linear_solver_is_refused(solved):
