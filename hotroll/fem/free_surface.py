@@ -278,7 +278,8 @@ class ContactEndSearch:
         from the pressure at the arc's vertices (``x`` increasing, the last at the end).
         ``winkler(x, p)``: an elastic strip's end predicted from a vertex in its elastic exit
         zone (where the rising roll has taken up the strip's elastic recovery c_e p), taken
-        until p_end first changes sign, up to ``WINKLER_ELEMENTS`` elements a step."""
+        until p_end first changes sign, up to ``WINKLER_ELEMENTS`` elements a step; None where
+        it predicts nothing (an end before the gap: the steps of a rigid-plastic strip)."""
         lo_b, hi_b = bounds
         p = np.asarray(pressure, dtype=float)
         x = np.asarray(x, dtype=float)
@@ -286,8 +287,10 @@ class ContactEndSearch:
         h = x_e - float(x[-2])                         # the last element's length
         if self.last is not None and (self.last[1] < 0.0) != (p_e < 0.0):
             self.signs += 1
-        if winkler is not None and self.signs == 0 and p_e > 0.0:
-            new = float(np.clip(winkler(x_e, p_e), x_e, x_e + self.WINKLER_ELEMENTS * h))
+        predicted = (winkler(x_e, p_e) if winkler is not None and self.signs == 0 and p_e > 0.0
+                     else None)
+        if predicted is not None:
+            new = float(np.clip(predicted, x_e, x_e + self.WINKLER_ELEMENTS * h))
             self.last, self.trust = (x_e, p_e), h
             new = float(np.clip(new, lo_b, hi_b))
             return new, abs(new - x_e)

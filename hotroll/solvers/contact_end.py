@@ -12,15 +12,21 @@ import numpy as np
 PAST_GAP = 0.25
 
 
-def winkler_end(rp, layer_compliance, x_ref: float, p_ref: float) -> float:
+def winkler_end(rp, layer_compliance, x_ref: float, p_ref: float,
+                exit_zone: bool = False) -> float | None:
     """An elastic strip's contact end on the roll ``rp`` seen from a point of its elastic exit
     zone (x_ref, m; reduced pressure p_ref): where the roll has risen by the strip's elastic
     recovery there, y_roll(x) = y_roll(x_ref) + c_e p_ref (a Winkler layer on the roll's shape,
     docs/theory.md 1e; c_e = ``layer_compliance(y)``, the form's); the first such x within a
-    contact length."""
+    contact length. ``exit_zone``: None where the roll still descends after x_ref (before the
+    gap the strip is plastic, not the elastic layer the rule models: from an end 8.6 mm
+    before the gap it sent the roughing pass's 3D ends to the point as far past it, a
+    tensile 12 MPa there, issue 53)."""
     y0 = float(rp.height(x_ref))
     rise = layer_compliance(y0) * p_ref
     xs = np.linspace(x_ref, x_ref + rp.contact_length, 257)
+    if exit_zone and float(rp.height(xs[1])) < y0:
+        return None
     g = rp.height(xs) - y0 - rise
     up = np.flatnonzero(g >= 0.0)
     if not len(up):
@@ -121,16 +127,18 @@ class ContactEndMixin:
             pb = self.problem
             lo, hi = self.end_bounds()
             self._set_end(float(np.clip(self._winkler(pb.rp.axis_x,
-                                                      pb.mean_two_k / pb.material.K), lo, hi)))
+                                                      pb.mean_two_k / pb.material.K, False),
+                                        lo, hi)))
 
     def _set_end(self, new: float) -> None:
         """The contact's end at ``new`` (``move_end``), the mesh mapped onto it."""
         move_end(self.shape, self.problem.rp, new)
         self._set_shape()
 
-    def _winkler(self, x_ref: float, p_ref: float) -> float:
-        """``winkler_end`` on the pass's roll."""
-        return winkler_end(self.problem.rp, self.form.layer_compliance, x_ref, p_ref)
+    def _winkler(self, x_ref: float, p_ref: float, exit_zone: bool = True) -> float | None:
+        """``winkler_end`` on the pass's roll (None before the gap, ``exit_zone``)."""
+        return winkler_end(self.problem.rp, self.form.layer_compliance, x_ref, p_ref,
+                           exit_zone)
 
     def _carry_multiplier(self, verts, x_old, p_old, order) -> None:
         """After the contact's end moved, the arc's vertices slid along it: the multiplier

@@ -86,7 +86,7 @@ class FullContactEndMixin:
             rp, sh = self.rolls[s], self.shapes[s]
             old = sh.end(rp)
             winkler = ((lambda x_ref, p_ref, rp=rp, s=s: winkler_end(rp, self._layer(s), x_ref,
-                                                                     p_ref))
+                                                                     p_ref, exit_zone=True))
                        if f.compliance and s not in self.wraps else None)
             new, residual = self.end_searches[s].step(x[order], p[order],
                                                       self.side_end_bounds(s), winkler)

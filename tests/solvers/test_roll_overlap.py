@@ -205,3 +205,31 @@ def test_the_outcome_of_both_causes_in_full():
         "(asymmetric: a smaller speed or radius ratio, or less friction, curls it less); the "
         "lower roll's contact end is held at the end of its allowed range with a tensile "
         "contact stress there (-1.24 MPa): the strip would leave the roll before it")
+
+
+def test_the_winkler_prediction_only_from_the_exit_zone():
+    """[hand] An elastic layer of compliance c (m per unit of reduced pressure) under a
+    pressure p at x_ref at or past the gap, on a roll of radius R: the roll has risen by c p
+    at x = 1 + sqrt(R^2 - (sqrt(R^2 - (x_ref - 1)^2) - c p)^2), the prediction's x - x_ref
+    within 1 % (its root interpolated on a grid of a contact length / 256).
+    From an end 8 mm before the gap (the roll still descending) ``exit_zone`` predicts
+    nothing (the strip is plastic there; without it the rule sent the roughing pass's 3D ends
+    to the point as far past the gap, issue 53); the end search then takes the line's step,
+    the zero of p through the last two vertices, not the mirror point."""
+    from hotroll.solvers.contact_end import winkler_end
+
+    rp = RollPass(R, 0.0125, H1, omega=5.0)
+    c, p = 2e-6, 0.5
+    for x_ref in (1.0, 1.004):
+        x = winkler_end(rp, lambda y: c, x_ref, p, exit_zone=True)
+        exact = 1.0 + math.sqrt(R**2 - (math.sqrt(R**2 - (x_ref - 1.0) ** 2) - c * p) ** 2)
+        assert x - x_ref == pytest.approx(exact - x_ref, rel=1e-2)
+    assert winkler_end(rp, lambda y: c, 0.992, p, exit_zone=True) is None
+    mirror = winkler_end(rp, lambda y: c, 0.992, p)
+    assert mirror > 1.008                       # past the mirror point 1.008 of the old rule
+    h = 0.01
+    x = np.array([0.992 - h, 0.992])
+    new, _ = ContactEndSearch().step(
+        x, np.array([2.4, p]), (0.9, 1.1),
+        lambda x_ref, p_ref: winkler_end(rp, lambda y: c, x_ref, p_ref, exit_zone=True))
+    assert new == pytest.approx(0.992 + p * h / (2.4 - p), abs=1e-12)
