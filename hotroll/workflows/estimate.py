@@ -49,14 +49,14 @@ SECONDS_A, SECONDS_B, STEADY_ITERATIONS = 1.35e-5, 4.3e-8, 30
 DOFS_PER_LEVEL, DOFS_PER_LAYER = 6.5, 6.0
 #: ... its memory, a N^p (the 3D factorisation's fill grows faster than N), and its wall
 #: seconds, c N^q for the whole 3D pass (set-up and solve), fitted to benchmarks/bench_3d.py's
-#: three narrow-bar sizes (1.8-4.7e4 unknowns, 11-49 s, 0.35-1.20 GB) and three roughing
-#: sizes (6.9e4-1.73e5, 199-1907 s, 1.72-6.92 GB), the code with the ends moving from the
-#: first round (c47ee5e-ac7ef0e, docs/validation/spread_3d.md "The roughing pass"): the
-#: peak memory as 0.14 GB (the process's, in BASE_BYTES) + a N^p, within 10 % of each; the
-#: seconds by least squares in log-log, 0.7-1.5x of each (the roughing pass takes more
+#: three narrow-bar sizes (2.0-5.2e4 unknowns, 5.7-30.5 s, 0.38-1.23 GB) and three roughing
+#: sizes (7.7e4-1.95e5, 119-1167 s, 2.02-8.83 GB), the code of 773fc10 (Newton on kept
+#: factors from 6e4 unknowns, docs/validation/spread_3d.md "Three sizes at 3799a44"): the
+#: peak memory as 0.14 GB (the process's, in BASE_BYTES) + a N^p, within 7 % of each; the
+#: seconds by least squares in log-log, 0.74-1.43x of each (the roughing pass takes more
 #: iterations per unknown than the bar)
-BYTES_3D_COEF, BYTES_3D_EXP = 145.0, 1.470
-SECONDS_3D_COEF, SECONDS_3D_EXP = 4.77e-10, 2.397
+BYTES_3D_COEF, BYTES_3D_EXP = 60.0, 1.544
+SECONDS_3D_COEF, SECONDS_3D_EXP = 1.075e-10, 2.462
 #: the report's scheme: seconds per step and unknown on one core (0.49 s per step with 2
 #: threads on C2, 6.8e4 unknowns, docs/results.md; 1.6 x for one thread); the steps: end
 #: time / dt (an upper bound: the run stops at the steady state, often a third of it)
