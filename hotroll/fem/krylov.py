@@ -115,6 +115,7 @@ def gmres(mat, pre, freedofs, r, out, rtol: float, w, maxiter: int,
     # stopped on ||r - A out|| <= rtol ||r|| (an absolute bound: from the factors' solution
     # GMRES's first residual is not r's, and a relative one would be relative to it)
     size = float(np.sqrt(inner(r, r)))
+
     def track(iterations: int, residual: float) -> None:
         k = iterations - 1                  # NGSolve counts the start's residual as one
         if k >= 2 and residual > size * rtol ** (k / maxiter):

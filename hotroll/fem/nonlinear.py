@@ -202,8 +202,14 @@ def _linear_step(form, problem, ws, stats, residual_ready: bool = False,
 
 
 def _accurate(inv, form, ws, rnorm: float, rtol: float) -> bool:
-    """du = inv r, accepted if ||A du - r|| <= rtol ||r|| (``ws.norm``, the free DOFs)."""
+    """du = inv r, accepted if ``_reached``."""
     apply_inverse(inv, ws.r, ws.du, GMRES_MARGIN * rtol, ws.weights())
+    return _reached(form, ws, rnorm, rtol)
+
+
+def _reached(form, ws, rnorm: float, rtol: float) -> bool:
+    """||A du - r|| <= rtol ||r|| (``ws.norm``, the free DOFs); the ratio kept in
+    ``ws.achieved``."""
     ws.check.data = form.mat * ws.du - ws.r
     res = ws.norm(ws.check)
     ws.achieved = res / rnorm
@@ -212,15 +218,12 @@ def _accurate(inv, form, ws, rnorm: float, rtol: float) -> bool:
 
 def _reuse_and_solve(inv, form, problem, ws, rnorm: float, rtol: float, steps: int) -> bool:
     """du from GMRES on the new matrix preconditioned by a direct solver's kept factors of an
-    earlier one, at most ``steps`` iterations; True if it reached ``rtol`` (``_accurate``'s
-    test), else the factors are refactorised by the caller."""
+    earlier one, at most ``steps`` iterations; True if it reached ``rtol`` (``_reached``),
+    else the factors are refactorised by the caller."""
     w = np.where(ws.free, ws.weights(), 0.0)
     gmres(form.mat, inv, problem.freedofs, ws.r, ws.du, GMRES_MARGIN * rtol, w, steps,
           on_track=True)
-    ws.check.data = form.mat * ws.du - ws.r
-    res = ws.norm(ws.check)
-    ws.achieved = res / rnorm
-    return res <= rtol * rnorm
+    return _reached(form, ws, rnorm, rtol)
 
 
 def _update_and_solve(inv, form, ws, rnorm: float, rtol: float, stats) -> bool:
