@@ -8,6 +8,9 @@ the mid-width plane of a quarter model. Each 2D triangle (counter-clockwise in (
 one prism per layer [z_k, z_k+1]; each 2D boundary segment one quadrilateral per layer, named
 as the segment was (``sym``, ``arc``, ``top``, ``in``, ...). The two new faces: ``zsym`` at
 z = z_0 (the mid-width symmetry plane) and ``edge`` at z = z_n (the strip's lateral face).
+Lines (BBND): the contact's ``start`` across the layers (the 2D mesh's named point) and
+``arc_edge``, where the arc meets ``edge`` (the elastic layer's line terms,
+``RollingForm3D.layer_ends``).
 The layers (``width_axis``) are thin at the free edge, where the spread and the edge's bulge
 form, and grow towards mid-width, where the strip is nearly in plane strain.
 """
@@ -20,6 +23,8 @@ from hotroll.fem.reproducible import fe_space
 
 #: layer-to-layer growth from the free edge towards mid-width (3d-steady.md: 1.2)
 WIDTH_GROWTH = 1.2
+#: the line where the contact meets the lateral face (the arc's segments in the last layer)
+ARC_EDGE = "arc_edge"
 
 
 def width_axis(half_width: float, edge: float, growth: float = WIDTH_GROWTH,
@@ -91,6 +96,13 @@ def extrude(mesh2d, z: np.ndarray, region: str = "strip"):
             lines = np.stack([np.arange(nl) * nv + v, np.arange(1, nl + 1) * nv + v], axis=1)
             ng.AddElements(dim=1, index=ng.AddRegion(el.mat, dim=1), base=0,
                            data=lines.astype(np.int32))
+    # ... and the contact's lateral edge, where the arc meets the lateral face ``edge``: the
+    # arc's segments in the last layer (``RollingForm3D.layer_ends``)
+    arc = [idx for idx in np.unique(seg_index) if ng2.GetBCName(int(idx) - 1) == "arc"]
+    if arc:
+        ab = seg_nodes[np.isin(seg_index, arc)] + nl * nv
+        ng.AddElements(dim=1, index=ng.AddRegion(ARC_EDGE, dim=1), base=0,
+                       data=ab.astype(np.int32))
     return ngsolve.Mesh(ng)
 
 

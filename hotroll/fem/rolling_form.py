@@ -329,9 +329,10 @@ class RollingForm(FrictionTerms):
         (linearised across the thin layer, incompressible), weakly: int w [u.n - dF/ds] ds -
         F(start) xi(start) = 0, w the test function upwinded along t (each segment's dF/ds
         on its downstream node, ``elastic_rate``) and F's jump from 0 on the free top to
-        F(start) at the contact's start a point term there (``layer_start``): with xi = 1,
-        int u.n = F(end), the layer's flux at the end (0 where p_end = 0): the volume is
-        conserved. ``u_w``, ``lam_w``: the Jacobian at that iterate along (u, lam)."""
+        F(start) at the contact's start a point term there (``layer_ends``; a 3D strip's
+        the line terms of the contact's boundary, ``RollingForm3D.layer_ends``): with
+        xi = 1, int u.n = F(end), the layer's flux at the end (0 where p_end = 0): the volume
+        is conserved. ``u_w``, ``lam_w``: the Jacobian at that iterate along (u, lam)."""
         from ngsolve import ds
 
         n, t = self.roll_frame()
@@ -343,7 +344,7 @@ class RollingForm(FrictionTerms):
         depth, slope = self.layer_depth()
         term = term - self.elastic_rate(u, lam, xi, t, n, depth, slope, u_w, lam_w)
         return (term * ds(self.MULTIPLIER_ON, bonus_intorder=2)
-                - self.layer_start(u, lam, xi, t, depth, u_w, lam_w))
+                + self.layer_ends(u, lam, xi, t, depth, u_w, lam_w))
 
     def layer_depth(self):
         """(c_e's depth d, a CF; its gradient, a vector CF): d = min(y, strip_depth)."""
@@ -376,12 +377,14 @@ class RollingForm(FrictionTerms):
         _, t = self.roll_frame()
         return kappa + grad(self.roll_tilt) * t
 
-    def layer_flux_rate(self, u, du, lam, dlam, t, n, depth, slope):
+    def layer_flux_rate(self, u, du, lam, glam, t, n, depth, slope):
         """dF/ds of the layer's flux F = c_e lambda~ (u.t) per unit s K (bilinear in (u, lam)):
-        ``du`` u's derivative matrix on the surface, ``dlam`` lambda~'s derivative along t."""
+        ``du`` u's derivative matrix on the surface, ``glam`` lambda~'s gradient on it (a 3D
+        strip adds the flux's divergence across the width, ``RollingForm3D``)."""
         c = self.compliance * depth
         dut = (du * t) * t + self.roll_curvature() * (u * n)      # d(u.t)/ds
-        return c * ((u * t) * dlam + lam * dut) + self.compliance * (slope * t) * lam * (u * t)
+        return (c * ((u * t) * (glam * t) + lam * dut)
+                + self.compliance * (slope * t) * lam * (u * t))
 
     def elastic_rate(self, u, lam, xi, t, n, depth, slope, u_w=None, lam_w=None):
         """The layer's flux rate in the constraint, s^2 K^-1 dF/ds w (``depth``: c_e's half
@@ -390,32 +393,43 @@ class RollingForm(FrictionTerms):
         from ngsolve import grad
 
         w = xi + 0.5 * self.arc_step() * (xi.Trace().Deriv() * t)
-        ds_lam = lam.Trace().Deriv() * t
+        g_lam = lam.Trace().Deriv()
         du = u.Trace().Deriv()
         if u_w is None:
-            rate = self.layer_flux_rate(u, du, lam, ds_lam, t, n, depth, slope)
+            rate = self.layer_flux_rate(u, du, lam, g_lam, t, n, depth, slope)
         else:
-            rate = (self.layer_flux_rate(u, du, lam_w, grad(lam_w) * t, t, n, depth, slope)
-                    + self.layer_flux_rate(u_w, grad(u_w), lam, ds_lam, t, n, depth, slope))
+            rate = (self.layer_flux_rate(u, du, lam_w, grad(lam_w), t, n, depth, slope)
+                    + self.layer_flux_rate(u_w, grad(u_w), lam, g_lam, t, n, depth, slope))
         return self._lam * self._lam * rate * w
 
-    def layer_start(self, u, lam, xi, t, depth, u_w=None, lam_w=None):
-        """The layer's flux at the contact's start, s^2 K^-1 F xi there (a point integral on
-        the ``START`` points, ``mesh.strip_face``)."""
+    def layer_flux(self, u, lam, t, depth, u_w=None, lam_w=None):
+        """The layer's flux along ``t``, F = c_e lambda~ (u.t) per unit s K (``u_w``,
+        ``lam_w``: its derivative at that iterate along (u, lam))."""
+        c = self.compliance * depth
+        if u_w is None:
+            return c * lam * (u * t)
+        return c * (lam_w * (u * t) + lam * (u_w * t))
+
+    def layer_ends(self, u, lam, xi, t, depth, u_w=None, lam_w=None):
+        """The layer's flux at the contact's start, -s^2 K^-1 F xi there (a point integral on
+        the ``START`` points, ``mesh.strip_face``): F's jump from 0 on the free top. The
+        contact's end has no term (a searched end has p = 0 there; a held end passes F(end),
+        docs/notes/elastic-layer-flux)."""
+        flux = self._lam * self._lam * self.layer_flux(u, lam, t, depth, u_w, lam_w) * xi
+        return -flux * self.layer_point(self.START)
+
+    def layer_point(self, name: str):
+        """The (BBND) integral on the mesh's named points (a 3D strip's lines) ``name``; a
+        mesh without them raises (no silent zero)."""
         from ngsolve import BBND
         from ngsolve.comp import DifferentialSymbol
 
-        c = self.compliance * depth
-        if u_w is None:
-            flux = c * lam * (u * t)
-        else:
-            flux = c * (lam_w * (u * t) + lam * (u_w * t))
-        region = self.mesh.BBoundaries(self.START)
-        if not any(region.Mask()):       # a mesh without the named start: no silent zero
-            raise ValueError(f"the elastic layer needs the contact's start as a named mesh "
-                             f"point ({self.START!r}); the mesh has {self.mesh.GetBBoundaries()}")
-        point = DifferentialSymbol(BBND)(definedon=region)
-        return (self._lam * self._lam * flux * xi) * point
+        region = self.mesh.BBoundaries(name)
+        if not any(region.Mask()):
+            raise ValueError(f"the elastic layer needs the contact's boundary as named mesh "
+                             f"points or lines ({name!r}); the mesh has "
+                             f"{self.mesh.GetBBoundaries()}")
+        return DifferentialSymbol(BBND)(definedon=region)
 
     def arc_step(self):
         """The contact element's length along t (the elastic rate's upwinding): the arc

@@ -9,11 +9,23 @@ v_s = (u.t - |U_roll|) t + u_z e_z (2.27 in 3D; the strip slides across the roll
 spreads), the laws take |v_s|^2 as in 2D and the shear is -k_f v_s. With ``edge_held`` the
 lateral face has u_z = 0 (plane strain): the 2D solution, the same in every layer, solves this
 form (the consistency check of issue 53). Newton's tangent is the primal-dual one
-(``fem/primal_dual.py``): nu a 3 x 3 tensor, the friction's z a vector like the slip. Not yet:
-flattened rolls, the strip's elasticity.
+(``fem/primal_dual.py``): nu a 3 x 3 tensor, the friction's z a vector like the slip.
+
+The strip's elasticity (``RollingForm.constraint``): the layer between the plastic flow's
+surface and the roll carries the flux F = c_e p (u.t t + u_z e_z) in the roll's tangent plane,
+and the roll is impermeable to u.n - div F, div F = dF_t/ds + dF_z/dz on the cylinder (the
+roll's t and e_z as the surface's coordinates; ``layer_flux_rate``), weakly: int w [u.n -
+div F] dA + int xi F.nu dl = 0, the line integral over the contact's boundary where the layer
+is loaded or leaves it sideways (``layer_ends``: its start line and its lateral edge
+``arc_edge``, where the arc meets the lateral face; zero on ``zsym``, where u_z = 0), nu the
+outward conormal in the (t, e_z) plane. With xi = 1: int u.n dA = the layer's flux out at the
+levels' ends (p = 0 there to the search's tolerance where they are searched; a held end passes
+its F, as in 2D). With the edge held (u_z = 0) every term is the 2D form's in each layer. Not
+yet: flattened rolls.
 """
 from __future__ import annotations
 
+from hotroll.fem.extruded_mesh import ARC_EDGE
 from hotroll.fem.rolling_form import RollingForm
 from hotroll.fem.spaces import taylor_hood
 
@@ -81,3 +93,35 @@ class RollingForm3D(RollingForm):
         """The slip vector v_s = (u.t - |U_roll|) t + u_z e_z (2.27)."""
         _, t = self.roll_frame()
         return self.tangential(u) - self.roll_speed() * t
+
+    def layer_flux_rate(self, u, du, lam, glam, t, n, depth, slope):
+        """div F of the layer's flux F = c_e lambda~ (u.t t + u_z e_z) per unit s K: the 2D
+        form's dF_t/ds plus dF_z/dz = c_e (u_z dlambda~/dz + lambda~ du_z/dz) (bilinear in
+        (u, lam); ``du`` u's derivative matrix on the surface, ``glam`` lambda~'s gradient
+        on it; c_e = compliance min(y, depth) does not vary along z)."""
+        from ngsolve import CF
+
+        e_z = CF((0.0, 0.0, 1.0))
+        across = self.compliance * depth * (u[2] * (glam * e_z) + lam * (du * e_z)[2])
+        return super().layer_flux_rate(u, du, lam, glam, t, n, depth, slope) + across
+
+    def layer_ends(self, u, lam, xi, t, depth, u_w=None, lam_w=None):
+        """The layer's flux out through the contact's boundary lines, s^2 K^-1 int xi F.nu dl:
+        on its ``start`` line (-F_t where the line runs across the width: F's jump from 0 on
+        the free top, as the 2D form's point term) and its lateral edge ``arc_edge`` (+F_z
+        where the edge runs along t; the edge is a stream line of the flow, so F.nu = c_e p
+        u.nu is the lateral face's kinematic error, small). nu dl = +-(tau_z t - tau_t e_z)
+        dl, tau the line's unit tangent (either way along it): the line's conormal in the
+        (t, e_z) plane the rate is written in, its sign outward (-t at the start, +e_z at the
+        edge; the start line is skewed where the levels' contact starts x_c(z) differ). No
+        term on the end line (``RollingForm.layer_ends``) nor on ``zsym`` (u_z = 0)."""
+        from ngsolve import CF, IfPos, specialcf
+
+        e_z = CF((0.0, 0.0, 1.0))
+        tau = specialcf.tangential(3)
+        f_t = self.layer_flux(u, lam, t, depth, u_w, lam_w)
+        f_z = self.layer_flux(u, lam, e_z, depth, u_w, lam_w)
+        flux = self._lam * self._lam * (f_t * (tau * e_z) - f_z * (tau * t)) * xi
+        along_z, along_t = IfPos(tau * e_z, 1.0, -1.0), IfPos(tau * t, 1.0, -1.0)
+        return ((-along_z * flux) * self.layer_point(self.START)
+                + (-along_t * flux) * self.layer_point(ARC_EDGE))

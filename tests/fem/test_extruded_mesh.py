@@ -74,6 +74,37 @@ def test_the_steady_strip_mesh_keeps_its_boundary_names():
         arc * half_width, rel=1e-12)
 
 
+def test_the_contacts_start_and_lateral_edge_are_named_lines():
+    """[id] the elastic layer's line terms (``RollingForm3D.layer_ends``) sit on the arc's
+    boundary: the 2D mesh's named ``start`` point a line across every layer, ``arc_edge`` the
+    arc's segments in the last layer (z = the half width), its length the arc's; a mesh
+    without an arc has neither."""
+    from ngsolve import BBND, BND, Integrate
+
+    from hotroll.fem.mesh import MeshSpec, build_steady_mesh
+    from hotroll.model.geometry import RollPass
+
+    rp = RollPass(0.3, 0.005, 0.004, omega=10.0, axis_x=0.0)
+    m2 = build_steady_mesh(rp, 0.02, 0.02, MeshSpec(h=1e-3, fine_length=0.03), margin=0.005)
+    (start,) = [el.vertices[0].nr for el in m2.Elements(BBND) if el.mat == "start"]
+    arc = {v.nr for el in m2.Elements(BND) if el.mat == "arc" for v in el.vertices}
+    z = width_axis(0.02, 2e-3)
+    mesh = extrude(m2, z)
+    nl, nv = len(z) - 1, m2.nv
+    lines: dict[str, list[tuple[int, int]]] = {}
+    for el in mesh.Elements(BBND):
+        lines.setdefault(el.mat, []).append(tuple(sorted(v.nr for v in el.vertices)))
+    assert sorted(lines) == ["arc_edge", "start"]
+    assert sorted(lines["start"]) == [(k * nv + start, (k + 1) * nv + start) for k in range(nl)]
+    assert all(a // nv == nl and b // nv == nl for a, b in lines["arc_edge"])
+    assert {v - nl * nv for ab in lines["arc_edge"] for v in ab} == arc
+    assert len(lines["arc_edge"]) == len(arc) - 1
+    length = Integrate(1.0, mesh, BBND, definedon=mesh.BBoundaries("arc_edge"))
+    assert length == pytest.approx(Integrate(1.0, m2, definedon=m2.Boundaries("arc")),
+                                   rel=1e-12)
+    assert not any(el.mat for el in box(2, 2, width_axis(0.5, 0.1)).Elements(BBND))
+
+
 def stokes_errors(n: int) -> tuple[float, float]:
     """L2 errors of Taylor-Hood P2/P1 on the unit cube in n x n x n prism layers for the
     divergence-free u = (sin(pi x) cos(pi z) y, 0, -cos(pi x) sin(pi z) y) and

@@ -165,6 +165,76 @@ def test_an_entry_temperature_across_the_width_is_carried_into_the_flow_stress(c
     assert np.max(np.abs(v[:, 0])) <= 0.01 * 150.0
 
 
+def test_the_elastic_layer_carries_its_flux_across_the_width(c45):
+    """The strip's elasticity in 3D (docs/theory.md 1e and 4l, ``RollingForm3D``): the layer
+    carries F = c_e p (u.t t + u_z e_z), the roll is impermeable to u.n - div F, and the flux
+    out through the contact's boundary lines is a line term (its start, its lateral edge
+    ``arc_edge``; the searched ends have none: p_end = 0 there). [identity] tested with
+    xi = 1 the arc's net flux is what the layer carries out at the levels' ends, F(end) at the
+    search's tolerance: below 1e-7 of the inflow (measured -1.85e-8). [hand] the width term's
+    own size, int d(c_e p u_z)/dz dA written out in the test, is at least 5e-6 of it
+    (measured 1.2e-5): without the width terms the arc passed -1.21e-5 of the inflow
+    (measured before them)."""
+    from layer_terms import arc_flux, width_flux_divergence
+
+    _, moved = c45
+    f = moved.form
+    assert f.compliance and moved.ends is not None and moved.face is not None
+    arc, inflow = arc_flux(f)
+    assert inflow > 0.0
+    assert abs(width_flux_divergence(f)) >= 5e-6 * inflow
+    assert abs(arc) <= 1e-7 * inflow
+
+
+def test_the_elastic_layers_terms_are_conservative(c45):
+    """[identity of the conservative form] for any flow with p = 0 on the contact's end line
+    (the layer carries nothing out there) and u_z = 0 on ``zsym``, the layer's terms tested
+    with xi = 1 balance: int div F dA (the rate, its test function 1) = the start line's
+    int F.nu dl + the lateral edge's, to 1e-10 of the inflow (measured 7e-13), here the
+    solved flow with its multiplier set to 0 at the end line's vertices. The start's term is
+    1.4e-4 of the inflow and the edge's 1.3e-7 (the edge is a stream line: F.nu = c_e p
+    u.nu, small; its F_z part alone, int c_e p u_z dl written out, is 1.2e-5, at least 5e-6
+    asserted), so a term off by 10 % breaks the balance."""
+    import ngsolve as ng
+    from layer_terms import arc_flux, edge_flux, layer_terms
+
+    _, moved = c45
+    f = moved.form
+    _, inflow = arc_flux(f)
+    assert abs(edge_flux(f)) >= 5e-6 * inflow
+    mesh, gf = f.mesh, f.nonlinear.gf
+    on = {b: {v.nr for el in mesh.Elements(ng.BND) if el.mat == b for v in el.vertices}
+          for b in ("arc", "exit")}
+    end = on["arc"] & on["exit"]
+    assert len(end) == len(moved.z)                    # one vertex per width level
+    keep = gf.vec.CreateVector()
+    keep.data = gf.vec
+    try:
+        x, first = gf.vec.FV().NumPy(), f.fes.Range(2).start
+        for el in mesh.Boundaries("arc").Elements():
+            for v, d in zip(el.vertices, f.fes.components[2].GetDofNrs(el)):
+                if v.nr in end and d >= 0:
+                    x[first + d] = 0.0
+        terms = layer_terms(f)
+    finally:
+        gf.vec.data = keep
+    assert abs(terms["start"]) >= 1e-5 * inflow and abs(terms["edge"]) >= 1e-8 * inflow
+    assert abs(terms["rate"] - terms["start"] - terms["edge"]) <= 1e-10 * inflow
+
+
+def test_the_elastic_layers_jacobian_is_its_residuals_derivative(c45):
+    """[identity] Newton's Jacobian of the layer's terms in 3D (the flux rate along the arc
+    with its width term, the conormal line terms on the start and the lateral edge; F is
+    bilinear in (u, p)) applied to a random direction is the central difference of their
+    residual along it (quadratic: exact up to round-off), at the solved state moved at random
+    (u_z everywhere): 1e-10 (measured 2.8e-12, 5.1e-12)."""
+    from layer_terms import layer_jacobian_error
+
+    _, moved = c45
+    for seed in (0, 1):
+        assert layer_jacobian_error(moved.form, seed=seed) <= 1e-10
+
+
 @pytest.fixture(scope="module")
 def base() -> dict:
     """Case R's 3D pass unchanged (one width layer), the reference of both scalings."""
