@@ -6,7 +6,7 @@ import ngsolve as ng
 from bench_3d import two_d, SIZES
 from hotroll.solvers.spread_3d import Spread3D
 from hotroll.fem.nonlinear import _Workspace
-exec(open("/tmp/bddc/pform.py").read())   # precond_form(f3, gf, cmul, cp, parts)
+exec(open(__import__("pathlib").Path(__file__).with_name("pform.py")).read())   # precond_form(f3, gf, cmul, cp, parts)
 
 ng.SetNumThreads(1)
 case = sys.argv[1]; size = sys.argv[2]
