@@ -2,7 +2,7 @@
 quarter-model roughing pass in under 10 minutes cold and 6 GB), at three or four width gradings.
 
     python benchmarks/bench_3d.py [--case narrow|roughing] [--sizes coarsest,coarse,medium,fine]
-                                  [--solver umfpack|sparsecholesky+gmres] [--corner 1]
+                                  [--solver umfpack|sparsecholesky+gmres|amg+gmres] [--corner 1]
 
 ``narrow``: Case R of ../shared/notes/asymmetric-rolling.md (R = 250 mm, 10 -> 8 mm, Tresca
 0.3, Norton-Hoff m = 0.05, h = 1 mm) with a stock 10 mm wide. ``roughing``: the bundled
@@ -16,7 +16,7 @@ pass (its fine grading does not fit in 24 GB). Prints a table: DOFs, layers, New
 rounds, the Jacobian's factorisations (and in brackets the Newton directions solved on kept
 factors, ``Spread3D.reuse_steps``), wall s (2D, 3D set-up, 3D solve), peak resident memory of
 the process (GB), spread, and the mass balance (out + edge - in) / in (``SpreadResult``'s
-sign). The linear solver: UMFPACK by default, or ``--solver`` (fem/forms.py: LINEAR_SOLVERS);
+sign). The linear solver: UMFPACK by default, or ``--solver`` (solvers/spread_3d.py: LINEAR_SOLVERS_3D);
 ``--corner``: the 2D mesh refined at the contact's start (``mesh.corner_refinement``, default
 16 as a case's; 1: none). Time on 2 cores with nothing else running.
 """
@@ -36,8 +36,7 @@ from asymmetric_case_r import case_r  # noqa: E402
 
 from hotroll.config.case import load_case  # noqa: E402
 from hotroll.examples import example_path  # noqa: E402
-from hotroll.fem.forms import LINEAR_SOLVERS  # noqa: E402
-from hotroll.solvers.spread_3d import Spread3D  # noqa: E402
+from hotroll.solvers.spread_3d import LINEAR_SOLVERS_3D, Spread3D  # noqa: E402
 from hotroll.solvers.steady import SteadyRun  # noqa: E402
 from hotroll.workflows.build import build_model, steady_settings  # noqa: E402
 
@@ -66,8 +65,8 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--case", default="narrow", choices=("narrow", "roughing"))
     ap.add_argument("--sizes", default="coarse,medium,fine")
-    ap.add_argument("--solver", default="umfpack", choices=LINEAR_SOLVERS,
-                    help="the 3D Newton's linear solver (fem/forms.py: LINEAR_SOLVERS)")
+    ap.add_argument("--solver", default="umfpack", choices=LINEAR_SOLVERS_3D,
+                    help="the 3D Newton's linear solver (solvers/spread_3d.py: LINEAR_SOLVERS_3D)")
     ap.add_argument("--corner", type=float, default=16.0,
                     help="mesh.corner_refinement of the 2D mesh the 3D one is extruded from")
     a = ap.parse_args()

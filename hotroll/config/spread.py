@@ -100,6 +100,11 @@ class SpreadConfig(Section):
         "temperature_profile)")
     max_rounds: int = field(30, "the 3D pass's rounds of Newton and the lateral face's update",
                             "", "an integer in [1, 200]", ge=1, le=200)
+    linear_solver: Literal["umfpack", "amg+gmres"] = field(
+        "umfpack", "the 3D pass's linear solver: UMFPACK's factors (the fastest where they fit "
+        "in memory) or GMRES with smoothed-aggregation AMG (no factors: a fraction of the "
+        "memory, about twice the time a Newton step; for meshes whose factors do not fit)",
+        "", '"umfpack" or "amg+gmres"')
 
     @field_validator("temperature_profile")
     @classmethod

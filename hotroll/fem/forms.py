@@ -118,6 +118,8 @@ class NonlinearProblem:
     #: GMRES iterations a Newton direction may take on the kept factors of an earlier
     #: Jacobian before they are refactorised (``fem/nonlinear.py``; 0: refactorised every step)
     reuse_steps: int = 0
+    #: the velocity's place in the unknowns (``amg.VelocityLayout``), for the AMG solver
+    layout: object = None
     gf: object = field(init=False)
     gf_w: object = field(init=False)
     a_newton: object = field(init=False)

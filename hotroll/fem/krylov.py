@@ -42,6 +42,8 @@ class PreconditionedGMRES:
     residual of that is above ``rtol`` of r: GMRES's one iteration applies the factors twice
     (issue 34 session 8)."""
 
+    iterative = True
+
     def __init__(self, mat, freedofs):
         import numpy as np
 
@@ -140,9 +142,10 @@ def gmres(mat, pre, freedofs, r, out, rtol: float, w, maxiter: int,
 
 
 def apply_inverse(inv, r, out, rtol: float = TOL, weights=None) -> None:
-    """out = inv^{-1} r for a direct solver's inverse or a ``PreconditionedGMRES`` (to the
-    relative residual ``rtol`` in the norm of the row ``weights``)."""
-    if isinstance(inv, PreconditionedGMRES):
+    """out = inv^{-1} r for a direct solver's inverse or an iterative one (a
+    ``PreconditionedGMRES``, ``amg.BlockAMG``: to the relative residual ``rtol`` in the norm
+    of the row ``weights``)."""
+    if getattr(inv, "iterative", False):
         inv.solve(r, out, rtol, weights)
     else:
         out.data = inv * r
@@ -150,7 +153,7 @@ def apply_inverse(inv, r, out, rtol: float = TOL, weights=None) -> None:
 
 def make_inverse(mat, freedofs, name: str):
     """The inverse of ``mat`` on ``freedofs`` by the solver ``name`` (an NGSolve direct
-    solver's name or ``NAME``)."""
+    solver's name or ``NAME``; the AMG solver is ``amg.make_inverse``'s)."""
     if name == NAME:
         return PreconditionedGMRES(mat, freedofs)
     return mat.Inverse(freedofs, inverse=name)

@@ -41,8 +41,9 @@ from typing import Callable, Protocol
 
 import numpy as np
 
+from hotroll.fem.amg import make_inverse
 from hotroll.fem.forms import NonlinearProblem
-from hotroll.fem.krylov import PreconditionedGMRES, apply_inverse, gmres, make_inverse
+from hotroll.fem.krylov import apply_inverse, gmres
 from hotroll.fem.reproducible import parallel
 
 
@@ -180,7 +181,7 @@ def _linear_step(form, problem, ws, stats, residual_ready: bool = False,
     rnorm = max(ws.norm(ws.r), 1e-300)
     cached = problem.inverses.get(id(jacobian))
     reuse = getattr(problem, "reuse_steps", 0)
-    if (cached is not None and reuse > 0 and not isinstance(cached, PreconditionedGMRES)
+    if (cached is not None and reuse > 0 and not getattr(cached, "iterative", False)
             and _reuse_and_solve(cached, jacobian, problem, ws, rnorm, rtol, reuse)):
         stats.reused += 1
     elif not (cached is not None and _update_and_solve(cached, jacobian, ws, rnorm, rtol,
@@ -188,7 +189,8 @@ def _linear_step(form, problem, ws, stats, residual_ready: bool = False,
         for name in problem.linear_solvers:
             try:
                 stats.factorisations += 1
-                inv = make_inverse(jacobian.mat, problem.freedofs, name)
+                inv = make_inverse(jacobian.mat, problem.freedofs, name,
+                                   getattr(problem, "layout", None))
             except Exception:  # noqa: BLE001 - NGSolve raises plain exceptions (zero pivot, no MKL)
                 continue
             if _accurate(inv, jacobian, ws, rnorm, rtol):

@@ -25,6 +25,7 @@ import time
 
 import numpy as np
 
+from hotroll.fem import amg
 from hotroll.fem.extruded_mesh import LayerCopy, extrude, width_axis
 from hotroll.fem.forms import LINEAR_SOLVERS
 from hotroll.fem.lateral_face import LateralFace
@@ -54,6 +55,11 @@ STRAIN_MODES = ("transported", "frozen")
 REUSE_STEPS = 12
 REUSE_FROM = 60_000
 
+#: the 3D strip's linear solvers: the 2D pass's, and GMRES with smoothed-aggregation AMG
+#: (``fem/amg.py``: no factorisation of the whole Jacobian, for meshes whose factors do not
+#: fit; slower where they do)
+LINEAR_SOLVERS_3D = LINEAR_SOLVERS + (amg.NAME,)
+
 
 class Spread3D:
     """The 3D quarter strip of the solved 2D ``SteadyRun`` ``run`` for a stock of half width
@@ -70,7 +76,7 @@ class Spread3D:
     ``ends``: with unilateral contact and the tops per level, each width level's contact end
     found from its own pressure (``solvers/spread_ends.py``; False, or ``tops=False``: the 2D
     pass's end in every level).
-    ``linear_solver``: Newton's first linear solver (``fem/forms.LINEAR_SOLVERS``; the other
+    ``linear_solver``: Newton's first linear solver (``LINEAR_SOLVERS_3D``; the 2D pass's
     after it where it fails). ``strain``: a strain-dependent flow stress's strain carried
     through the 3D flow ("transported", with a free edge) or the 2D pass's ("frozen").
     ``reuse_steps``: GMRES iterations a Newton direction may take on the kept factors of an
@@ -87,8 +93,8 @@ class Spread3D:
         t0 = time.perf_counter()
         if not half_width > 0.0:
             raise ValueError(f"half_width = {half_width!r} m: must be > 0")
-        if linear_solver not in LINEAR_SOLVERS:
-            raise ValueError(f"linear_solver = {linear_solver!r}: one of {LINEAR_SOLVERS}")
+        if linear_solver not in LINEAR_SOLVERS_3D:
+            raise ValueError(f"linear_solver = {linear_solver!r}: one of {LINEAR_SOLVERS_3D}")
         if strain not in STRAIN_MODES:
             raise ValueError(f"strain = {strain!r}: one of {STRAIN_MODES}")
         problem, f2 = run.problem, run.form
@@ -134,6 +140,9 @@ class Spread3D:
         # the chosen solver first, the others after it where it fails (fem/nonlinear.py)
         f3.nonlinear.linear_solvers = (linear_solver,) + tuple(
             n for n in LINEAR_SOLVERS if n != linear_solver)
+        if linear_solver == amg.NAME:
+            f3.nonlinear.layout = amg.VelocityLayout(
+                f3.fes.components[0].ndof, np.array([v.point for v in self.mesh.vertices]))
         if reuse_steps is None:
             reuse_steps = REUSE_STEPS if f3.fes.ndof >= REUSE_FROM else 0
         f3.nonlinear.reuse_steps = reuse_steps

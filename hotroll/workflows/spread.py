@@ -18,6 +18,7 @@ def solve_spread(case: Case, run, progress=None) -> SpreadResult:
     edge, growth, largest = case.spread.layers(half, case.mesh.h)
     s3 = Spread3D(run, half, edge=edge, growth=growth, largest=largest,
                   zone=case.spread.edge_zone and case.spread.modelled(half),
-                  strain=case.spread.strain, entry_temperature=entry_section(case))
+                  strain=case.spread.strain, entry_temperature=entry_section(case),
+                  linear_solver=case.spread.linear_solver)
     s3.solve(max_rounds=case.spread.max_rounds, progress=progress)
     return spread_record(s3)
