@@ -1,42 +1,7 @@
 """Algebraic study of block preconditioners for the 3D strip's Newton Jacobian (scipy)."""
-import sys, time
-sys.path.insert(0, "/work/main/scripts"); sys.path.insert(0, "/work/main/benchmarks")
-import numpy as np, scipy.sparse as sp, scipy.sparse.linalg as sla
-import ngsolve as ng
-from bench_3d import two_d, SIZES
-from hotroll.solvers.spread_3d import Spread3D
-from hotroll.fem.nonlinear import _Workspace
-exec(open(__import__("pathlib").Path(__file__).with_name("pform.py")).read())   # precond_form(f3, gf, cmul, cp, parts)
-
-ng.SetNumThreads(1)
-case = sys.argv[1]; size = sys.argv[2]
-run, half, status, wall = two_d(case)
-h = run.problem.h; e, l = SIZES[size]
-s3 = Spread3D(run, half, edge=e * h, largest=l * h)
-f3 = s3.form; nl = f3.nonlinear; gf = nl.gf
-if "--solved" in sys.argv: s3.solve()
-ws = _Workspace(nl)
-f3._prepare_duals(2)
-nl.a_newton.Apply(gf.vec, ws.r)
-nl.a_jacobian.Assemble()
-def tosp(m):
-    r, c, v = m.COO(); n = m.height
-    return sp.csr_matrix((np.array(v), (np.array(r), np.array(c))), shape=(n, n))
-J = tosp(nl.a_jacobian.mat)
-free = np.array(list(nl.freedofs), dtype=bool)
-nu = f3.fes.components[0].ndof if hasattr(f3.fes.components[0], "ndof") else None
-# the product space ((V x Q) x L): offsets
-comps = f3.fes.components; print([c.ndof for c in comps]); V, Q = comps[0], comps[1]
-nV, nQ = V.ndof, Q.ndof
-idx = np.arange(J.shape[0])
-iu = idx[:nV][free[:nV]]; ip = idx[nV:nV + nQ][free[nV:nV + nQ]]; il = idx[nV + nQ:][free[nV + nQ:]]
-print("ndof", J.shape[0], "free u p lam", len(iu), len(ip), len(il))
-allf = np.concatenate([iu, ip, il])
-Jf = J[allf][:, allf].tocsc()
-b = ws.r.FV().NumPy()[allf].copy()
-w = ws.weights()[allf]
-nu_, np_, nl_ = len(iu), len(ip), len(il)
-A = Jf[:nu_, :nu_].tocsc(); B = Jf[nu_:, :nu_].tocsc(); Bt = Jf[:nu_, nu_:].tocsc(); C = Jf[nu_:, nu_:].tocsc()
+import sys
+HERE = __file__
+exec(open(__import__("pathlib").Path(HERE).with_name("system.py")).read())
 
 import pyamg, scipy.linalg as sl
 Ssim = (C - B @ sp.diags(1.0 / A.diagonal()) @ Bt).tocsc()
@@ -59,25 +24,6 @@ modes += [rot(0, 1), rot(0, 2), rot(1, 2)]
 Bn = np.array(modes).T[iu]
 Bn = Bn[:, np.linalg.norm(Bn, axis=0) > 0]
 As = (0.5 * (A + A.T)).tocsr()
-def test(name, ml):
-    its = [0]
-    def cb(rk): its[0] += 1
-    M = ml.aspreconditioner(cycle="V")
-    bu = np.random.default_rng(0).standard_normal(nu_)
-    t = time.perf_counter()
-    x, info = sla.gmres(A, bu, M=M, rtol=1e-6, restart=300, maxiter=1, callback=cb, callback_type="pr_norm")
-    tA = time.perf_counter() - t
-    def tri(x):
-        y2 = Slu.solve(x[nu_:])
-        y1 = M @ (x[:nu_] - Bt @ y2)
-        return np.concatenate([y1, y2])
-    its2 = [0]
-    def cb2(rk): its2[0] += 1
-    Wop = sla.LinearOperator(Jf.shape, matvec=lambda x: w * (Jf @ (tri(x / w))))
-    t = time.perf_counter()
-    x, info2 = sla.gmres(Wop, w * b, rtol=1e-6, restart=300, maxiter=1, callback=cb2, callback_type="pr_norm")
-    print(f"{name}: A {its[0]} its ({tA:.1f} s); J tri+SIMPLE {its2[0]} its ({time.perf_counter()-t:.1f} s) levels {len(ml.levels)} cx {ml.operator_complexity():.2f}")
-
 # interleaved (node-blocked) velocity: index 3 i + c; fixed DOFs kept as identity rows
 Afull = J[:V.ndof][:, :V.ndof].tocsr()
 fixed = ~free[:V.ndof]
