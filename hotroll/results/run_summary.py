@@ -31,7 +31,13 @@ from hotroll.results.neutral import decide
 from hotroll.results.outcome import conservation_problem, contact_problem, exit_code, leak_to_slip
 from hotroll.results.output import write_csv, write_json, write_npz
 from hotroll.results.roll_figures import roll_figures
-from hotroll.results.spread_summary import spread_figures, unsettled, write_spread_files, zone_warning
+from hotroll.results.spread_summary import (
+    formula_warning,
+    spread_figures,
+    unsettled,
+    write_spread_files,
+    zone_warning,
+)
 from hotroll.results.summary import Summary
 from hotroll.results.units import UNITS
 
@@ -156,9 +162,10 @@ def write_results(case: Case, sol: Solution, out: Path, wall: float,
     shift_positions(summary, shift)
     if sol.spread is not None:          # the 3D pass across the width ([spread])
         summary.update(spread_figures(case, sol.spread, summary["roll_force"]))
-        cut = zone_warning(sol.spread)
-        if cut:
-            summary["warnings"] = [*(summary.get("warnings") or []), cut]
+        said = [zone_warning(sol.spread),
+                formula_warning(case.pass_.back_tension, case.pass_.front_tension)]
+        if any(said):
+            summary["warnings"] = [*(summary.get("warnings") or []), *filter(None, said)]
         write_spread_files(out, sol.spread, shift, case.output.vtk)
     summary["leak_to_slip"] = leak_to_slip(summary)
     overlaps = [c.overlap for c in sol.contacts if c.overlap is not None]

@@ -49,6 +49,18 @@ def spread_figures(case, sp: SpreadResult, roll_force: float) -> dict:
 CUT_DEVIATION = 0.05
 
 
+def formula_warning(back: float, front: float) -> str | None:
+    """What the formulas' spreads say beside a pass with tension (``back``, ``front``: Pa), or
+    None: Hill's, Sparling's and Wusatowski's have no tension term, and tension narrows the
+    spread (docs/notes/issue53-sweep.md: 10 and 20 MPa on the bundled narrow bar, 24 % less
+    spread, below all three)."""
+    if back == 0.0 and front == 0.0:
+        return None
+    return (f"spread_hill, spread_sparling, spread_wusatowski: the formulas have no tension "
+            f"term; with back and front tension {back / 1e6:.3g} and {front / 1e6:.3g} MPa the "
+            "3D spread lies below them (tension narrows the spread)")
+
+
 def zone_warning(sp: SpreadResult) -> str | None:
     """What an edge zone whose cut is not in plane strain says, or None."""
     dev = sp.midplane["midplane_pressure_rms_deviation"]

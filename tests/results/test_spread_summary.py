@@ -8,7 +8,12 @@ import pytest
 from hotroll.config.case import load_case
 from hotroll.model.spread_result import SpreadResult
 from hotroll.results.outcome import conservation_problem, exit_code
-from hotroll.results.spread_summary import spread_figures, unsettled, zone_warning
+from hotroll.results.spread_summary import (
+    formula_warning,
+    spread_figures,
+    unsettled,
+    zone_warning,
+)
 
 CASE = {"pass.roll_radius": 0.25, "pass.entry_thickness": 0.01, "pass.exit_thickness": 0.008,
         "pass.roll_angular_velocity": 4.0, "mesh.h_contact": 1e-3, "solver.method": "steady",
@@ -82,3 +87,13 @@ def test_an_edge_zone_whose_cut_is_not_plane_strain_is_warned_about():
         "midplane_pressure_rms_deviation": 0.39}))
     assert text.startswith("spread.edge_zone: the cut is not in plane strain (the 3D pressure "
                            "on it 0.39 RMS")
+
+
+def test_the_formulas_beside_a_pass_with_tension_are_warned_about():
+    """[plumb] Hill's, Sparling's and Wusatowski's spreads have no tension term: with back or
+    front tension a warning names them and the tensions in MPa; without, none."""
+    assert formula_warning(0.0, 0.0) is None
+    text = formula_warning(1e7, 0.0)
+    assert text.startswith("spread_hill, spread_sparling, spread_wusatowski: the formulas have "
+                           "no tension term; with back and front tension 10 and 0 MPa")
+    assert "0 and 20 MPa" in formula_warning(0.0, 2e7)
