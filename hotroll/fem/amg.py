@@ -139,11 +139,13 @@ class BlockAMG:
 
     def solve(self, r, out, rtol: float, weights=None) -> None:
         """out = A^{-1} r to the relative residual ``rtol`` in the norm of the row ``weights``
-        (default 1 on the free rows), or NaN where GMRES did not reach it in ``MAX_STEPS``."""
+        (default 1 on the free rows). Where GMRES stops short of it (``MAX_STEPS``) out is its
+        last iterate, NaN after a breakdown: Newton's accuracy test refuses either."""
         w = self._free.astype(float) if weights is None else np.where(self._free, weights, 0.0)
+        pre = _Operator(self._apply, r)
         with _sequential():
-            self.iterations = krylov.gmres(self.mat, _Operator(self._apply, r), self._freedofs, r, out,
-                                    rtol, w, MAX_STEPS)
+            self.iterations = krylov.gmres(self.mat, pre, self._freedofs, r, out, rtol, w,
+                                           MAX_STEPS)
 
 
 def _Operator(apply, like):                            # noqa: N802 - a BaseMatrix's factory
