@@ -146,25 +146,11 @@ def test_a_3d_pass_without_the_contact_start_refined_is_warned():
     assert lines({**plane, **one}) == []
 
 
-def test_the_3d_linear_solver_is_taken_from_the_case_and_checked(monkeypatch):
-    """[plumb] ``spread.linear_solver``: UMFPACK by default, "amg+gmres" handed to the 3D pass
-    (``workflows/spread.solve_spread``), anything else refused naming the key."""
-    import hotroll.workflows.spread as workflow
-
+def test_the_3d_linear_solver_is_read_and_checked():
+    """[plumb] ``spread.linear_solver``: UMFPACK by default, "amg+gmres" taken, anything else
+    refused naming the key (tests/workflows/test_spread_run.py: it reaches the 3D pass)."""
     assert load_case(BASE, STEADY).spread.linear_solver == "umfpack"
     case = load_case(BASE, {**STEADY, "spread.linear_solver": "amg+gmres"})
-    seen = {}
-
-    class Stop(Exception):
-        pass
-
-    def spread_3d(run, half, **kw):
-        seen.update(kw)
-        raise Stop
-
-    monkeypatch.setattr(workflow, "Spread3D", spread_3d)
-    with pytest.raises(Stop):
-        workflow.solve_spread(case, run=None)
-    assert seen["linear_solver"] == "amg+gmres"
+    assert case.spread.linear_solver == "amg+gmres"
     with pytest.raises(CaseError, match="spread.linear_solver"):
         load_case(BASE, {**STEADY, "spread.linear_solver": "mumps"})

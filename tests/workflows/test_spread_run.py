@@ -182,10 +182,9 @@ def test_the_cases_strain_mode_reaches_the_3d_pass(monkeypatch, mode):
     assert seen["entry_temperature"] is None
 
 
-def test_the_cases_entry_temperature_across_the_width_reaches_the_3d_pass(monkeypatch):
-    """[plumb] ``spread.temperature_profile`` (and ``spread.temperature_section``) is the 3D
-    pass's ``entry_temperature``, over the cross-section: the profile across the width added
-    to the plate's through the thickness (the pass itself faked)."""
+def _handed(case, monkeypatch) -> dict:
+    """The keywords ``workflows/spread.solve_spread`` hands the 3D pass of ``case`` (the pass
+    faked: it records them and stops)."""
     from hotroll.workflows import spread
 
     seen = {}
@@ -198,18 +197,30 @@ def test_the_cases_entry_temperature_across_the_width_reaches_the_3d_pass(monkey
         raise Stop
 
     monkeypatch.setattr(spread, "Spread3D", fake)
-    case = load_case("hotroll/examples/cases/example1.toml", {
-        **CASE, "material.law": "hensel-spittel", "material.grade": "C45", "material.m": None,
-        "material.K": None, "spread.temperature_profile": [[0.0, 1373.15], [1.0, 1273.15]]})
     with pytest.raises(Stop):
         spread.solve_spread(case, run=None)
-    f = seen["entry_temperature"]
+    return seen
+
+
+def test_the_cases_entry_temperature_across_the_width_reaches_the_3d_pass(monkeypatch):
+    """[plumb] ``spread.temperature_profile`` (and ``spread.temperature_section``) is the 3D
+    pass's ``entry_temperature``, over the cross-section: the profile across the width added
+    to the plate's through the thickness (the pass itself faked)."""
+    grade = {**CASE, "material.law": "hensel-spittel", "material.grade": "C45",
+             "material.m": None, "material.K": None}
+    case = load_case("hotroll/examples/cases/example1.toml", {
+        **grade, "spread.temperature_profile": [[0.0, 1373.15], [1.0, 1273.15]]})
+    f = _handed(case, monkeypatch)["entry_temperature"]
     assert float(f(0.0, 0.0)) == 1373.15 and float(f(0.7, 0.5)) == pytest.approx(1323.15)
     section = {"eta": [0.0, 1.0], "zeta": [0.0, 1.0],
                "values": [[1373.15, 1300.0], [1373.15, 1250.0]]}
     case = load_case("hotroll/examples/cases/example1.toml", {
-        **CASE, "material.law": "hensel-spittel", "material.grade": "C45", "material.m": None,
-        "material.K": None, "spread.temperature_section": section})
-    with pytest.raises(Stop):
-        spread.solve_spread(case, run=None)
-    assert seen["entry_temperature"].to_dict() == section
+        **grade, "spread.temperature_section": section})
+    assert _handed(case, monkeypatch)["entry_temperature"].to_dict() == section
+
+
+def test_the_cases_linear_solver_reaches_the_3d_pass(monkeypatch):
+    """[plumb] ``spread.linear_solver`` is the 3D pass's ``linear_solver`` (the pass faked)."""
+    case = load_case("hotroll/examples/cases/example1.toml",
+                     {**CASE, "spread.linear_solver": "amg+gmres"})
+    assert _handed(case, monkeypatch)["linear_solver"] == "amg+gmres"
