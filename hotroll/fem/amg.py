@@ -121,10 +121,10 @@ class BlockAMG:
                 smooth=("jacobi", {"weighting": "local"}), max_coarse=500)
             self._cycle = self._amg.aspreconditioner(cycle="V")
             iu, is_ = self._iu, self._is
-            Au = J[iu][:, iu]
             self._bt = J[iu][:, is_].tocsr()
-            b = J[is_][:, iu].tocsr()
-            schur = J[is_][:, is_] - b @ sp.diags(1.0 / Au.diagonal()) @ self._bt
+            rows = J[is_]
+            schur = (rows[:, is_]
+                     - rows[:, iu] @ sp.diags(1.0 / J.diagonal()[iu]) @ self._bt)
             self._schur = sla.splu(schur.tocsc())
 
     def _apply(self, x: np.ndarray) -> np.ndarray:
