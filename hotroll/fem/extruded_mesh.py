@@ -156,10 +156,12 @@ class LayerCopy:
         vec3d[:] = 0.0
         vec3d[d3] = vec2d[d2] if scale is None else np.asarray(scale)[layer] * vec2d[d2]
 
-    def per_layer(self, space2d, vecs2d, space3d, vec3d) -> None:
+    def per_layer(self, space2d, vecs2d, space3d, vec3d, z=None, where=None) -> None:
         """vec3d = a 2D field of its own in each layer (``vecs2d``: one vector of ``space2d``
         per layer, z_0 first), linear in z between two layers; zero elsewhere (a field whose
-        shape changes across the width: the contact and the top per layer, issue 53 stage 3)."""
+        shape changes across the width: the contact and the top per layer, issue 53 stage 3).
+        With the layers' ``z``: quadratic in z inside each layer instead (``spine_bubbles``),
+        at the 2D DOFs ``where`` (a mask; default all)."""
         layer, d3, d2 = self.indices(space2d, space3d)
         stack = np.asarray(vecs2d, dtype=float)
         if stack.shape[0] != self.layers + 1:
@@ -167,6 +169,37 @@ class LayerCopy:
                              f"{self.layers + 1} layers")
         vec3d[:] = 0.0
         vec3d[d3] = stack[layer, d2]
+        if z is not None and self.layers > 1:
+            layer, d3, d2 = self.spine_indices(space2d, space3d)
+            bubbles = spine_bubbles(np.asarray(z, dtype=float), stack)
+            if where is not None:
+                bubbles[:, ~np.asarray(where, dtype=bool)] = 0.0
+            vec3d[d3] = bubbles[layer, d2]
+
+    def spine_indices(self, space2d, space3d) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(layer, 3D DOF, 2D DOF) of the DOFs across a layer: an edge across layer k above
+        a 2D vertex, a quadrilateral face of layer k above a 2D edge (cached)."""
+        from ngsolve import EDGE, FACE, VERTEX, NodeId
+
+        key = ("spine", id(space2d), id(space3d))
+        hit = self._cache.get(key)
+        if hit is None:
+            nv, nodes = self.nv2, []
+            for e in self._mesh3.edges:
+                a, b = sorted(v.nr for v in e.vertices)
+                if b - a == nv:
+                    nodes.append((a // nv, NodeId(EDGE, e.nr), NodeId(VERTEX, a % nv)))
+            for f in self._mesh3.faces:
+                vs = sorted(v.nr for v in f.vertices)
+                if len(vs) == 4:
+                    nodes.append((vs[0] // nv, NodeId(FACE, f.nr),
+                                  NodeId(EDGE, self._flat[(vs[0] % nv, vs[1] % nv)])))
+            rows = [(k, a, b) for k, n3, n2 in nodes
+                    for a, b in zip(space3d.GetDofNrs(n3), space2d.GetDofNrs(n2))
+                    if a >= 0 and b >= 0]
+            arr = np.array(rows, dtype=np.int64).reshape(-1, 3)
+            hit = self._cache[key] = (arr[:, 0], arr[:, 1], arr[:, 2], space2d, space3d)
+        return hit[:3]
 
     def take(self, layer: int, space3d, vec3d, space2d, vec2d) -> None:
         """vec2d = the 3D field's values in ``layer`` (its nodes' DOFs)."""
@@ -231,3 +264,28 @@ class LayerCopy:
             if len(vs) == 4 and len(low) == 2:
                 edge = NodeId(EDGE, self._flat[tuple(sorted(low))])
                 vec3d[space3d.GetDofNrs(el)[0]] = vec2d[space2d.GetDofNrs(edge)[0]]
+
+
+#: NGSolve's order-2 H1 bubble of an edge (-t (1 - t) / 2) at the edge's midpoint; the bubble
+#: of a prism's quadrilateral face is the bubble of its edge in the layer times that of the
+#: edge across it
+_BUBBLE_MID = -0.125
+
+
+def spine_bubbles(z: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """The across-layer bubble coefficients (one row per layer) that make fields given per
+    layer (``values``: one row per z) quadratic in z inside each layer, through the value at
+    the layer's midpoint that the quadratics through three neighbouring layers give (the mean
+    of the two where both exist: the cubic's at equal spacing)."""
+    n = len(z) - 1
+    out = np.zeros((n,) + values.shape[1:])
+    for k in range(n):
+        zm, mids = 0.5 * (z[k] + z[k + 1]), []
+        for trio in ((k - 1, k, k + 1), (k, k + 1, k + 2)):
+            if trio[0] < 0 or trio[2] > n:
+                continue
+            w = [np.prod([(zm - z[j]) / (z[i] - z[j]) for j in trio if j != i]) for i in trio]
+            mids.append(sum(wi * values[i] for wi, i in zip(w, trio)))
+        if mids:
+            out[k] = (sum(mids) / len(mids) - 0.5 * (values[k] + values[k + 1])) / _BUBBLE_MID
+    return out

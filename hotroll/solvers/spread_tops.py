@@ -19,6 +19,10 @@ import numpy as np
 from hotroll.fem.free_surface import kinematic_update
 from hotroll.solvers.steady_settings import default_lengths
 
+#: the levels' maps quadratic in z between levels (``LevelTops.displace``); False: linear, the
+#: map before 2026-11-30 (kept to measure against: docs/validation/spread_3d.md, "Mass flux")
+CURVED = True
+
 
 class LevelTops:
     """The strip's shape per width level of the ``Spread3D`` ``s3`` (module docstring)."""
@@ -30,6 +34,8 @@ class LevelTops:
         self.d2 = np.tile(run.d, (self.levels, 1))           # each level's 2D displacement
         V2 = run.disp.space
         self._V2, self._n2 = V2, V2.ndof // 2
+        #: the 2D DOFs ahead of the bite in the reference mesh (``displace``)
+        self._entry = run.map.P[:, 0] <= run.problem.rp.x_touch
 
     def _nodes(self, vec2: np.ndarray) -> np.ndarray:
         """A 2D P2 vector field (its first 2 n2 entries) at the top's vertices, then its edge
@@ -110,13 +116,17 @@ class LevelTops:
         return ((xy[:, 1] - xy1[:, 1]) - dydx * (xy[:, 0] - xy1[:, 0])) / dz
 
     def displace(self, disp3d) -> None:
-        """The x and y parts of the extruded mesh's displacement: each level's 2D one."""
+        """The x and y parts of the extruded mesh's displacement: each level's 2D one,
+        quadratic in z between levels (``LayerCopy.per_layer``); the x part only ahead of
+        the bite, where the map's x depends on the contact's start alone, linear in z on the
+        arc and after it (the ends' per-level search, module ``spread_ends``)."""
         V3 = disp3d.space
         n3, n2 = V3.ndof // 3, self._n2
         vec = disp3d.vec.FV().NumPy()
-        for c in range(2):
+        for c, where in enumerate((self._entry, None)):
             self.s3.copy.per_layer(self._V2.components[c], self.d2[:, c * n2:(c + 1) * n2],
-                                   V3.components[c], vec[c * n3:(c + 1) * n3])
+                                   V3.components[c], vec[c * n3:(c + 1) * n3],
+                                   z=self.s3.z if CURVED else None, where=where)
 
     def contact_starts(self) -> np.ndarray:
         """x_c of every level (m, the solver's frame)."""

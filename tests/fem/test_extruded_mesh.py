@@ -252,6 +252,50 @@ def test_a_field_of_its_own_in_each_layer_is_linear_in_z_between_them():
         copy.per_layer(s2, f[:2], s3, h.vec.FV().NumPy())
 
 
+def test_with_the_layers_z_a_field_quadratic_in_z_is_carried_exactly():
+    """[hand] fields f_k = a + b z_k + c z_k^2 (a, b, c P2 fields of the 2D mesh) on unequal
+    layers: with ``z`` the 3D field equals a + b z + c z^2 everywhere (L2 error at rounding;
+    linear between layers it is off by c (z - z_k)(z - z_k+1)); ``where`` keeps a DOF linear;
+    at equal spacing the midpoint where two quadratics exist is the cubic's."""
+    import ngsolve as ng
+
+    from hotroll.fem.extruded_mesh import LayerCopy, spine_bubbles
+    from hotroll.fem.reproducible import fe_space
+
+    m2 = structured_triangle_mesh(np.linspace(0.0, 2.0, 5), np.linspace(0.0, 1.0, 3))
+    z = np.array([0.0, 0.7, 1.1, 1.3, 1.4])
+    m3 = extrude(m2, z)
+    s2, s3 = fe_space(ng.H1, m2, order=2), fe_space(ng.H1, m3, order=2)
+    g = ng.GridFunction(s2)
+
+    def exact(zz):
+        return (ng.x * ng.x + ng.y) * (1.0 + 2.0 * zz - 3.0 * zz * zz) + ng.x * ng.y * zz
+
+    f = []
+    for zk in z:
+        g.Set(exact(float(zk)))
+        f.append(g.vec.FV().NumPy().copy())
+    copy, h = LayerCopy(m2, m3), ng.GridFunction(s3)
+    copy.per_layer(s2, f, s3, h.vec.FV().NumPy(), z=z)
+    assert ng.Integrate((h - exact(ng.z)) ** 2, m3, order=8) ** 0.5 < 1e-13
+    copy.per_layer(s2, f, s3, h.vec.FV().NumPy())
+    assert ng.Integrate((h - exact(ng.z)) ** 2, m3, order=8) ** 0.5 > 1e-2
+    # only a mask's DOFs curved: the others linear in z
+    keep = np.zeros(s2.ndof, dtype=bool)
+    copy.per_layer(s2, f, s3, h.vec.FV().NumPy(), z=z, where=keep)
+    lin = h.vec.FV().NumPy().copy()
+    copy.per_layer(s2, f, s3, h.vec.FV().NumPy())
+    assert lin == pytest.approx(h.vec.FV().NumPy(), abs=0.0)
+    # the midpoint value the bubbles give (the chord's middle less 1/8 of the bubble): at
+    # equal spacing the cubic's where two quadratics exist, z^3 exact inside, not at the ends
+    zu = np.arange(5.0)
+    cube = (zu ** 3)[:, None]
+    mid = (0.5 * (cube[:-1] + cube[1:]) - 0.125 * spine_bubbles(zu, cube))[:, 0]
+    zm = 0.5 * (zu[:-1] + zu[1:])
+    assert mid[1:-1] == pytest.approx(zm[1:-1] ** 3, rel=1e-14)
+    assert abs(mid[0] - zm[0] ** 3) > 0.1 and abs(mid[-1] - zm[-1] ** 3) > 0.1
+
+
 def test_a_scalar_field_is_the_same_in_every_layer_h1_and_per_element():
     """[hand] ``LayerCopy.scalar``: a P2 field and a P0 one (each triangle its own value) carried
     onto the extrusion equal the 2D field at the same (x, y) in every layer (the prisms of
