@@ -7,7 +7,7 @@ own 2D strip shape (``fem/free_surface.StripShape``: the traced tops and the con
 x_c(z_k)), traced by the 2D pass's own ``kinematic_update`` with the level's velocity, its u_y
 less the share of the flow across the level, (u_z - u_x z_k') dY/dz (``LevelTops.update``); the
 2D pass's ``StripMap`` maps the reference mesh onto each level's shape, and the 3D mesh's x and
-y displacement is each level's, linear in z between two (``LayerCopy.per_layer``). The contact
+y displacement is each level's, quadratic in z between them (``LevelTops.displace``). The contact
 is the reference arc in every level (the map stretches it between x_c(z) and the contact's
 end x_e(z): the level's own with unilateral contact, ``solvers/spread_ends.py``, else the 2D
 pass's).
@@ -34,8 +34,10 @@ class LevelTops:
         self.d2 = np.tile(run.d, (self.levels, 1))           # each level's 2D displacement
         V2 = run.disp.space
         self._V2, self._n2 = V2, V2.ndof // 2
-        #: the 2D DOFs ahead of the bite in the reference mesh (``displace``)
-        self._entry = run.map.P[:, 0] <= run.problem.rp.x_touch
+        #: the 2D DOFs ahead of the bite in the reference mesh, the contact's start with them
+        #: (its x is x_c: ``displace``; a tolerance of 1e-6 h, not the last bit of x_touch,
+        #: decides, so the frame does not)
+        self._entry = run.map.P[:, 0] <= run.map.rp.x_touch + 1e-6 * run.problem.h
 
     def _nodes(self, vec2: np.ndarray) -> np.ndarray:
         """A 2D P2 vector field (its first 2 n2 entries) at the top's vertices, then its edge
