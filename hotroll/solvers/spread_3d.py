@@ -35,7 +35,7 @@ from hotroll.fem.reproducible import integrate
 from hotroll.fem.rolling_form_3d import RollingForm3D
 from hotroll.fem.strain import CarriedField
 from hotroll.model.material import NortonHoff
-from hotroll.solvers.spread_contact import level_contact, plane_contact
+from hotroll.solvers.spread_contact import level_contact, plane_contact, read_at
 from hotroll.solvers.spread_ends import LevelEnds
 from hotroll.solvers.spread_fields import cooled_flow_stress, frozen_flow_stress, strain_3d
 from hotroll.solvers.spread_tops import LevelTops
@@ -373,11 +373,11 @@ class Spread3D:
         # the contact pressure on the arc at mid-width (level 0, as the 2D pass reads its own:
         # solvers/spread_contact.py) against the 2D pass's at the same x: what the roll feels,
         # the bite only. The level's own contact start and end move its vertices along the
-        # arc, so the 3D pressure is read at the 2D vertices' x (linear between its own; 0
-        # where the 3D contact has not begun or has ended)
+        # arc, so the 3D pressure is read at the 2D vertices' x (``spread_contact.read_at``)
         two, lev = plane_contact(self.run2d), level_contact(self)
         c2 = two["traction"]
-        c3 = np.interp(two["x"], lev["x"][0], lev["traction"][0], left=0.0, right=0.0)
+        c3 = read_at(two["x"], lev["x"][0], lev["traction"][0],
+                     self.run2d.s.surface_tol * self.problem.h)
         out["midplane_contact_pressure_deviation"] = float(np.abs(c3 - c2).max()
                                                            / np.abs(c2).max())
         out["midplane_contact_pressure_rms_deviation"] = float(

@@ -48,3 +48,17 @@ def level_contact(s3) -> dict:
     traction = np.array([nodal_traction(X[k, :, :2], p[k], ones) for k in range(levels)])
     return {"x": X[..., 0], "y": X[..., 1], "z": X[..., 2], "multiplier": p,
             "traction": traction}
+
+
+def read_at(x: np.ndarray, level_x: np.ndarray, level_traction: np.ndarray,
+            tol: float) -> np.ndarray:
+    """A level's contact pressure at the points ``x`` (m): linear between its vertices
+    (``level_x``, increasing), 0 outside its contact, but its first or last value within
+    ``tol`` (m, the surfaces' tolerance: the contact's ends are known to no better) before its
+    start or after its end: a start 0.3 um behind the 2D pass's had read the corner's peak as
+    0 (the roughing pass's mid-width, 18.6 % off in L2 for 0.80 %)."""
+    x = np.asarray(x, dtype=float)
+    out = np.interp(x, level_x, level_traction, left=0.0, right=0.0)
+    out[(x < level_x[0]) & (x >= level_x[0] - tol)] = level_traction[0]
+    out[(x > level_x[-1]) & (x <= level_x[-1] + tol)] = level_traction[-1]
+    return out

@@ -295,6 +295,18 @@ def test_the_top_traced_per_level_leaks_near_what_the_2d_pass_leaks():
     assert shift[0] > 0.0 and shift[-1] == shift.max()
 
 
+def test_a_levels_pressure_is_read_at_the_2d_x_its_ends_to_the_surfaces_tolerance():
+    """[hand] ``read_at``: linear between the level's vertices, 0 outside its contact, but its
+    end values up to ``tol`` before its start or after its end (a start a fraction of a
+    micrometre behind the 2D pass's had read the corner's peak as 0)."""
+    from hotroll.solvers.spread_contact import read_at
+
+    lx, lc = np.array([1.0, 2.0, 3.0]), np.array([9.0, 4.0, 1.0])
+    x = np.array([1.0 - 2e-3, 1.0 - 5e-4, 1.5, 3.0 + 5e-4, 3.0 + 2e-3])
+    assert read_at(x, lx, lc, 1e-3).tolist() == [0.0, 9.0, 6.5, 1.0, 0.0]
+    assert read_at(x, lx, lc, 0.0).tolist() == [0.0, 0.0, 6.5, 0.0, 0.0]
+
+
 def test_the_map_quadratic_across_the_width_stops_the_layers_leak(monkeypatch):
     """[measured] Tresca 0.8 on the refined mesh, two width layers (three levels): the top
     between two levels, linear in z, is not the stream surface where the levels' contact
