@@ -20,6 +20,7 @@ import numpy as np
 
 from hotroll.fem.mesh import mesh_triangles
 from hotroll.fem.reproducible import fe_space
+from hotroll.fem.spaces import BUBBLE_MID
 
 #: layer-to-layer growth from the free edge towards mid-width (3d-steady.md: 1.2)
 WIDTH_GROWTH = 1.2
@@ -139,10 +140,15 @@ class LayerCopy:
 
     def indices(self, space2d, space3d) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(layer, 3D DOF, 2D DOF) arrays of the scalar spaces' matching DOFs (cached)."""
-        key = (id(space2d), id(space3d))
+        return self._rows((id(space2d), id(space3d)), lambda: self.nodes, space2d, space3d)
+
+    def _rows(self, key, nodes, space2d, space3d):
+        """(layer, 3D DOF, 2D DOF) of the matching DOFs of the (layer, 3D node, 2D node)
+        triples ``nodes()``, cached under ``key`` (the spaces are kept with them: their ids
+        stay theirs)."""
         hit = self._cache.get(key)
         if hit is None:
-            rows = [(k, a, b) for k, n3, n2 in self.nodes
+            rows = [(k, a, b) for k, n3, n2 in nodes()
                     for a, b in zip(space3d.GetDofNrs(n3), space2d.GetDofNrs(n2))
                     if a >= 0 and b >= 0]
             arr = np.array(rows, dtype=np.int64).reshape(-1, 3)
@@ -181,25 +187,20 @@ class LayerCopy:
         a 2D vertex, a quadrilateral face of layer k above a 2D edge (cached)."""
         from ngsolve import EDGE, FACE, VERTEX, NodeId
 
-        key = ("spine", id(space2d), id(space3d))
-        hit = self._cache.get(key)
-        if hit is None:
-            nv, nodes = self.nv2, []
+        def nodes():
+            nv, out = self.nv2, []
             for e in self._mesh3.edges:
                 a, b = sorted(v.nr for v in e.vertices)
                 if b - a == nv:
-                    nodes.append((a // nv, NodeId(EDGE, e.nr), NodeId(VERTEX, a % nv)))
+                    out.append((a // nv, NodeId(EDGE, e.nr), NodeId(VERTEX, a % nv)))
             for f in self._mesh3.faces:
                 vs = sorted(v.nr for v in f.vertices)
                 if len(vs) == 4:
-                    nodes.append((vs[0] // nv, NodeId(FACE, f.nr),
-                                  NodeId(EDGE, self._flat[(vs[0] % nv, vs[1] % nv)])))
-            rows = [(k, a, b) for k, n3, n2 in nodes
-                    for a, b in zip(space3d.GetDofNrs(n3), space2d.GetDofNrs(n2))
-                    if a >= 0 and b >= 0]
-            arr = np.array(rows, dtype=np.int64).reshape(-1, 3)
-            hit = self._cache[key] = (arr[:, 0], arr[:, 1], arr[:, 2], space2d, space3d)
-        return hit[:3]
+                    out.append((vs[0] // nv, NodeId(FACE, f.nr),
+                                NodeId(EDGE, self._flat[(vs[0] % nv, vs[1] % nv)])))
+            return out
+
+        return self._rows(("spine", id(space2d), id(space3d)), nodes, space2d, space3d)
 
     def take(self, layer: int, space3d, vec3d, space2d, vec2d) -> None:
         """vec2d = the 3D field's values in ``layer`` (its nodes' DOFs)."""
@@ -266,17 +267,13 @@ class LayerCopy:
                 vec3d[space3d.GetDofNrs(el)[0]] = vec2d[space2d.GetDofNrs(edge)[0]]
 
 
-#: NGSolve's order-2 H1 bubble of an edge (-t (1 - t) / 2) at the edge's midpoint; the bubble
-#: of a prism's quadrilateral face is the bubble of its edge in the layer times that of the
-#: edge across it
-_BUBBLE_MID = -0.125
-
-
 def spine_bubbles(z: np.ndarray, values: np.ndarray) -> np.ndarray:
     """The across-layer bubble coefficients (one row per layer) that make fields given per
     layer (``values``: one row per z) quadratic in z inside each layer, through the value at
     the layer's midpoint that the quadratics through three neighbouring layers give (the mean
-    of the two where both exist: the cubic's at equal spacing)."""
+    of the two where both exist: the cubic's at equal spacing). The bubble of an edge across
+    a layer is NGSolve's order-2 edge bubble (``BUBBLE_MID`` at its midpoint), that of a
+    quadrilateral face the product of its two edges' bubbles."""
     n = len(z) - 1
     out = np.zeros((n,) + values.shape[1:])
     for k in range(n):
@@ -287,5 +284,5 @@ def spine_bubbles(z: np.ndarray, values: np.ndarray) -> np.ndarray:
             w = [np.prod([(zm - z[j]) / (z[i] - z[j]) for j in trio if j != i]) for i in trio]
             mids.append(sum(wi * values[i] for wi, i in zip(w, trio)))
         if mids:
-            out[k] = (sum(mids) / len(mids) - 0.5 * (values[k] + values[k + 1])) / _BUBBLE_MID
+            out[k] = (sum(mids) / len(mids) - 0.5 * (values[k] + values[k + 1])) / BUBBLE_MID
     return out
