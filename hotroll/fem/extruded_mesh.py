@@ -162,12 +162,13 @@ class LayerCopy:
         vec3d[:] = 0.0
         vec3d[d3] = vec2d[d2] if scale is None else np.asarray(scale)[layer] * vec2d[d2]
 
-    def per_layer(self, space2d, vecs2d, space3d, vec3d, z=None, where=None) -> None:
+    def per_layer(self, space2d, vecs2d, space3d, vec3d, z=None, where=None,
+                  mirror: bool = False) -> None:
         """vec3d = a 2D field of its own in each layer (``vecs2d``: one vector of ``space2d``
         per layer, z_0 first), linear in z between two layers; zero elsewhere (a field whose
         shape changes across the width: the contact and the top per layer, issue 53 stage 3).
         With the layers' ``z``: quadratic in z inside each layer instead (``spine_bubbles``),
-        at the 2D DOFs ``where`` (a mask; default all)."""
+        at the 2D DOFs ``where`` (a mask; default all); ``mirror``: even about z_0."""
         layer, d3, d2 = self.indices(space2d, space3d)
         stack = np.asarray(vecs2d, dtype=float)
         if stack.shape[0] != self.layers + 1:
@@ -177,7 +178,7 @@ class LayerCopy:
         vec3d[d3] = stack[layer, d2]
         if z is not None and self.layers > 1:
             layer, d3, d2 = self.spine_indices(space2d, space3d)
-            bubbles = spine_bubbles(np.asarray(z, dtype=float), stack)
+            bubbles = spine_bubbles(np.asarray(z, dtype=float), stack, mirror)
             if where is not None:
                 bubbles[:, ~np.asarray(where, dtype=bool)] = 0.0
             vec3d[d3] = bubbles[layer, d2]
@@ -267,22 +268,40 @@ class LayerCopy:
                 vec3d[space3d.GetDofNrs(el)[0]] = vec2d[space2d.GetDofNrs(edge)[0]]
 
 
-def spine_bubbles(z: np.ndarray, values: np.ndarray) -> np.ndarray:
+#: a trio of levels gives a layer's midpoint only where the sum of its quadratic's weights'
+#: magnitudes there stays below this (1.25 at equal spacing, 1.67 beside a layer twice as
+#: wide): a layer much wider than its neighbours (an edge zone's interior) is not given the
+#: neighbours' gradient extrapolated across it
+WEIGHT_LIMIT = 2.0
+
+
+def spine_bubbles(z: np.ndarray, values: np.ndarray, mirror: bool = False) -> np.ndarray:
     """The across-layer bubble coefficients (one row per layer) that make fields given per
     layer (``values``: one row per z) quadratic in z inside each layer, through the value at
     the layer's midpoint that the quadratics through three neighbouring layers give (the mean
-    of the two where both exist: the cubic's at equal spacing). The bubble of an edge across
-    a layer is NGSolve's order-2 edge bubble (``BUBBLE_MID`` at its midpoint), that of a
-    quadrilateral face the product of its two edges' bubbles."""
+    of those that exist and keep their weights' magnitudes below ``WEIGHT_LIMIT``: at equal
+    spacing the cubic's; none: linear in the layer). ``mirror``: the field is even about
+    z_0 (a symmetry plane), the level z_0 - (z_1 - z_0) carrying z_1's values. The bubble of an
+    edge across a layer is NGSolve's order-2 edge bubble (``BUBBLE_MID`` at its midpoint),
+    that of a quadrilateral face the product of its two edges' bubbles."""
     n = len(z) - 1
+    if mirror and n >= 1:
+        zz = np.concatenate([[2.0 * z[0] - z[1]], z])
+        vals = np.concatenate([values[1:2], values])
+    else:
+        zz, vals = np.asarray(z, dtype=float), np.asarray(values)
+    first = 1 if mirror and n >= 1 else 0
     out = np.zeros((n,) + values.shape[1:])
     for k in range(n):
-        zm, mids = 0.5 * (z[k] + z[k + 1]), []
-        for trio in ((k - 1, k, k + 1), (k, k + 1, k + 2)):
-            if trio[0] < 0 or trio[2] > n:
+        kk = k + first
+        zm, mids = 0.5 * (zz[kk] + zz[kk + 1]), []
+        for trio in ((kk - 1, kk, kk + 1), (kk, kk + 1, kk + 2)):
+            if trio[0] < 0 or trio[2] > len(zz) - 1:
                 continue
-            w = [np.prod([(zm - z[j]) / (z[i] - z[j]) for j in trio if j != i]) for i in trio]
-            mids.append(sum(wi * values[i] for wi, i in zip(w, trio)))
+            w = [np.prod([(zm - zz[j]) / (zz[i] - zz[j]) for j in trio if j != i])
+                 for i in trio]
+            if sum(abs(wi) for wi in w) <= WEIGHT_LIMIT:
+                mids.append(sum(wi * vals[i] for wi, i in zip(w, trio)))
         if mids:
             out[k] = (sum(mids) / len(mids) - 0.5 * (values[k] + values[k + 1])) / BUBBLE_MID
     return out

@@ -119,7 +119,8 @@ class LevelTops:
 
     def displace(self, disp3d) -> None:
         """The x and y parts of the extruded mesh's displacement: each level's 2D one,
-        quadratic in z between levels (``LayerCopy.per_layer``); the x part only ahead of
+        quadratic in z between levels (``LayerCopy.per_layer``, even about the first level, a
+        symmetry plane); the x part only ahead of
         the bite, where the map's x depends on the contact's start alone, linear in z on the
         arc and after it (the ends' per-level search, module ``spread_ends``)."""
         V3 = disp3d.space
@@ -128,7 +129,8 @@ class LevelTops:
         for c, where in enumerate((self._entry, None)):
             self.s3.copy.per_layer(self._V2.components[c], self.d2[:, c * n2:(c + 1) * n2],
                                    V3.components[c], vec[c * n3:(c + 1) * n3],
-                                   z=self.s3.z if CURVED else None, where=where)
+                                   z=self.s3.z if CURVED else None, where=where,
+                                   mirror=True)
 
     def contact_starts(self) -> np.ndarray:
         """x_c of every level (m, the solver's frame)."""
