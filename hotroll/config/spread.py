@@ -21,9 +21,9 @@ from hotroll.model.section import SectionProfile
 
 #: b0/h0 the 3D pass takes: below, a bar narrower than a quarter of its thickness (an edger's
 #: pass, not flat rolling); above, a plate whose quarter needs more width layers than a laptop
-#: holds: wider plates take the edge-zone model (``edge_zone``, its modelled width up to the
-#: same bound; not validated: on Case R at b0/h0 = 8 no cut was in plane strain,
-#: docs/validation/spread_3d.md)
+#: holds: wider plates take the edge-zone model (``edge_zone``, its graded width up to the
+#: same bound, the interior one layer in generalized plane strain; docs/validation/
+#: spread_3d.md, "The edge zone's interior")
 WIDTH_RATIO = (0.25, 16.0)
 
 
@@ -79,9 +79,10 @@ class SpreadConfig(Section):
         "auto", "the thickest width layer, at least edge_layer (auto: 4 edge layers)", "m",
         '"auto" or a number > 0')
     edge_zone: PosFloat | None = field(
-        None, "the edge-zone model of a wide strip: only this outer part of the half width in "
-        "3D, plane strain on its cut and the plane-strain pass's figures inside it, at most "
-        "pass.width / 2 (omit: the whole half width)", "m", "> 0")
+        None, "the edge-zone model of a wide strip: only this outer part of the half width "
+        "graded in width layers, the interior inside it one layer in generalized plane strain "
+        "(u_x, u_y uniform across it, its lateral strain free), at most pass.width / 2 (omit: "
+        "the whole half width graded)", "m", "> 0")
     strain: Literal["transported", "frozen"] = field(
         "transported", "a strain-dependent flow stress's strain: carried through the 3D flow "
         "(the edge's own hardening) or the plane-strain pass's in every width layer", "",

@@ -163,12 +163,12 @@ class LayerCopy:
         vec3d[d3] = vec2d[d2] if scale is None else np.asarray(scale)[layer] * vec2d[d2]
 
     def per_layer(self, space2d, vecs2d, space3d, vec3d, z=None, where=None,
-                  mirror: bool = False) -> None:
+                  flat: int = 0) -> None:
         """vec3d = a 2D field of its own in each layer (``vecs2d``: one vector of ``space2d``
         per layer, z_0 first), linear in z between two layers; zero elsewhere (a field whose
         shape changes across the width: the contact and the top per layer, issue 53 stage 3).
         With the layers' ``z``: quadratic in z inside each layer instead (``spine_bubbles``),
-        at the 2D DOFs ``where`` (a mask; default all); ``mirror``: even about z_0."""
+        at the 2D DOFs ``where`` (a mask; default all), the first ``flat`` layers linear."""
         layer, d3, d2 = self.indices(space2d, space3d)
         stack = np.asarray(vecs2d, dtype=float)
         if stack.shape[0] != self.layers + 1:
@@ -178,7 +178,7 @@ class LayerCopy:
         vec3d[d3] = stack[layer, d2]
         if z is not None and self.layers > 1:
             layer, d3, d2 = self.spine_indices(space2d, space3d)
-            bubbles = spine_bubbles(np.asarray(z, dtype=float), stack, mirror)
+            bubbles = spine_bubbles(np.asarray(z, dtype=float), stack, flat)
             if where is not None:
                 bubbles[:, ~np.asarray(where, dtype=bool)] = 0.0
             vec3d[d3] = bubbles[layer, d2]
@@ -275,33 +275,25 @@ class LayerCopy:
 WEIGHT_LIMIT = 2.0
 
 
-def spine_bubbles(z: np.ndarray, values: np.ndarray, mirror: bool = False) -> np.ndarray:
+def spine_bubbles(z: np.ndarray, values: np.ndarray, flat: int = 0) -> np.ndarray:
     """The across-layer bubble coefficients (one row per layer) that make fields given per
     layer (``values``: one row per z) quadratic in z inside each layer, through the value at
     the layer's midpoint that the quadratics through three neighbouring layers give (the mean
     of those that exist and keep their weights' magnitudes below ``WEIGHT_LIMIT``: at equal
-    spacing the cubic's; none: linear in the layer). ``mirror``: the field is even about
-    z_0 (a symmetry plane), the level z_0 - (z_1 - z_0) carrying z_1's values. The bubble of an
-    edge across a layer is NGSolve's order-2 edge bubble (``BUBBLE_MID`` at its midpoint),
-    that of a quadrilateral face the product of its two edges' bubbles."""
+    spacing the cubic's; none: linear in the layer). The bubble of an edge across a layer is
+    NGSolve's order-2 edge bubble (``BUBBLE_MID`` at its midpoint), that of a quadrilateral
+    face the product of its two edges' bubbles. The first ``flat`` layers stay linear (an edge
+    zone's interior, uniform across the width)."""
     n = len(z) - 1
-    if mirror and n >= 1:
-        zz = np.concatenate([[2.0 * z[0] - z[1]], z])
-        vals = np.concatenate([values[1:2], values])
-    else:
-        zz, vals = np.asarray(z, dtype=float), np.asarray(values)
-    first = 1 if mirror and n >= 1 else 0
     out = np.zeros((n,) + values.shape[1:])
-    for k in range(n):
-        kk = k + first
-        zm, mids = 0.5 * (zz[kk] + zz[kk + 1]), []
-        for trio in ((kk - 1, kk, kk + 1), (kk, kk + 1, kk + 2)):
-            if trio[0] < 0 or trio[2] > len(zz) - 1:
+    for k in range(flat, n):
+        zm, mids = 0.5 * (z[k] + z[k + 1]), []
+        for trio in ((k - 1, k, k + 1), (k, k + 1, k + 2)):
+            if trio[0] < 0 or trio[2] > n:
                 continue
-            w = [np.prod([(zm - zz[j]) / (zz[i] - zz[j]) for j in trio if j != i])
-                 for i in trio]
+            w = [np.prod([(zm - z[j]) / (z[i] - z[j]) for j in trio if j != i]) for i in trio]
             if sum(abs(wi) for wi in w) <= WEIGHT_LIMIT:
-                mids.append(sum(wi * vals[i] for wi, i in zip(w, trio)))
+                mids.append(sum(wi * values[i] for wi, i in zip(w, trio)))
         if mids:
             out[k] = (sum(mids) / len(mids) - 0.5 * (values[k] + values[k + 1])) / BUBBLE_MID
     return out

@@ -22,12 +22,22 @@ outward conormal in the (t, e_z) plane. With xi = 1: int u.n dA = the layer's fl
 levels' ends (p = 0 there to the search's tolerance where they are searched; a held end passes
 its F, as in 2D). With the edge held (u_z = 0) every term is the 2D form's in each layer. Not
 yet: flattened rolls.
+
+An edge zone's interior (``interior_cut``): the width layer inside the cut, between mid-width
+and the zone, is one layer in generalized plane strain, u_x and u_y not varying across it and
+u_z = z e(x, y) free (the interior's uniform lateral strain rate e, which a wide strip's
+interior takes where it slips backwards: docs/validation/spread_3d.md), by a penalty on
+du_x/dz and du_y/dz there (``interior_term``).
 """
 from __future__ import annotations
 
 from hotroll.fem.extruded_mesh import ARC_EDGE
 from hotroll.fem.rolling_form import RollingForm
 from hotroll.fem.spaces import taylor_hood
+
+#: the interior's penalty on du_x/dz, du_y/dz over the reduced viscosity at U / l_c times the
+#: flow stress's consistency (unit-free): their share of the interior's shear 1/GPS_PENALTY
+GPS_PENALTY = 1e6
 
 
 class RollingForm3D(RollingForm):
@@ -39,11 +49,13 @@ class RollingForm3D(RollingForm):
                  tensions: tuple = (0.0, 0.0), contact: str = "multiplier",
                  edge_held: bool = False, consistency=1.0, rate_offset=None,
                  primal_dual: bool = True, strip_compliance: float | None = None,
-                 strip_depth: float | None = None):
+                 strip_depth: float | None = None, interior_cut: float | None = None):
         if rp.shape is not None:
             raise NotImplementedError("a flattened roll on the 3D strip")
         self.edge_held = bool(edge_held)
         self._layer_width = None
+        #: z of an edge zone's cut (m, the reference mesh's) or None; its layer indicator
+        self.interior_cut, self._interior = interior_cut, None
         super().__init__(mesh, rp, material, friction, penalties, free_surface, tensions,
                          consistency=consistency, rate_offset=rate_offset, contact=contact,
                          contact_regions="arc", primal_dual=primal_dual,
@@ -67,6 +79,43 @@ class RollingForm3D(RollingForm):
                 if len(z) == 4:
                     vec[g.space.GetDofNrs(el)[0]] = np.ptp(z)
         return specialcf.mesh_size ** 2 / self._layer_width
+
+    def interior_term(self, u, v):
+        """The interior layer's generalized plane strain (module docstring): GPS_PENALTY
+        mu_ref K (du_x/dz dv_x/dz + du_y/dz dv_y/dz) on the elements inside the cut (their
+        reference vertices at z <= the cut), or None without an edge zone."""
+        if self.interior_cut is None:
+            return None
+        from ngsolve import L2, GridFunction, grad
+
+        from hotroll.fem.reproducible import fe_space
+
+        if self._interior is None:
+            g = self._interior = GridFunction(fe_space(L2, self.mesh, order=0))
+            vec = g.vec.FV().NumPy()
+            tol = 1e-9 * max(abs(self.interior_cut), 1.0)
+            for el in self.mesh.Elements():
+                if max(self.mesh[v].point[2] for v in el.vertices) <= self.interior_cut + tol:
+                    vec[g.space.GetDofNrs(el)[0]] = 1.0
+        gu, gv = grad(u), grad(v)
+        return (GPS_PENALTY * self._mu * self.consistency * self._interior
+                * (gu[0, 2] * gv[0, 2] + gu[1, 2] * gv[1, 2]))
+
+    def integrand(self, u, p, w, v, q, lam=None, xi=None):
+        """The 2D form's (3.6) and, in an edge zone, the interior's term."""
+        from ngsolve import dx
+
+        out = super().integrand(u, p, w, v, q, lam=lam, xi=xi)
+        extra = self.interior_term(u, v)
+        return out if extra is None else out + extra * dx
+
+    def jacobian(self, w, u, p, v, q, lam=None, xi=None, lam_w=None):
+        """The 2D form's Jacobian and the interior's term (linear in u)."""
+        from ngsolve import dx
+
+        out = super().jacobian(w, u, p, v, q, lam=lam, xi=xi, lam_w=lam_w)
+        extra = self.interior_term(u, v)
+        return out if extra is None else out + extra * dx
 
     def _spaces(self, multiplier_on: str | None):
         """Taylor-Hood with v_y = 0 on ``sym``, v_z = 0 on ``zsym`` (and on ``edge`` if held)."""

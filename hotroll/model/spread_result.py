@@ -42,7 +42,8 @@ class SpreadResult:
       over the roll speed);
     - ``settled``, ``rounds``, ``newton_iterations``, ``dofs``, ``layers`` (width layers of the
       quarter), ``edge_layer`` (m), ``wall_time`` (s); ``zone_cut`` (m): where an edge zone's
-      3D strip begins (0: the whole half width; the plane-strain pass's figures inside it);
+      graded layers begin (0: the whole half width graded; inside it one layer in
+      generalized plane strain);
       ``failure``: why its solve stopped (a linear solve failed), or "";
     - ``exit_temperature_offset``: with an entry temperature across the width, its difference
       from mid-width's at the outlet (K; ``eta``, ``zeta``, ``values`` one row per eta), or
@@ -91,7 +92,7 @@ class SpreadResult:
 
     @property
     def edge_drop(self) -> float:
-        """The exit thickness at mid-width (or an edge zone's cut) minus at the edge (m)."""
+        """The exit thickness at mid-width minus at the edge (m)."""
         t = np.asarray(self.exit_thickness["thickness"], dtype=float)
         return float(t[0] - t[-1])
 

@@ -66,8 +66,9 @@ class Spread3D:
     ``half_width`` (m): width layers ``edge`` thick at the free edge (default the 2D contact
     mesh size), growing by ``growth`` inwards up to ``largest`` (default 4 edge layers).
     ``zone`` (m): the edge-zone model of a wide strip, only the outer ``zone`` of the half
-    width, plane strain (u_z = 0, as on the mid-width plane) on the cut at half_width - zone
-    and the 2D pass's figures per width inside it (None: the whole half width).
+    width graded, the interior inside its cut at half_width - zone one layer in generalized
+    plane strain (``fem/rolling_form_3d.py``), tied to the zone by the flow itself (None:
+    the whole half width graded).
     ``entry_temperature``: the entry temperature across the width (K, a function of z / half
     width, its value at 0 the 2D pass's) or over the cross-section (``model/section.py``, its
     mid-width column the 2D pass's entry profile), its differences from mid-width's at the
@@ -111,9 +112,13 @@ class Spread3D:
             raise ValueError(f"zone = {zone!r} m: must be in (0, half width = {half_width} m]")
         modelled = half_width if zone is None else zone
         edge = min(h, modelled) if edge is None else edge
-        # the width levels, from the mid-width plane (or the edge zone's cut) to the edge
-        self.z = (half_width - modelled) + width_axis(modelled, edge, growth,
-                                                      4.0 * edge if largest is None else largest)
+        # the width levels, from the mid-width plane to the edge; an edge zone's graded from
+        # its cut, one layer in generalized plane strain inside it (RollingForm3D)
+        self.cut = half_width - modelled
+        self.z = self.cut + width_axis(modelled, edge, growth,
+                                       4.0 * edge if largest is None else largest)
+        if self.cut > 0.0:
+            self.z = np.concatenate([[0.0], self.z])
         self.z[-1] = half_width
         ref2 = ng.Mesh(run.mesh.ngmesh.Copy())          # the 2D reference (undeformed)
         self.mesh = extrude(ref2, self.z)
@@ -135,7 +140,8 @@ class Spread3D:
                                   problem.friction, PenaltyTable(h),
                                   tensions=problem.reduced_tensions, edge_held=edge_held,
                                   consistency=consistency, rate_offset=rate_offset,
-                                  strip_compliance=f2.compliance, strip_depth=f2.strip_depth)
+                                  strip_compliance=f2.compliance, strip_depth=f2.strip_depth,
+                                  interior_cut=self.cut if self.cut > 0.0 else None)
         f3 = self.form
         # the chosen solver first, the others after it where it fails (fem/nonlinear.py)
         f3.nonlinear.linear_solvers = (linear_solver,) + tuple(
@@ -254,8 +260,8 @@ class Spread3D:
                 and (self.ends is None or ended <= self.ends.tol))
 
     def figures(self) -> dict:
-        """The pass's figures (SI, per roll and the whole strip; an edge zone's with the 2D
-        pass's per width inside its cut ``zone_cut``, m): roll force (N) and per
+        """The pass's figures (SI, per roll and the whole strip; ``zone_cut``: an edge zone's
+        cut, m from mid-width, or 0): roll force (N) and per
         width (N/m of the stock's width), roll torque (N m), the exit's mean half width and
         the spread (m), the exit half width over the thickness (m, at 40 equal steps of
         y / exit half thickness from the mid-plane), the mass fluxes through the cut faces and
@@ -279,16 +285,9 @@ class Spread3D:
         flux = {b: float(integrate(u * nn, mesh, ng.BND, definedon=mesh.Boundaries(b)))
                 for b in ("in", "out", "edge")}
         b0 = float(self.z[-1])
-        inner = self.z[0]          # the width inside an edge zone's cut: the 2D pass's
-        two = self.run2d.state.history[-1] if inner > 0.0 else None
-        share = {k: 0.0 if two is None else two[k] * inner
-                 for k in ("roll_force", "roll_torque", "mass_flux_in", "mass_flux_out")}
-        out = {"roll_force": 2.0 * (K * force_y + share["roll_force"]),
-               "roll_torque": 2.0 * (K * torque + share["roll_torque"]),
-               "stock_half_width": b0, "zone_cut": float(inner),
-               "flux_in": -flux["in"] + share["mass_flux_in"],
-               "flux_out": flux["out"] + share["mass_flux_out"],
-               "flux_edge": flux["edge"], "rounds": self.rounds,
+        out = {"roll_force": 2.0 * K * force_y, "roll_torque": 2.0 * K * torque,
+               "stock_half_width": b0, "zone_cut": float(self.cut),
+               "flux_in": -flux["in"], "flux_out": flux["out"], "flux_edge": flux["edge"], "rounds": self.rounds,
                "newton_iterations": self.iterations, "dofs": f.fes.ndof,
                "factorisations": self.factorisations, "reused": self.reused,
                "wall_time": self.setup_time + self.solve_time, "settled": self.settled,
@@ -297,8 +296,6 @@ class Spread3D:
         # the mean exit speed: the outlet's flux over its area projected on x (the 2D pass's
         # face_flow across the width), the forward slip of the whole strip from it
         area = float(integrate(nn[0], mesh, ng.BND, definedon=mesh.Boundaries("out")))
-        if two is not None:
-            area += 0.5 * two["exit_thickness_measured"] * inner
         out["exit_velocity"] = out["flux_out"] / area
         out["forward_slip"] = out["exit_velocity"] / self.problem.rp.u_roll - 1.0
         out.update(self.power_balance(K * torque))

@@ -54,13 +54,17 @@ class LevelEnds:
         lam = f3.multiplier.vec.FV().NumPy()
         mv, dofs = f3.multiplier_vertices()
         p_all = f3.vertex_pressure()
-        largest = 0.0
-        for k, search in enumerate(self.searches):
+        largest, tied = 0.0, tops.tied
+        # an edge zone's interior levels (below ``tied``) take the cut's end (LevelTops.tied)
+        for k in list(range(tied, len(self.searches))) + list(range(tied)):
             x = top.vertex_positions(tops.d2[k], verts)[:, 0]
             order = np.argsort(x)
             p = p_all[k * nv + verts]
             old = tops.shapes[k].end(rp)
-            new, residual = search.step(x[order], p[order], bounds, winkler)
+            if k < tied:
+                new, residual = tops.shapes[tied].end(rp), 0.0
+            else:
+                new, residual = self.searches[k].step(x[order], p[order], bounds, winkler)
             move_end(tops.shapes[k], rp, new)
             tops.d2[k] = run.map.displacement(tops.shapes[k])
             x_new = top.vertex_positions(tops.d2[k], verts)[:, 0]

@@ -96,8 +96,8 @@ def exit_offset(s3, X3: np.ndarray, out: np.ndarray, P: np.ndarray) -> dict:
     """The entry temperature's difference from mid-width's as the outlet carries it (K):
     ``values[j][k]`` at the outlet's vertex heights (eta: over each level's top, averaged over
     the levels) and the width levels (zeta: over the edge's half width at that height,
-    averaged over the heights), less the innermost level's (mid-width's, or an edge zone's
-    cut's: 0 up to it, the plane-strain pass's temperature inside the cut)."""
+    averaged over the heights), less mid-width's (the first level's: an edge zone's interior
+    layer carries its cut's, the entry uniform up to it)."""
     nv, levels = s3.run2d.mesh.nv, len(s3.z)
     outs = np.nonzero(out)[0]
     outs = outs[np.argsort(P[outs, 1])]
@@ -107,9 +107,6 @@ def exit_offset(s3, X3: np.ndarray, out: np.ndarray, P: np.ndarray) -> dict:
     zeta = np.mean(z / z[:, -1:], axis=0)
     values = s3.cooling.values[idx]
     values = values - values[:, :1]      # mid-width's (the carried field's residue there) is 0
-    if zeta[0] > 0.0:                    # an edge zone: plane strain up to its cut
-        zeta = np.concatenate([[0.0], zeta])
-        values = np.concatenate([np.zeros((eta.size, 1)), values], axis=1)
     eta[0], eta[-1], zeta[0], zeta[-1] = 0.0, 1.0, 0.0, 1.0
     return {"eta": eta.tolist(), "zeta": zeta.tolist(), "values": values.tolist()}
 

@@ -30,6 +30,9 @@ class LevelTops:
     def __init__(self, s3):
         run = self.run = s3.run2d
         self.s3, self.levels = s3, len(s3.z)
+        #: the levels below this one (an edge zone's mid-width level: its interior in
+        #: generalized plane strain, z-independent) take its shape, as the flow there is its
+        self.tied = 1 if getattr(s3, "cut", 0.0) > 0.0 else 0
         self.shapes = [run.shape.copy() for _ in range(self.levels)]
         self.d2 = np.tile(run.d, (self.levels, 1))           # each level's 2D displacement
         V2 = run.disp.space
@@ -105,7 +108,11 @@ class LevelTops:
             self.shapes[k], res = kinematic_update(rp, self.shapes[k], xy[order], v[order],
                                                    part[order], x_up, bounds)
             self.d2[k] = run.map.displacement(self.shapes[k])
-            residual = max(residual, res)
+            if k >= self.tied:
+                residual = max(residual, res)
+        for k in range(self.tied):
+            self.shapes[k] = self.shapes[self.tied].copy()
+            self.d2[k] = self.d2[self.tied].copy()
         return residual
 
     @staticmethod
@@ -119,8 +126,8 @@ class LevelTops:
 
     def displace(self, disp3d) -> None:
         """The x and y parts of the extruded mesh's displacement: each level's 2D one,
-        quadratic in z between levels (``LayerCopy.per_layer``, even about the first level, a
-        symmetry plane); the x part only ahead of
+        quadratic in z between levels (``LayerCopy.per_layer``; an edge zone's interior
+        layer linear, its two levels one shape); the x part only ahead of
         the bite, where the map's x depends on the contact's start alone, linear in z on the
         arc and after it (the ends' per-level search, module ``spread_ends``)."""
         V3 = disp3d.space
@@ -130,7 +137,7 @@ class LevelTops:
             self.s3.copy.per_layer(self._V2.components[c], self.d2[:, c * n2:(c + 1) * n2],
                                    V3.components[c], vec[c * n3:(c + 1) * n3],
                                    z=self.s3.z if CURVED else None, where=where,
-                                   mirror=True)
+                                   flat=self.tied)
 
     def contact_starts(self) -> np.ndarray:
         """x_c of every level (m, the solver's frame)."""

@@ -296,6 +296,32 @@ def test_with_the_layers_z_a_field_quadratic_in_z_is_carried_exactly():
     assert abs(mid[0] - zm[0] ** 3) > 0.1 and abs(mid[-1] - zm[-1] ** 3) > 0.1
 
 
+def test_the_bubbles_skip_ill_trios_and_keep_flat_layers_linear():
+    """[hand] ``spine_bubbles`` on values per level (midpoint value = chord's middle less 1/8
+    of the bubble): a layer 20 times wider than its neighbours takes no trio whose weights'
+    magnitudes sum above WEIGHT_LIMIT (the neighbours' gradient is not extrapolated across
+    it: the one-layer interior of an edge zone leaked 0.9 % of the inflow so) and stays
+    linear; ``flat`` keeps the first layers linear, the others as without it."""
+    from hotroll.fem.extruded_mesh import WEIGHT_LIMIT, spine_bubbles
+
+    def mid(z, v, **kw):
+        return 0.5 * (v[:-1] + v[1:]) - 0.125 * spine_bubbles(z, v[:, None], **kw)[:, 0]
+
+    w = np.array([0.0, 1.0, 1.05, 1.1])
+    trio = [np.prod([(0.5 - w[j]) / (w[i] - w[j]) for j in range(3) if j != i])
+            for i in range(3)]
+    assert sum(abs(t) for t in trio) > WEIGHT_LIMIT
+    f = np.array([0.0, 1.0, 1.3, 1.5])        # steep between the thin layers
+    assert mid(w, f)[0] == pytest.approx(0.5, abs=1e-14)                 # linear
+    assert mid(w, w ** 2)[1:] == pytest.approx((0.5 * (w[1:-1] + w[2:])) ** 2, rel=1e-13)
+    z = np.array([0.0, 0.3, 0.5, 0.65, 0.75])
+    zm = 0.5 * (z[:-1] + z[1:])
+    assert mid(z, z ** 2) == pytest.approx(zm ** 2, rel=1e-13)
+    flat = mid(z, z ** 2, flat=1)
+    assert flat[0] == pytest.approx(0.5 * z[1] ** 2, rel=1e-14)
+    assert flat[1:] == pytest.approx(zm[1:] ** 2, rel=1e-13)
+
+
 def test_a_scalar_field_is_the_same_in_every_layer_h1_and_per_element():
     """[hand] ``LayerCopy.scalar``: a P2 field and a P0 one (each triangle its own value) carried
     onto the extrusion equal the 2D field at the same (x, y) in every layer (the prisms of
