@@ -214,8 +214,8 @@ def _profile_problems(case, s) -> list[str]:
     """Why the entry temperature across the width (``spread.temperature_profile`` or
     ``spread.temperature_section``) cannot be taken: its mid-width value not the plate's, a
     law whose flow stress does not change with the temperature, a temperature outside the
-    law's, a profile that varies inside an edge zone's cut (the plane-strain pass's figures
-    there are at mid-width's temperature)."""
+    law's, a profile that varies inside an edge zone's cut (its interior is one layer, uniform
+    across the width)."""
     key = ("spread.temperature_profile" if s.temperature_profile is not None
            else "spread.temperature_section")
     out = []

@@ -9,8 +9,8 @@ strip's (x, y) shape). In a steady flow it is a stream surface: u.n = 0, that is
 a linear transport equation along the face's own streamlines (u_x > 0 in a steady pass). It is
 solved for a P2 field B by streamline-upwind Petrov-Galerkin (SUPG: the test function w +
 tau u.grad w, tau = h / 2|u|), the velocity the 3D solution's on the face. Every layer of the
-extruded mesh then moves along its spine, z = z_0 + (Z - z_0) (B - z_0) / (b0 - z_0), z_0 = 0 or an edge
-zone's cut (``displace``; the note: moving only
+extruded mesh then moves along its spine, z = z_0 + (Z - z_0) (B - z_0) / (b0 - z_0), z_0 = 0, the
+mid-width plane (``displace``; the note: moving only
 the edge layer folds it on narrow bars). The exit width and the spread are read off B.
 """
 from __future__ import annotations
@@ -74,7 +74,7 @@ class LateralFace:
     def displace(self, disp3d) -> None:
         """The z part of the extruded mesh's displacement (a VectorH1 GridFunction, order 2):
         (Z - z_0) / (b0 - z_0) (B - b0) at every node of layer Z, z_0 the first layer's (0, the
-        mid-width plane, or an edge zone's cut; x, y from the 2D shape, untouched)."""
+        mid-width plane; x, y from the 2D shape, untouched)."""
         import ngsolve as ng
 
         V3 = disp3d.space

@@ -84,7 +84,7 @@ class SectionProfile:
 
     def uniform_up_to(self, cut: float) -> SectionProfile:
         """The section with mid-width's column everywhere up to ``cut`` (zeta; a node put
-        there): an edge zone's plane-strain interior."""
+        there): an edge zone's interior, uniform across the width."""
         z = np.asarray(self.zeta)
         keep = z > cut
         zeta = np.concatenate([[0.0, cut] if cut > 0.0 else [0.0], z[keep]])

@@ -82,7 +82,8 @@ class LevelTops:
         x shift taken off with the level's own slope), upwind: from the level inside where
         the flow crosses outwards, else from the one outside (its last shape; the edge level,
         which has none, takes the inside's either way); 0 on the first level (the mid-width
-        plane or an edge zone's cut)."""
+        plane; on an edge zone's cut the inside's slope is 0: the interior's levels are one
+        shape, the cut's, ``tied``)."""
         run, rp = self.run, self.run.problem.rp
         x_up = rp.x_touch - default_lengths(rp)[0]
         part, bounds = self.run._top_part, run.map.x_bounds()
