@@ -14,6 +14,8 @@ from hotroll.results.figures.draw import run_title, save_figure
 from hotroll.results.figures.run_files import RunFiles, column
 
 MM = 1e3          # m -> mm on the axes
+#: a section wider than this many thicknesses (its half width) is drawn at its edge only
+WIDE = 4.0
 
 
 def fig_spread(run: RunFiles, path: Path) -> Path | None:
@@ -54,8 +56,13 @@ def fig_spread(run: RunFiles, path: Path) -> Path | None:
     ax.set_aspect("equal")
     ax.set_xlabel("z (width) [mm]")
     ax.set_ylabel("y (thickness) [mm]")
-    ax.set_title(f"exit section: spread {2.0 * (np.mean(half) - b0) * MM:.3g} mm")
-    ax.legend(fontsize=8, loc="lower center")
+    title = f"exit section: spread {2.0 * (np.mean(half) - b0) * MM:.3g} mm"
+    thick = 2.0 * float(yy[-1])
+    if b0 > WIDE * thick:     # a plate: its edge, 3 thicknesses of it, at a readable scale
+        ax.set_xlim((b0 - 3.0 * thick) * MM, (float(half.max()) + 0.5 * thick) * MM)
+        title += " (the edge)"
+    ax.set_title(title)
+    ax.legend(fontsize=8, loc="lower left")
     ax = axes[1]
     x = column(along, "x")
     if x is not None:
