@@ -8,7 +8,9 @@ run already in OUT is skipped); a markdown table of OUT at the end.
         [--gradings coarse,fine]
     python scripts/spread_3d_study.py OUT --ratios 2,4,8,16 --gradings coarse   # the 1/W limit
     python scripts/spread_3d_study.py OUT --ratios 8 --gradings coarse --zones 2,3,none
-        # the edge zone (its width in h0; none: the whole half width): moving the cut
+        [--interior 1]
+        # the edge zone (its width in h0; none: the whole half width): moving the cut;
+        # --interior: its interior's width layers (generalized plane strain)
     python scripts/spread_3d_study.py OUT --ratios 8 --gradings coarse --friction 0.8
         # a rougher pass (the Tresca factor; default Case R's 0.3)
 
@@ -31,17 +33,19 @@ GRADINGS = {"coarse": (1.0, 4.0), "fine": (0.5, 2.0)}     # (edge, largest) in h
 
 
 def one(ratio: float, h: float, grading: str, two_d: dict, zone: float | None = None,
-        friction: float = MF) -> dict:
+        friction: float = MF, interior: int = 1) -> dict:
     b0 = ratio * H0
     edge, largest = GRADINGS[grading]
     run = two_d["run"]
     t0 = time.perf_counter()
     s3 = Spread3D(run, 0.5 * b0, edge=min(edge * h, 0.5 * b0), largest=largest * h,
-                  zone=None if zone is None else min(zone * H0, 0.5 * b0))
+                  zone=None if zone is None else min(zone * H0, 0.5 * b0),
+                  interior_layers=interior)
     s3.solve()
     fig = s3.figures()
     fig.pop("exit_half_width_profile", None)
     return {"b0_over_h0": ratio, "h": h, "grading": grading, "zone_h0": zone,
+            "interior_layers": interior if zone is not None else 0,
             "friction": friction, "layers": len(s3.z) - 1,
             "wall": time.perf_counter() - t0, "plane_strain_force": two_d["force"],
             "hill": hill(b0, H0, H1, R) - b0, "sparling": sparling(b0, H0, H1, R) - b0,
@@ -105,6 +109,8 @@ def main() -> None:
     ap.add_argument("--friction", type=float, default=MF, help="the Tresca factor")
     ap.add_argument("--zones", default="none", help="edge zones in h0, comma separated "
                     "(none: the whole half width)")
+    ap.add_argument("--interior", type=int, default=1,
+                    help="an edge zone's interior: width layers in generalized plane strain")
     a = ap.parse_args()
     zones = [None if z == "none" else float(z) for z in a.zones.split(",")]
     done = set()
@@ -112,7 +118,7 @@ def main() -> None:
         for line in a.out.read_text().splitlines():
             r = json.loads(line)
             done.add((r["b0_over_h0"], r["h"], r["grading"], r.get("zone_h0"),
-                      r.get("friction", MF)))
+                      r.get("friction", MF), r.get("interior_layers", 1)))
     case, problem, st = case_r(0.05, a.h, friction=a.friction)
     run = SteadyRun(problem, st, case.plate.length)
     assert run.run().status == "steady"
@@ -120,9 +126,11 @@ def main() -> None:
     for ratio in map(float, a.ratios.split(",")):
         for grading in a.gradings.split(","):
             for zone in zones:
-                if (ratio, a.h, grading, zone, a.friction) in done:
+                key = (ratio, a.h, grading, zone, a.friction,
+                       a.interior if zone is not None else 0)
+                if key in done or (zone is None and key[:5] + (1,) in done):
                     continue
-                row = one(ratio, a.h, grading, two_d, zone, a.friction)
+                row = one(ratio, a.h, grading, two_d, zone, a.friction, a.interior)
                 with a.out.open("a") as fh:
                     fh.write(json.dumps(row) + "\n")
                 print(f"b0/h0 {ratio:g} {grading} zone {zone}: spread "

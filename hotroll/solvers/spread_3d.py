@@ -88,7 +88,7 @@ class Spread3D:
                  largest: float | None = None, edge_held: bool = False, tops: bool = True,
                  zone: float | None = None, linear_solver: str = "umfpack",
                  strain: str = "transported", ends: bool = True, entry_temperature=None,
-                 reuse_steps: int | None = None):
+                 reuse_steps: int | None = None, interior_layers: int = 1):
         import ngsolve as ng
 
         t0 = time.perf_counter()
@@ -117,8 +117,12 @@ class Spread3D:
         self.cut = half_width - modelled
         self.z = self.cut + width_axis(modelled, edge, growth,
                                        4.0 * edge if largest is None else largest)
-        if self.cut > 0.0:
-            self.z = np.concatenate([[0.0], self.z])
+        #: the levels inside an edge zone's cut, mid-width's first (the cut is level
+        #: ``interior``; 0 without a zone)
+        self.interior = int(interior_layers) if self.cut > 0.0 else 0
+        if self.interior:
+            self.z = np.concatenate([np.linspace(0.0, self.cut, self.interior + 1)[:-1],
+                                     self.z])
         self.z[-1] = half_width
         ref2 = ng.Mesh(run.mesh.ngmesh.Copy())          # the 2D reference (undeformed)
         self.mesh = extrude(ref2, self.z)

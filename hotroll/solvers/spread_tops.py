@@ -32,7 +32,7 @@ class LevelTops:
         self.s3, self.levels = s3, len(s3.z)
         #: the levels below this one (an edge zone's mid-width level: its interior in
         #: generalized plane strain, z-independent) take its shape, as the flow there is its
-        self.tied = 1 if getattr(s3, "cut", 0.0) > 0.0 else 0
+        self.tied = getattr(s3, "interior", 0)
         self.shapes = [run.shape.copy() for _ in range(self.levels)]
         self.d2 = np.tile(run.d, (self.levels, 1))           # each level's 2D displacement
         V2 = run.disp.space
