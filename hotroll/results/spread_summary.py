@@ -58,18 +58,17 @@ def formula_warning(back: float, front: float) -> str | None:
 
 def zone_warning(sp: SpreadResult) -> str | None:
     """What an edge zone says (None without one): its interior is held in generalized plane
-    strain, right once the edge's 3D flow has died out at the cut, which depends on the pass
-    (docs/validation/spread_3d.md, "The edge zone's interior": a thin strip within 1 % with
-    the zone half its thickness wide; a roughing slab, l/h 0.5, -31, -10, -0.8 % with the
-    zone 1.5, 2.25, 3 entry thicknesses wide)."""
+    strain, right once the edge's 3D flow has died out at the cut, how far in that is
+    depends on the pass (docs/validation/spread_3d.md, "The edge zone's interior")."""
     if sp.zone_cut <= 0.0:
         return None
     return (f"spread.edge_zone: the interior inside the cut ({sp.zone_cut:.4g} m from "
             f"mid-width) is one layer in generalized plane strain; the spread is right once "
-            f"the edge's 3D flow has died out at the cut (measured: within 1 % with the zone "
-            f"half the entry thickness wide on a thin strip, l/h 2.2; 31 %, 10 % and 0.8 % "
-            f"too small with it 1.5, 2.25 and 3 entry thicknesses wide on a roughing slab, "
-            f"l/h 0.5): widen the zone and compare")
+            f"the edge's 3D flow has died out at the cut, which varies from pass to pass "
+            f"(measured against the whole width: Case R's strip at b0/h0 8 within 1.3 % with "
+            f"a zone of 1 h0, at b0/h0 16 54 % and 11 % too small with 2 and 4 h0, within 1 % "
+            f"with 6 h0; a roughing slab 31, 10 and 0.8 % too small with 1.5, 2.25 and 3 h0): "
+            f"widen the zone and compare")
 
 
 def unsettled(sp: SpreadResult, max_rounds: int) -> str | None:
