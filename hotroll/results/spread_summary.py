@@ -68,7 +68,8 @@ def zone_warning(sp: SpreadResult) -> str | None:
             f"(measured against the whole width: Case R's strip at b0/h0 8 within 1.3 % with "
             f"a zone of 1 h0, at b0/h0 16 54 % and 11 % too small with 2 and 4 h0, within 1 % "
             f"with 6 h0; a roughing slab 31, 10 and 0.8 % too small with 1.5, 2.25 and 3 h0): "
-            f"widen the zone and compare")
+            f"widen the zone and compare (a study over spread.edge_zone: the bundled "
+            f"study edge_zone)")
 
 
 def unsettled(sp: SpreadResult, max_rounds: int) -> str | None:

@@ -18,7 +18,7 @@ def test_a_name_with_or_without_toml():
 
 def test_a_missing_name_lists_the_known_ones():
     known = ", ".join(sorted(p.stem for p in (HERE / "studies").glob("*.toml")))
-    assert known == "af_study, mesh_table, report_examples"
+    assert known == "af_study, edge_zone, mesh_table, report_examples"
     with pytest.raises(FileNotFoundError) as e:
         study_path("nope")
     assert str(e.value) == f"no bundled study 'nope' (known: {known})"

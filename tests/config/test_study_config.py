@@ -117,7 +117,8 @@ def test_units_of_varied_keys_come_from_the_case_schema():
     assert key_unit("plate.temperature") == "K" and key_unit("material.density") == "kg/m^3"
 
 
-@pytest.mark.parametrize("name, n", [("mesh_table", 6), ("report_examples", 4), ("af_study", 8)])
+@pytest.mark.parametrize("name, n", [("mesh_table", 6), ("report_examples", 4), ("af_study", 8),
+                                     ("edge_zone", 4)])
 def test_bundled_studies_are_valid(name, n):
     from hotroll.examples import study_path
 
@@ -129,6 +130,9 @@ def test_bundled_studies_are_valid(name, n):
         from hotroll.config.case import MESH_TABLE
 
         assert [c.case.mesh.h for c in cases] == [MESH_TABLE[k] for k in MESH_TABLE]
+    elif name == "edge_zone":     # the last the whole half width: no cut
+        assert [c.case.spread.edge_zone for c in cases] == [0.04, 0.08, 0.12, 0.2]
+        assert {c.case.pass_.width for c in cases} == {0.4}
     elif name == "af_study":
         assert [c.case.friction.a_f for c in cases] == [1, 2, 5, 10, 20, 50, 100, "estimate"]
         assert st.plot.x == "a_f" and st.plot.xscale == "log"

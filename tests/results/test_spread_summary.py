@@ -84,7 +84,8 @@ def test_an_edge_zone_is_always_warned_about_and_its_cut_named():
     text = zone_warning(record(zone_cut=0.002))
     assert text.startswith("spread.edge_zone: the interior inside the cut (0.002 m from "
                            "mid-width) is one layer in generalized plane strain")
-    assert text.endswith("widen the zone and compare")
+    assert text.endswith("widen the zone and compare (a study over spread.edge_zone: the "
+                         "bundled study edge_zone)")
 
 
 def test_the_formulas_beside_a_pass_with_tension_are_warned_about():
