@@ -82,7 +82,8 @@ class Spread3D:
     through the 3D flow ("transported", with a free edge) or the 2D pass's ("frozen").
     ``reuse_steps``: GMRES iterations a Newton direction may take on the kept factors of an
     earlier Jacobian (0: fresh factors every step; default ``REUSE_STEPS`` from
-    ``REUSE_FROM`` unknowns)."""
+    ``REUSE_FROM`` unknowns). ``interior_layers``: an edge zone's interior in this many equal
+    layers, all tied (for measuring; one layer holds generalized plane strain exactly)."""
 
     def __init__(self, run, half_width: float, edge: float | None = None, growth: float = 1.2,
                  largest: float | None = None, edge_held: bool = False, tops: bool = True,
@@ -108,6 +109,8 @@ class Spread3D:
             raise ValueError("the 3D strip does not yet carry: " + "; ".join(missing))
         self.run2d, self.problem = run, problem
         h = problem.h
+        if not int(interior_layers) >= 1:
+            raise ValueError(f"interior_layers = {interior_layers!r}: must be >= 1")
         if zone is not None and not 0.0 < zone <= half_width:
             raise ValueError(f"zone = {zone!r} m: must be in (0, half width = {half_width} m]")
         modelled = half_width if zone is None else zone
