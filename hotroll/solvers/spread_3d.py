@@ -294,7 +294,8 @@ class Spread3D:
         b0 = float(self.z[-1])
         out = {"roll_force": 2.0 * K * force_y, "roll_torque": 2.0 * K * torque,
                "stock_half_width": b0, "zone_cut": float(self.cut),
-               "flux_in": -flux["in"], "flux_out": flux["out"], "flux_edge": flux["edge"], "rounds": self.rounds,
+               "flux_in": -flux["in"], "flux_out": flux["out"], "flux_edge": flux["edge"],
+               "rounds": self.rounds,
                "newton_iterations": self.iterations, "dofs": f.fes.ndof,
                "factorisations": self.factorisations, "reused": self.reused,
                "wall_time": self.setup_time + self.solve_time, "settled": self.settled,

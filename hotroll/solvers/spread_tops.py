@@ -32,7 +32,7 @@ class LevelTops:
         self.s3, self.levels = s3, len(s3.z)
         #: the levels below this one (an edge zone's mid-width level: its interior in
         #: generalized plane strain, z-independent) take its shape, as the flow there is its
-        self.tied = getattr(s3, "interior", 0)
+        self.tied = s3.interior
         self.shapes = [run.shape.copy() for _ in range(self.levels)]
         self.d2 = np.tile(run.d, (self.levels, 1))           # each level's 2D displacement
         V2 = run.disp.space
@@ -93,6 +93,9 @@ class LevelTops:
             # level k and then level k + 1 itself
             xy, v, uz, z = nxt
             nxt = self._level(k + 1) if k + 1 < self.levels else None
+            if k < self.tied:             # an edge zone's interior: the cut's shape (below)
+                inside = (xy, z)
+                continue
             order = np.argsort(xy[:, 0], kind="stable")
             if inside is not None:
                 dydx, dzdx = (np.empty(len(order)) for _ in range(2))
@@ -109,8 +112,7 @@ class LevelTops:
             self.shapes[k], res = kinematic_update(rp, self.shapes[k], xy[order], v[order],
                                                    part[order], x_up, bounds)
             self.d2[k] = run.map.displacement(self.shapes[k])
-            if k >= self.tied:
-                residual = max(residual, res)
+            residual = max(residual, res)
         for k in range(self.tied):
             self.shapes[k] = self.shapes[self.tied].copy()
             self.d2[k] = self.d2[self.tied].copy()
