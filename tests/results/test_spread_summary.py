@@ -96,3 +96,34 @@ def test_the_formulas_beside_a_pass_with_tension_are_warned_about():
     assert text.startswith("spread_hill, spread_sparling, spread_wusatowski: the formulas have "
                            "no tension term; with back and front tension 10 and 0 MPa")
     assert "0 and 20 MPa" in formula_warning(0.0, 2e7)
+
+
+def test_a_plates_exit_section_is_drawn_at_its_edge(tmp_path, monkeypatch):
+    """[hand] fig_spread's exit section: a strip 400 x 32 mm (half width 200 mm over WIDE = 4
+    thicknesses) is drawn from 3 thicknesses inside its stock edge, 104 mm, to half a
+    thickness past its widest point, 216.5 mm, titled "(the edge)"; one 4.2 thicknesses wide
+    (half) at its edge too; a bar 40 mm wide whole."""
+    import json
+
+    import hotroll.results.figures.spread as mod
+    from hotroll.results.figures import RunFiles
+    from hotroll.results.output import write_csv
+
+    drawn = {}
+    monkeypatch.setattr(mod, "save_figure", lambda fig, path: drawn.setdefault("fig", fig))
+    y = (np.arange(8) + 0.5) * 0.002     # the outlet's midpoints, as written: 16 mm half
+    for width, half in ((0.4, 0.2005), (0.2688, 0.1349), (0.04, 0.0205)):
+        out = tmp_path / str(width)
+        out.mkdir()
+        (out / "summary.json").write_text(json.dumps({"width": width, "case_name": "x"}))
+        write_csv(out / "exit_section.csv", {"y": y, "half_width": np.full(y.size, half)})
+        drawn.clear()
+        mod.fig_spread(RunFiles(out), out / "f.png")
+        ax = drawn["fig"].axes[0]
+        if width == 0.4:
+            assert ax.get_xlim() == pytest.approx((104.0, 216.5), rel=1e-12)
+            assert ax.get_title().endswith("(the edge)")
+        elif width > 0.2:
+            assert ax.get_title().endswith("(the edge)")
+        else:
+            assert ax.get_xlim()[0] < -20.5 and not ax.get_title().endswith("(the edge)")
