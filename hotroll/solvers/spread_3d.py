@@ -60,6 +60,12 @@ REUSE_FROM = 60_000
 #: fit; slower where they do)
 LINEAR_SOLVERS_3D = LINEAR_SOLVERS + (amg.NAME,)
 
+#: the 2D form's Parameters the 3D form starts from (the friction parameter, the rate
+#: exponent, the tops' split, the roll speed and its regularisation, the reference viscosity
+#: and pressure, the tensions)
+PARAMETERS = ("a_f", "m", "x_split", "U", "v_reg", "_mu", "_lam", "tension_back",
+              "tension_front")
+
 
 class Spread3D:
     """The 3D quarter strip of the solved 2D ``SteadyRun`` ``run`` for a stock of half width
@@ -83,13 +89,16 @@ class Spread3D:
     ``reuse_steps``: GMRES iterations a Newton direction may take on the kept factors of an
     earlier Jacobian (0: fresh factors every step; default ``REUSE_STEPS`` from
     ``REUSE_FROM`` unknowns). ``interior_layers``: an edge zone's interior in this many equal
-    layers, all tied (for measuring; one layer holds generalized plane strain exactly)."""
+    layers, all tied (for measuring; one layer holds generalized plane strain exactly).
+    ``comm``: an mpi4py communicator of several ranks (``fem/mirror.world``): every rank
+    builds this strip, and its flow's Newton systems are assembled and solved on its mesh
+    distributed over them (``solvers/spread_mpi.py``); None: serial."""
 
     def __init__(self, run, half_width: float, edge: float | None = None, growth: float = 1.2,
                  largest: float | None = None, edge_held: bool = False, tops: bool = True,
                  zone: float | None = None, linear_solver: str = "umfpack",
                  strain: str = "transported", ends: bool = True, entry_temperature=None,
-                 reuse_steps: int | None = None, interior_layers: int = 1):
+                 reuse_steps: int | None = None, interior_layers: int = 1, comm=None):
         import ngsolve as ng
 
         t0 = time.perf_counter()
@@ -129,7 +138,6 @@ class Spread3D:
         self.z[-1] = half_width
         ref2 = ng.Mesh(run.mesh.ngmesh.Copy())          # the 2D reference (undeformed)
         self.mesh = extrude(ref2, self.z)
-        mat = problem.material
         copy = self.copy = LayerCopy(ref2, self.mesh)
         # the strain: carried through the 3D flow with a free edge; with the edge held the
         # strip is in plane strain and the 2D pass's is its answer
@@ -137,18 +145,10 @@ class Spread3D:
                        if strain == "transported" and not edge_held else None)
         #: the entry temperature's difference across the width from mid-width's, carried
         #: through the bite (fem/strain.CarriedField), or None
-        self.cooling = None
-        if entry_temperature is None:
-            consistency, rate_offset = frozen_flow_stress(run, copy, self.strain)
-        else:
-            self.cooling = CarriedField(self.mesh, _offset(entry_temperature, half_width))
-            consistency, rate_offset = cooled_flow_stress(run, copy, self.cooling, self.strain)
-        self.form = RollingForm3D(self.mesh, problem.rp, NortonHoff(1.0, mat.m, mat.eps0),
-                                  problem.friction, PenaltyTable(h),
-                                  tensions=problem.reduced_tensions, edge_held=edge_held,
-                                  consistency=consistency, rate_offset=rate_offset,
-                                  strip_compliance=f2.compliance, strip_depth=f2.strip_depth,
-                                  interior_cut=self.cut if self.cut > 0.0 else None)
+        self.cooling = (None if entry_temperature is None else
+                        CarriedField(self.mesh, _offset(entry_temperature, half_width)))
+        self.edge_held = edge_held
+        self.form = self.make_form(self.mesh, copy, self.strain, self.cooling)
         f3 = self.form
         # the chosen solver first, the others after it where it fails (fem/nonlinear.py)
         f3.nonlinear.linear_solvers = (linear_solver,) + tuple(
@@ -162,8 +162,7 @@ class Spread3D:
         self.disp = ng.GridFunction(f3.fes.components[0])
         copy.vector(run.disp, self.disp)
         self.mesh.SetDeformation(self.disp)
-        for name in ("a_f", "m", "x_split", "U", "v_reg", "_mu", "_lam", "tension_back",
-                     "tension_front"):
+        for name in PARAMETERS:
             getattr(f3, name).Set(getattr(f2, name).Get())
         copy.facets(f2.chi.space, f2.chi.vec.FV().NumPy(), f3.chi.space,
                     f3.chi.vec.FV().NumPy())
@@ -176,7 +175,6 @@ class Spread3D:
             self.cooling.transport(f3.nonlinear.velocity)
         self.face = None if edge_held else LateralFace(ref2, run.disp.vec.FV().NumPy(),
                                                        self.z, copy)
-        self.edge_held = edge_held
         #: the top per width level (solvers/spread_tops.py), or None: the 2D pass's
         self.tops = LevelTops(self) if tops and not edge_held else None
         #: the contact's end per width level (solvers/spread_ends.py), or None: the 2D pass's
@@ -184,7 +182,30 @@ class Spread3D:
                      and run.unilateral else None)
         self.rounds, self.iterations, self.settled, self.failure = 0, 0, False, ""
         self.factorisations, self.reused = 0, 0
+        #: the flow solve over MPI ranks (solvers/spread_mpi.py), or None
+        self.mpi = None
+        if comm is not None:
+            from hotroll.solvers.spread_mpi import DistributedFlow
+
+            self.mpi = DistributedFlow(self, comm)
         self.setup_time, self.solve_time = time.perf_counter() - t0, 0.0
+
+    def make_form(self, mesh, copy, strain, cooling) -> RollingForm3D:
+        """The pass's 3D form on ``mesh`` (this strip's, or its distributed copy:
+        ``solvers/spread_mpi.py``), its flow stress from ``copy`` (a ``LayerCopy`` or its
+        mirror), the carried ``strain`` and ``cooling`` (or None)."""
+        run, problem = self.run2d, self.problem
+        f2, mat = run.form, problem.material
+        if cooling is None:
+            consistency, rate_offset = frozen_flow_stress(run, copy, strain)
+        else:
+            consistency, rate_offset = cooled_flow_stress(run, copy, cooling, strain)
+        return RollingForm3D(mesh, problem.rp, NortonHoff(1.0, mat.m, mat.eps0),
+                             problem.friction, PenaltyTable(problem.h),
+                             tensions=problem.reduced_tensions, edge_held=self.edge_held,
+                             consistency=consistency, rate_offset=rate_offset,
+                             strip_compliance=f2.compliance, strip_depth=f2.strip_depth,
+                             interior_cut=self.cut if self.cut > 0.0 else None)
 
     def solve(self, max_rounds: int = 30, progress=None) -> bool:
         """Newton with the surfaces' update (with the ends' search and the carried fields'
@@ -195,16 +216,18 @@ class Spread3D:
         of that settled shape to ``tol`` (the figures read it, as the 2D pass returns the flow
         of its final shape). True if settled. ``progress``: called with a report (its words
         in ``message``) after each round. Its threads as the 2D pass's solve
-        (``solvers/threads.solver_threads``: an outer call's, else "auto"; BLAS 1 thread)."""
-        with solver_threads():
+        (``solvers/threads.solver_threads``: an outer call's, else "auto"; BLAS 1 thread;
+        over MPI ranks one each)."""
+        with solver_threads(1 if self.mpi is not None else None):
             return self._solve(max_rounds, progress)
 
     def _solve(self, max_rounds: int, progress) -> bool:
         t0 = time.perf_counter()
         s = self.run2d.s
+        system = self.form.nonlinear if self.mpi is None else self.mpi.system
         try:
             if self.face is None:
-                st = newton(self.form.nonlinear, s.tol, s.max_it)
+                st = newton(system, s.tol, s.max_it)
                 self.settled = st.converged
             else:
                 state = {"settled": False}
@@ -215,9 +238,12 @@ class Spread3D:
                     state["settled"] = self._round(update, progress)
                     if self.form.friction_dual is not None:   # the form's data moved
                         self.form.friction_dual.restart()
+                    if self.mpi is not None:
+                        self.mpi.sync()
+                        self.mpi.restart()
                     return True
 
-                st = newton(self.form.nonlinear, s.tol, s.max_it + 3 * max_rounds,
+                st = newton(system, s.tol, s.max_it + 3 * max_rounds,
                             couple=couple, couple_below=s.couple_below, full_step=True)
                 self.settled = st.converged and state["settled"]
             self.iterations += st.iterations
