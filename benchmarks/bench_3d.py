@@ -18,7 +18,9 @@ factors, ``Spread3D.reuse_steps``), wall s (2D, 3D set-up, 3D solve), peak resid
 the process (GB), spread, and the mass balance (out + edge - in) / in (``SpreadResult``'s
 sign). The linear solver: UMFPACK by default, or ``--solver`` (solvers/spread_3d.py: LINEAR_SOLVERS_3D);
 ``--corner``: the 2D mesh refined at the contact's start (``mesh.corner_refinement``, default
-16 as a case's; 1: none). Time on 2 cores with nothing else running.
+16 as a case's; 1: none). Time on 2 cores with nothing else running. Under
+``mpiexec -n N`` the 3D flow solve runs over the ranks (solvers/spread_mpi.py; netgen's rank 0
+holds no elements: N - 1 assemble), rank 0 prints.
 """
 from __future__ import annotations
 
@@ -36,6 +38,7 @@ from asymmetric_case_r import case_r  # noqa: E402
 
 from hotroll.config.case import load_case  # noqa: E402
 from hotroll.examples import example_path  # noqa: E402
+from hotroll.fem.mirror import abort_on_error, world  # noqa: E402
 from hotroll.solvers.spread_3d import LINEAR_SOLVERS_3D, Spread3D  # noqa: E402
 from hotroll.solvers.steady import SteadyRun  # noqa: E402
 from hotroll.workflows.build import build_model, steady_settings  # noqa: E402
@@ -70,27 +73,38 @@ def main() -> None:
     ap.add_argument("--corner", type=float, default=16.0,
                     help="mesh.corner_refinement of the 2D mesh the 3D one is extruded from")
     a = ap.parse_args()
+    comm = world()                 # mpiexec -n N: the 3D flow solve over the ranks
+    if comm is not None:
+        abort_on_error(comm)
+    say = print if comm is None or comm.rank == 0 else (lambda *args, **kw: None)
     run, half_width, status, wall2 = two_d(a.case, a.corner)
     h = run.problem.h
-    print(f"{a.case}: 3D linear solver {a.solver}; 2D pass {status}, {run.form.fes.ndof} DOFs, "
+    if comm is not None:
+        say(f"MPI: {comm.size} ranks (rank 0 holds no elements); peak GB: the largest rank's "
+            "and, in brackets, all ranks'")
+    say(f"{a.case}: 3D linear solver {a.solver}; 2D pass {status}, {run.form.fes.ndof} DOFs, "
           f"h = {h * 1e3:.3g} mm, corner refinement {a.corner:g}, "
           f"{wall2:.1f} s")
-    print("| size | layers | DOFs | Newton its | rounds | factorisations (kept) | 3D set-up s | "
+    say("| size | layers | DOFs | Newton its | rounds | factorisations (kept) | 3D set-up s | "
           "3D solve s | peak GB | spread mm | (out + edge - in) / in |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    say("|---|---|---|---|---|---|---|---|---|---|---|")
     for size in a.sizes.split(","):
         edge, largest = SIZES[size]
         s3 = Spread3D(run, half_width, edge=min(edge * h, half_width), largest=largest * h,
-                      linear_solver=a.solver)
+                      linear_solver=a.solver, comm=comm)
         s3.solve()
         fig = s3.figures()
         peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2
-        print(f"| {size} | {len(s3.z) - 1} | {fig['dofs']} | {fig['newton_iterations']} | "
-              f"{fig['rounds']} | {fig['factorisations']} ({fig['reused']}) | "
-              f"{s3.setup_time:.1f} | {s3.solve_time:.1f} | {peak:.2f} | "
-              f"{fig.get('spread', float('nan')) * 1e3:.3f} | "
-              f"{(fig['flux_out'] + fig['flux_edge'] - fig['flux_in']) / fig['flux_in']:.1e} |",
-              flush=True)
+        mem = f"{peak:.2f}"
+        if comm is not None:
+            peaks = comm.gather(peak)
+            mem = "" if peaks is None else f"{max(peaks):.2f} ({sum(peaks):.2f})"
+        say(f"| {size} | {len(s3.z) - 1} | {fig['dofs']} | {fig['newton_iterations']} | "
+            f"{fig['rounds']} | {fig['factorisations']} ({fig['reused']}) | "
+            f"{s3.setup_time:.1f} | {s3.solve_time:.1f} | {mem} | "
+            f"{fig.get('spread', float('nan')) * 1e3:.3f} | "
+            f"{(fig['flux_out'] + fig['flux_edge'] - fig['flux_in']) / fig['flux_in']:.1e} |",
+            flush=True)
 
 
 if __name__ == "__main__":

@@ -8,7 +8,7 @@ if [ ! -x .venv/bin/python ]; then
   "$PY" -m venv .venv
 fi
 .venv/bin/python -m pip install --quiet --upgrade pip
-.venv/bin/python -m pip install --quiet -e ".[test,pyroll]"
+.venv/bin/python -m pip install --quiet -e ".[test,pyroll,mpi]"
 # byte-compile hotroll once: where PYTHONDONTWRITEBYTECODE is set (this machine, the CI's)
 # every command would otherwise compile its ~100 modules again (about 0.13 s a command)
 .venv/bin/python -m compileall -q hotroll

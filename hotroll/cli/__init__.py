@@ -53,11 +53,20 @@ def _main(
 MPI_SIZE_VARIABLES = ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "MV2_COMM_WORLD_SIZE")
 
 
-def mpi_refusal(env) -> str | None:
+#: the commands that run over MPI ranks (``mpiexec -n N hotroll run ...``: the 3D pass's flow
+#: solve shared between them, rank 0 writing; ``cli/passes.run``)
+MPI_COMMANDS = ("run",)
+
+
+def mpi_refusal(env, argv=()) -> str | None:
     """Why hotroll refuses to run under ``mpirun -n N`` with N > 1 (``env``: the process's
-    environment), or None: every rank would solve the whole case into the same files; the
-    MPI-distributed 3D solve is not built (issue 53, docs/notes/issue53-mpi-spike/)."""
+    environment, ``argv``: its arguments after the program), or None: ``hotroll run`` shares
+    a case's 3D pass between the ranks (``MPI_COMMANDS``); any other command would solve the
+    whole case on every rank into the same files."""
     if env.get("HOTROLL_ALLOW_MPI") == "1":       # a single hotroll under an MPI parent
+        return None
+    command = next((a for a in argv if not a.startswith("-")), None)
+    if command in MPI_COMMANDS:
         return None
     for key in MPI_SIZE_VARIABLES:
         try:
@@ -65,10 +74,11 @@ def mpi_refusal(env) -> str | None:
         except ValueError:
             continue
         if n > 1:
-            return (f"refused: launched on {n} MPI ranks ({key}={n}): hotroll runs on one "
-                    "process (its threads: solver.threads); every rank would solve the same "
-                    "case into the same files. Run it without mpirun; many cases run in "
-                    "parallel with `hotroll study` (dask.distributed). (One hotroll started "
+            return (f"refused: launched on {n} MPI ranks ({key}={n}): only `hotroll run` "
+                    "shares a case between MPI ranks (its 3D pass's flow solve: "
+                    "mpiexec -n N hotroll run CASE); this command would solve the same case "
+                    "on every rank into the same files. Run it without mpirun; many cases run "
+                    "in parallel with `hotroll study` (dask.distributed). (One hotroll started "
                     "by an MPI program's rank inherits its variables: HOTROLL_ALLOW_MPI=1.)")
     return None
 
@@ -76,10 +86,12 @@ def mpi_refusal(env) -> str | None:
 def main() -> None:
     """The ``hotroll`` command: the app, a full disk (exit code 9, ``files.DiskFullError``) or a
     mesh over the memory limit (exit code 8) ending it with its clear message instead of a
-    traceback; refused under MPI with more than one rank (exit code 2, ``mpi_refusal``)."""
+    traceback; refused under MPI with more than one rank but for ``hotroll run`` (exit code 2,
+    ``mpi_refusal``)."""
     import os
+    import sys
 
-    why = mpi_refusal(os.environ)
+    why = mpi_refusal(os.environ, sys.argv[1:])
     if why is not None:
         err_console.print(Text(why, style="red"), soft_wrap=True)
         raise SystemExit(2)

@@ -1,6 +1,7 @@
 """Commands on one pass: ``hotroll run | compare | example | sweep | meshes`` (registered on
 the app in ``cli/__init__.py``; ``validate`` is ``cli/validate.py``)."""
 
+import shutil
 import time
 from pathlib import Path
 from typing import Annotated, Any
@@ -38,6 +39,7 @@ from hotroll.cli.run_display import run_end_time as _end_time
 from hotroll.cli.run_display import summary_table as _summary_table
 from hotroll.config.case import MESH_TABLE, Case, CaseError, load_case
 from hotroll.examples import EXAMPLES, example_path
+from hotroll.fem.mirror import abort_on_error, world
 from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv
 from hotroll.workflows.build import asymmetric_refusal
@@ -160,10 +162,34 @@ def run(
         extra["solver.force"] = True
     if method is not None:
         extra["solver.method"] = method
+    comm = world()
+    if comm is not None:                   # mpiexec -n N hotroll run: rank 0 writes OUT
+        out, extra = _mpi_rank(comm, out, extra)
     case = _load(case_file, _overrides(mesh, end_time, nonlinear, **extra))
-    with Printer(fmt, console) as printer:
-        summary = _run(case, out, resume, printer)
+    try:
+        with Printer(fmt, console) as printer:
+            summary = _run(case, out, resume, printer)
+    finally:
+        if comm is not None and comm.rank > 0:
+            shutil.rmtree(out, ignore_errors=True)
     _exit([summary], printer, [case.name])
+
+
+def _mpi_rank(comm, out: Path, extra: dict) -> tuple[Path, dict]:
+    """A run started by ``mpiexec -n N`` (``fem/mirror.world``): every rank runs the case (the
+    3D pass's flow solve is shared between them: ``solvers/spread_mpi.py``; the rest is the
+    same serial work on each), rank 0 writes OUT and prints; the others write to a temporary
+    directory, removed after, and print nothing. An exception on one rank ends all."""
+    import tempfile
+
+    abort_on_error(comm)
+    if comm.rank == 0:
+        console.print(Text(f"MPI: {comm.size} ranks (netgen's rank 0 keeps no elements of the "
+                           f"3D strip: {comm.size - 1} assemble its flow)"))
+        return out, extra
+    console.quiet = err_console.quiet = True
+    return (Path(tempfile.mkdtemp(prefix=f"hotroll-rank{comm.rank}-")),
+            {**extra, "output.figures": False})
 
 
 def compare(

@@ -61,6 +61,11 @@ class RollingForm(FrictionTerms):
 
     #: the boundary the contact multiplier lives on (taylor_hood's ``multiplier_on``)
     MULTIPLIER_ON = "arc"
+    #: the form's scalar data (ngsolve Parameters): the friction parameter, the rate exponent,
+    #: the tops' split, the roll speed and the friction's regularisation, the reference
+    #: viscosity and pressure scale, the tensions (a 3D strip starts from its 2D pass's)
+    PARAMETERS = ("a_f", "m", "x_split", "U", "v_reg", "_mu", "_lam", "tension_back",
+                  "tension_front")
     #: the contact's start (a named point of the mesh, ``mesh.strip_face``)
     START = "start"
     #: the space dimension (a 3D strip: ``fem/rolling_form_3d.py``)

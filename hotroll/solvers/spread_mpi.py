@@ -53,9 +53,7 @@ class DistributedFlow:
     def sync(self) -> None:
         """The serial form's data copied over: its Parameters, the mirrored fields, the
         displacement (the mesh's deformation set again)."""
-        from hotroll.solvers.spread_3d import PARAMETERS
-
-        for name in PARAMETERS:
+        for name in self.form.PARAMETERS:
             getattr(self.form, name).Set(getattr(self.s3.form, name).Get())
         self.fields.sync()
         self.mesh.SetDeformation(self.disp)

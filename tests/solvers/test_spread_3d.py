@@ -59,6 +59,34 @@ def test_the_held_edge_is_the_2d_pass(passes):
     assert "spread" not in held
 
 
+def test_the_free_pass_over_three_mpi_ranks_is_the_serial_one(passes):
+    """[identity] the same pass with its flow solve over MPI ranks (``mpiexec -n 3``: two
+    that hold elements; solvers/spread_mpi.py, tests/solvers/mpi_spread.py): the serial
+    pass's rounds and Newton steps and its figures to the solver's tolerance (measured
+    1e-14), every rank the same velocity bitwise. Its parts: the DOF maps between the serial
+    and the distributed mesh, the mirrored fields synchronised after every round, the
+    distributed residual, Jacobian and MasterInverse."""
+    import json
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    _, _, free = passes
+    mpiexec = Path(sys.executable).parent / "mpiexec"
+    script = Path(__file__).with_name("mpi_spread.py")
+    r = subprocess.run([str(mpiexec), "-n", "3", sys.executable, str(script)],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr[-3000:]
+    line = next(x for x in r.stdout.splitlines() if x.startswith("FIGURES "))
+    mpi = json.loads(line[len("FIGURES "):])
+    assert mpi["ranks"] == 3 and mpi["ranks_agree"] and mpi["settled"]
+    assert (mpi["rounds"], mpi["newton_iterations"]) == (free["rounds"],
+                                                          free["newton_iterations"])
+    for key in ("roll_force", "roll_torque", "spread", "exit_half_width", "flux_out",
+                "forward_slip", "plastic_power", "midplane_pressure_deviation"):
+        assert mpi[key] == pytest.approx(free[key], rel=1e-9, abs=0.0), key
+
+
 def test_a_free_edge_settles_as_a_stream_surface(passes):
     """[measured] the lateral face carries no flux: 2.7e-7 of the inflow. It is the stream
     surface of the flow one solve before the last (the SUPG rows of B summed over its free

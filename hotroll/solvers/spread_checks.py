@@ -1,0 +1,89 @@
+"""Checks of a solved 3D pass (issue 53, ``solvers/spread_3d.Spread3D``): the power balance of
+its form and how far its mid-width plane is from the 2D pass (the plane-strain limit)."""
+from __future__ import annotations
+
+import numpy as np
+
+from hotroll.fem.reproducible import integrate
+from hotroll.solvers.spread_contact import level_contact, plane_contact, read_at
+
+
+def power_balance(s3, torque: float) -> dict:
+    """The power balance of (3.6) of the solved ``Spread3D`` ``s3``, tested with the velocity
+    itself, of the quarter (W): the roll's power, the quarter's torque ``torque`` (N m)
+    times omega (the shear's power at the rim's speed), and the tensions' on the cut faces against the plastic power
+    int mu eps:eps dV, the friction's int k_f |v_s|^2 dA and the contact pressure's
+    int p u.n dA; the error |roll + tension - plastic - friction - contact| / roll (the
+    penalties, inactive in a pass the roll drives, left out)."""
+    import ngsolve as ng
+
+    from hotroll.fem.forms import strain_rate
+    from hotroll.model.material import edot_squared
+
+    f, mesh, K = s3.form, s3.mesh, s3.problem.material.K
+    u = f.nonlinear.velocity
+    eps = strain_rate(u)
+    mu = f.material.viscosity(edot_squared(eps), m=f.m_material, K=f.consistency)
+    s, kf = f.slip(u), f.friction_coefficient(u)
+    nn = ng.specialcf.normal(3)
+    plastic = K * integrate(mu * ng.InnerProduct(eps, eps), mesh, ng.VOL)
+    friction = K * f.integrate_friction(f.chi * kf * (s * s))
+    # the contact pressure's power on the strip, p u.n: zero to round-off on a rigid-plastic
+    # strip (the constraint u.n = 0 against every P1 function), the elastic surface's rate
+    # with the strip's elasticity (fem/quantities.integrals, 2D, the same)
+    n, _ = f.roll_frame()
+    contact = K * integrate(f.pressure(u) * (u * n), mesh, ng.BND,
+                            definedon=mesh.Boundaries("arc"))
+    roll = torque * s3.problem.rp.omega
+    tension = K * (integrate(f.tension_back * (u * nn), mesh, ng.BND,
+                             definedon=mesh.Boundaries("in"))
+                   + integrate(f.tension_front * (u * nn), mesh, ng.BND,
+                               definedon=mesh.Boundaries("out")))
+    return {"plastic_power": plastic, "friction_power": friction, "roll_power": roll,
+            "tension_power": tension, "contact_power": contact, "power_balance_error":
+                abs(roll + tension - plastic - friction - contact) / max(abs(roll), 1e-300)}
+
+def midplane_deviation(s3) -> dict:
+    """How far the mid-width plane (z = 0) of ``s3`` is from the 2D pass: the largest difference of
+    the pressure at its vertices over the 2D pass's largest |p|, its root mean square over
+    the 2D pressure's (the whole plane: ahead of the bite and after it too), the same two
+    of the contact pressure at the arc's vertices (the bite), and the largest difference
+    of the velocity at its P2 nodes over the roll speed (all 0 with the edge held; the
+    plane-strain limit of a wide strip)."""
+    f2, f3 = s3.run2d.form, s3.form
+    g2, g3 = f2.nonlinear.gf, f3.nonlinear.gf
+    out = {}
+    P2, P3 = g2.components[1], g3.components[1]
+    mid = np.zeros_like(P2.vec.FV().NumPy())
+    s3.copy.take(0, P3.space, P3.vec.FV().NumPy(), P2.space, mid)
+    p2 = P2.vec.FV().NumPy()
+    out["midplane_pressure_deviation"] = float(np.abs(mid - p2).max() / np.abs(p2).max())
+    # ... and its root mean square over the vertices, over the 2D pressure's (the largest
+    # sits where the pressure peaks at the contact's start)
+    out["midplane_pressure_rms_deviation"] = float(np.sqrt(np.mean((mid - p2) ** 2))
+                                                   / np.sqrt(np.mean(p2 ** 2)))
+    # the contact pressure on the arc at mid-width (level 0, as the 2D pass reads its own:
+    # solvers/spread_contact.py) against the 2D pass's at the same x: what the roll feels,
+    # the bite only. The level's own contact start and end move its vertices along the
+    # arc, so the 3D pressure is read at the 2D vertices' x (``spread_contact.read_at``)
+    two, lev = plane_contact(s3.run2d), level_contact(s3)
+    c2 = two["traction"]
+    c3 = read_at(two["x"], lev["x"][0], lev["traction"][0],
+                 s3.run2d.s.surface_tol * s3.problem.h)
+    out["midplane_contact_pressure_deviation"] = float(np.abs(c3 - c2).max()
+                                                       / np.abs(c2).max())
+    out["midplane_contact_pressure_rms_deviation"] = float(
+        np.sqrt(np.mean((c3 - c2) ** 2)) / np.sqrt(np.mean(c2 ** 2)))
+    # ... and in L2 along the arc (trapezoid over the 2D vertices' x): the vertex RMS
+    # weighs each vertex alike, so a mesh refined at the contact's start weighs its
+    # singular corner more; the L2 norm is the mesh's limit
+    x = np.asarray(two["x"], dtype=float)
+    out["midplane_contact_pressure_l2_deviation"] = float(
+        np.sqrt(np.trapezoid((c3 - c2) ** 2, x) / np.trapezoid(c2 ** 2, x)))
+    V2 = g2.components[0]
+    u2 = V2.vec.FV().NumPy()
+    mid = np.zeros_like(u2)
+    s3.copy.take_vector(0, g3.components[0], V2.space.components[0], mid, 2)
+    out["midplane_velocity_deviation"] = (float(np.abs(mid - u2).max())
+                                          / s3.problem.rp.u_roll)
+    return out
