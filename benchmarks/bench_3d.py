@@ -25,6 +25,7 @@ holds no elements: N - 1 assemble), rank 0 prints.
 from __future__ import annotations
 
 import argparse
+import json
 import resource
 import sys
 import time
@@ -72,6 +73,7 @@ def main() -> None:
                     help="the 3D Newton's linear solver (solvers/spread_3d.py: LINEAR_SOLVERS_3D)")
     ap.add_argument("--corner", type=float, default=16.0,
                     help="mesh.corner_refinement of the 2D mesh the 3D one is extruded from")
+    ap.add_argument("--figures", default=None, help="write each size's figures (JSON) here")
     a = ap.parse_args()
     comm = world()                 # mpiexec -n N: the 3D flow solve over the ranks
     if comm is not None:
@@ -94,6 +96,9 @@ def main() -> None:
                       linear_solver=a.solver, comm=comm)
         s3.solve()
         fig = s3.figures()
+        if a.figures and (comm is None or comm.rank == 0):
+            keep = {k: v for k, v in fig.items() if isinstance(v, (bool, int, float, str))}
+            Path(a.figures).write_text(json.dumps(dict(size=size, **keep)) + "\n")
         peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2
         mem = f"{peak:.2f}"
         if comm is not None:
