@@ -39,6 +39,7 @@ from hotroll.cli.run_display import run_end_time as _end_time
 from hotroll.cli.run_display import summary_table as _summary_table
 from hotroll.config.case import MESH_TABLE, Case, CaseError, load_case
 from hotroll.examples import EXAMPLES, example_path
+from hotroll.fem.amg import NAME as AMG
 from hotroll.fem.mirror import abort_on_error, world
 from hotroll.results.outcome import EXIT_CODES
 from hotroll.results.output import write_csv
@@ -165,8 +166,11 @@ def run(
     comm = world()
     if comm is not None:                   # mpiexec -n N hotroll run: rank 0 writes OUT
         out, extra = _mpi_rank(comm, out, extra)
-    case = _load(case_file, _overrides(mesh, end_time, nonlinear, **extra))
     try:
+        case = _load(case_file, _overrides(mesh, end_time, nonlinear, **extra))
+        if comm is not None and case.spread is not None and case.spread.linear_solver == AMG:
+            raise fail(f"spread.linear_solver = {AMG!r} runs on one process (its AMG is "
+                       "scipy's): under mpiexec use a direct solver's name (umfpack)")
         with Printer(fmt, console) as printer:
             summary = _run(case, out, resume, printer)
     finally:

@@ -71,3 +71,23 @@ def test_hotroll_run_under_mpiexec_writes_once_what_one_process_writes(tmp_path)
         assert mpi[key] == serial[key], key
     assert list(tmp.iterdir()) == []
     assert tempfile.gettempdir() != str(tmp)       # the test's own process untouched
+
+
+def test_an_amg_3d_pass_under_mpiexec_is_refused_before_any_computation(tmp_path):
+    """[plumb] ``spread.linear_solver = "amg+gmres"`` (scipy's AMG, one process) under
+    ``mpiexec -n 2 hotroll run``: exit code 2 naming the key, no OUT, no rank's temporary
+    directory left behind."""
+    case = (Path(__file__).resolve().parents[2] / "hotroll" / "examples" / "cases"
+            / "narrow_bar.toml").read_text() + 'linear_solver = "amg+gmres"\n'
+    (tmp_path / "bar.toml").write_text(case)
+    tmp = tmp_path / "tmp"
+    tmp.mkdir()
+    mpiexec = Path(sys.executable).parent / "mpiexec"
+    r = subprocess.run([str(mpiexec), "-n", "2", str(Path(sys.executable).parent / "hotroll"),
+                        "run", str(tmp_path / "bar.toml"), "-o", str(tmp_path / "out")],
+                       env=dict(os.environ, TMPDIR=str(tmp)), capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode == 2, r.stderr[-2000:]
+    assert "spread.linear_solver = 'amg+gmres' runs on one process" in " ".join(
+        (r.stdout + r.stderr).split())
+    assert not (tmp_path / "out").exists() and list(tmp.iterdir()) == []
