@@ -182,16 +182,21 @@ def run(
 def _mpi_rank(comm, out: Path, extra: dict) -> tuple[Path, dict]:
     """A run started by ``mpiexec -n N`` (``fem/mirror.world``): every rank runs the case (the
     3D pass's flow solve is shared between them: ``solvers/spread_mpi.py``; the rest is the
-    same serial work on each), rank 0 writes OUT and prints; the others write to a temporary
-    directory, removed after, and print nothing. An exception on one rank ends all."""
+    same serial work on each), rank 0 writes OUT and prints (the ranks on stderr: stdout keeps
+    --format csv/json's tables alone); the others write to a temporary
+    directory, removed after, and print nothing (their stdout is os.devnull; stderr stays for
+    a traceback). An exception on one rank ends all."""
+    import os
+    import sys
     import tempfile
 
     abort_on_error(comm)
     if comm.rank == 0:
-        console.print(Text(f"MPI: {comm.size} ranks (netgen's rank 0 keeps no elements of the "
+        err_console.print(Text(f"MPI: {comm.size} ranks (netgen's rank 0 keeps no elements of the "
                            f"3D strip: {comm.size - 1} assemble its flow)"))
         return out, extra
     console.quiet = err_console.quiet = True
+    sys.stdout = open(os.devnull, "w")      # noqa: SIM115 - --format csv/json's tables: rank 0's
     return (Path(tempfile.mkdtemp(prefix=f"hotroll-rank{comm.rank}-")),
             {**extra, "output.figures": False})
 

@@ -50,7 +50,8 @@ def test_hotroll_schedule_under_two_ranks_exits_2_before_any_computation(tmp_pat
 def test_hotroll_run_under_mpiexec_writes_once_what_one_process_writes(tmp_path):
     """[plumb] ``mpiexec -n 2 hotroll run example1 --method steady``: exit 0, rank 0's OUT the summary of a
     run without mpiexec (the 2D pass is the same serial work on each rank: its figures equal
-    bitwise), its MPI line printed once, no rank's temporary directory left behind."""
+    bitwise), its MPI line printed once, ``--format json`` one document (rank 0's), no rank's
+    temporary directory left behind."""
     hotroll = Path(sys.executable).parent / "hotroll"
     mpiexec = Path(sys.executable).parent / "mpiexec"
     tmp = tmp_path / "tmp"
@@ -63,9 +64,15 @@ def test_hotroll_run_under_mpiexec_writes_once_what_one_process_writes(tmp_path)
                                   str(tmp_path / name), "--no-figures"], env=env, capture_output=True, text=True,
                            timeout=300)
         assert r.returncode == 0, r.stderr[-3000:]
-        runs[name] = (r.stdout, json.loads((tmp_path / name / "summary.json").read_text()))
+        runs[name] = (r.stderr, json.loads((tmp_path / name / "summary.json").read_text()))
     out, mpi = runs["mpi"]
     assert out.count("MPI: 2 ranks") == 1 and "MPI:" not in runs["serial"][0]
+    r = subprocess.run([str(mpiexec), "-n", "2", str(hotroll), "run", str(EXAMPLE), "--method",
+                        "steady", "-o", str(tmp_path / "json"), "--no-figures", "--format",
+                        "json"], env=env, capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-3000:]
+    doc = json.loads(r.stdout)           # rank 0's tables alone: one document, nothing else
+    assert doc[0]["title"] == "example1: summary"
     serial = runs["serial"][1]
     for key in ("roll_force", "roll_torque", "forward_slip", "neutral_angle"):
         assert mpi[key] == serial[key], key
