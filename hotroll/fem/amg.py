@@ -142,40 +142,10 @@ class BlockAMG:
         (default 1 on the free rows). Where GMRES stops short of it (``MAX_STEPS``) out is its
         last iterate, NaN after a breakdown: Newton's accuracy test refuses either."""
         w = self._free.astype(float) if weights is None else np.where(self._free, weights, 0.0)
-        pre = _Operator(self._apply, r)
+        pre = krylov.numpy_operator(self._apply, r)
         with _sequential():
             self.iterations = krylov.gmres(self.mat, pre, self._freedofs, r, out, rtol, w,
                                            MAX_STEPS)
-
-
-def _Operator(apply, like):                            # noqa: N802 - a BaseMatrix's factory
-    """``apply`` (numpy -> numpy over all DOFs) as an NGSolve BaseMatrix."""
-    from ngsolve import BaseMatrix
-
-    class Operator(BaseMatrix):
-        def __init__(self):
-            super().__init__()
-            self._like = like
-
-        def IsComplex(self):                           # noqa: N802
-            return False
-
-        def Height(self):                              # noqa: N802
-            return len(self._like)
-
-        def Width(self):                               # noqa: N802
-            return len(self._like)
-
-        def CreateRowVector(self):                     # noqa: N802
-            return self._like.CreateVector()
-
-        def CreateColVector(self):                     # noqa: N802
-            return self._like.CreateVector()
-
-        def Mult(self, x, y):                          # noqa: N802
-            y.FV().NumPy()[:] = apply(x.FV().NumPy())
-
-    return Operator()
 
 
 def make_inverse(mat, freedofs, name: str, layout: VelocityLayout | None = None):

@@ -157,3 +157,43 @@ def make_inverse(mat, freedofs, name: str):
     if name == NAME:
         return PreconditionedGMRES(mat, freedofs)
     return mat.Inverse(freedofs, inverse=name)
+
+
+def numpy_operator(apply, like, inverse=None, update=None):
+    """``apply`` (numpy -> numpy over all DOFs, vectors like ``like``) as an NGSolve matrix
+    (``op * x`` in vector expressions); ``inverse(freedofs, name)`` its ``Inverse``,
+    ``update()`` its ``Update`` (a kept factorisation's, ``fem/nonlinear.py``), where given."""
+    from ngsolve import BaseMatrix
+
+    class Operator(BaseMatrix):
+        def IsComplex(self):                           # noqa: N802
+            return False
+
+        def Height(self):                              # noqa: N802
+            return len(like)
+
+        def Width(self):                               # noqa: N802
+            return len(like)
+
+        def CreateRowVector(self):                     # noqa: N802
+            return like.CreateVector()
+
+        def CreateColVector(self):                     # noqa: N802
+            return like.CreateVector()
+
+        def Mult(self, x, y):                          # noqa: N802
+            y.FV().NumPy()[:] = apply(x.FV().NumPy())
+
+        def Inverse(self, freedofs=None, inverse: str = ""):   # noqa: N802
+            if inverse_of is None:
+                raise NotImplementedError("no inverse of this operator")
+            return inverse_of(freedofs, inverse)
+
+        def Update(self):                              # noqa: N802
+            if update is None:
+                raise NotImplementedError("no Update of this operator")
+            update()
+
+    inverse_of = inverse
+    return Operator()
+

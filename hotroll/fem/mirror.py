@@ -22,6 +22,8 @@ import os
 
 import numpy as np
 
+from hotroll.fem.krylov import numpy_operator
+
 #: environment variables an MPI launcher (MPICH's hydra, Open MPI) sets in every rank
 LAUNCHED = ("PMI_SIZE", "OMPI_COMM_WORLD_SIZE")
 
@@ -147,8 +149,9 @@ class FieldMirror:
         if into is None:
             into = ng.GridFunction(fe_space(type(gf.space), self.mesh,
                                             order=gf.space.globalorder))
-        self.pairs.append((gf, into, self.dof_map(gf.space, into.space)))
-        self.sync()
+        dmap = self.dof_map(gf.space, into.space)
+        self.pairs.append((gf, into, dmap))
+        dmap.scatter(gf.vec.FV().NumPy(), into.vec)
         return into
 
     def sync(self) -> None:
@@ -158,47 +161,19 @@ class FieldMirror:
 
 def _operator(system, apply, inverse=None, update=None):
     """``apply(x, y)`` (distributed vectors: y = op x) in the serial numbering as an NGSolve
-    matrix (``mat * x`` in vector expressions) through ``system``'s ``DofMap``;
-    ``inverse(freedofs, name)`` its ``Inverse`` (``krylov.make_inverse`` calls it),
-    ``update()`` its ``Update`` (a kept factorisation's, ``fem/nonlinear.py``)."""
-    from ngsolve import BaseMatrix
-
-    like, dist = system.gf.vec, system.dist.gf.vec
+    matrix (``krylov.numpy_operator``) through ``system``'s ``DofMap``; ``inverse``,
+    ``update``: its ``Inverse`` and ``Update``."""
+    dist = system.dist.gf.vec
     xd, yd = dist.CreateVector(), dist.CreateVector()
 
-    class Operator(BaseMatrix):
-        def IsComplex(self):                           # noqa: N802
-            return False
+    def serial(x: np.ndarray) -> np.ndarray:
+        system.dmap.scatter(x, xd)
+        apply(xd, yd)
+        out = np.empty_like(x)
+        system.dmap.gather(yd, out)
+        return out
 
-        def Height(self):                              # noqa: N802
-            return len(like)
-
-        def Width(self):                               # noqa: N802
-            return len(like)
-
-        def CreateRowVector(self):                     # noqa: N802
-            return like.CreateVector()
-
-        def CreateColVector(self):                     # noqa: N802
-            return like.CreateVector()
-
-        def Mult(self, x, y):                          # noqa: N802
-            system.dmap.scatter(x.FV().NumPy(), xd)
-            apply(xd, yd)
-            system.dmap.gather(yd, y.FV().NumPy())
-
-        def Inverse(self, freedofs=None, inverse: str = ""):   # noqa: N802
-            if make is None:
-                raise NotImplementedError("the inverse of a distributed inverse")
-            return make(freedofs, inverse)
-
-        def Update(self):                              # noqa: N802
-            if refresh is None:
-                raise NotImplementedError("Update of a distributed matrix")
-            refresh()
-
-    make, refresh = inverse, update
-    return Operator()
+    return numpy_operator(serial, system.gf.vec, inverse, update)
 
 
 class MirroredSystem:
@@ -239,11 +214,7 @@ class MirroredSystem:
         failed."""
         from ngsolve import BitArray
 
-        mask = np.array(list(freedofs), dtype=bool)[self.dmap.index]
-        local = BitArray(len(mask))
-        local.Clear()
-        for k in np.flatnonzero(mask):
-            local[int(k)] = True
+        local = BitArray(np.array(list(freedofs), dtype=bool)[self.dmap.index].tolist())
         held = {}
 
         def factorise():

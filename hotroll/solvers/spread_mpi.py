@@ -57,7 +57,6 @@ class DistributedFlow:
             getattr(self.form, name).Set(getattr(self.s3.form, name).Get())
         self.fields.sync()
         self.mesh.SetDeformation(self.disp)
-        self.system.sync()
 
     def restart(self) -> None:
         """The friction dual's restart (``FrictionDual.restart``) as the serial form's."""
