@@ -54,6 +54,13 @@ class SpreadKeys:
         "along the arc over the 2D contact pressure's (the vertex RMS weighs each vertex "
         "alike, so it weighs the singular contact start more on a mesh refined there)",
         group=_G, when=_W)
+    midplane_stress_l2_deviation: float = _f(
+        "-", "mid-width stress deviation (L2)", "the 3D pass's stress tensor on the mid-width "
+        "plane against the plane-strain pass's, L2 over the plane (ahead of the bite and "
+        "after it too) over the 2D stress's", group=_G, when=_W)
+    midplane_bite_stress_l2_deviation: float = _f(
+        "-", "mid-width stress deviation in the bite (L2)", "the same from the contact's "
+        "start to its end (the deforming zone) over the 2D stress's there", group=_G, when=_W)
     exit_temperature_offset: dict | None = _f(
         None, "exit temperature across the width", "the 3D pass's outlet: the temperature "
         "less mid-width's at the same height (K), `values` one row per `eta` (0 the centre, "

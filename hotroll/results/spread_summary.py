@@ -35,6 +35,9 @@ def spread_figures(case, sp: SpreadResult, roll_force: float) -> dict:
             sp.midplane["midplane_contact_pressure_rms_deviation"],
         "midplane_contact_pressure_l2_deviation":
             sp.midplane["midplane_contact_pressure_l2_deviation"],
+        "midplane_stress_l2_deviation": sp.midplane["midplane_stress_l2_deviation"],
+        "midplane_bite_stress_l2_deviation":
+            sp.midplane["midplane_bite_stress_l2_deviation"],
         "spread_settled": sp.settled, "spread_rounds": sp.rounds,
         "spread_newton_iterations": sp.newton_iterations, "spread_dofs": sp.dofs,
         "spread_layers": sp.layers, "spread_edge_layer": sp.edge_layer,

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from hotroll.fem.reproducible import integrate
+from hotroll.fem.reproducible import fe_space, integrate
 from hotroll.solvers.spread_contact import level_contact, plane_contact, read_at
 
 
@@ -86,4 +86,49 @@ def midplane_deviation(s3) -> dict:
     s3.copy.take_vector(0, g3.components[0], V2.space.components[0], mid, 2)
     out["midplane_velocity_deviation"] = (float(np.abs(mid - u2).max())
                                           / s3.problem.rp.u_roll)
+    out.update(midplane_stress_deviation(s3))
     return out
+
+
+def _stress(form, plane: bool) -> list:
+    """The Cauchy stress (reduced) of ``form``'s solution, sigma = mu(edot) eps_dot - p I
+    ((2.18), (2.21)): xx, yy, zz, xy; plane strain's sigma_zz = -p (eps_zz = 0)."""
+    from hotroll.fem.forms import strain_rate
+    from hotroll.model.material import edot_squared
+
+    e = strain_rate(form.nonlinear.velocity)
+    p = form.nonlinear.pressure
+    mu = form.material.viscosity(edot_squared(e), m=form.m_material, K=form.consistency)
+    zz = -p if plane else mu * e[2, 2] - p
+    return [mu * e[0, 0] - p, mu * e[1, 1] - p, zz, mu * e[0, 1]]
+
+
+def midplane_stress_deviation(s3) -> dict:
+    """The stress tensor on the mid-width plane (z = 0) of ``s3`` against the 2D pass's, in L2
+    over the plane (Frobenius, sigma_xy twice): each component interpolated into P2 (the
+    same ``Set`` on both meshes), the 3D one read in layer 0 onto the 2D mesh; over the 2D
+    stress's norm, the whole plane and the bite (x from the 2D contact's start to its end:
+    the deforming zone; ahead of it and after it the rigid zones hold the self-equilibrated
+    stresses of the width's unequal elongation)."""
+    import ngsolve as ng
+
+    run, mesh2 = s3.run2d, s3.run2d.mesh
+    V2 = fe_space(ng.H1, mesh2, order=2)
+    V3 = fe_space(ng.H1, s3.mesh, order=2)
+    g2, g3, mid = ng.GridFunction(V2), ng.GridFunction(V3), ng.GridFunction(V2)
+    two = plane_contact(run)
+    bite = ng.IfPos(ng.x - float(np.min(two["x"])), 1.0, 0.0) * ng.IfPos(
+        float(np.max(two["x"])) - ng.x, 1.0, 0.0)
+    diff = {"whole": 0.0, "bite": 0.0}
+    norm = {"whole": 0.0, "bite": 0.0}
+    for w, c2, c3 in zip((1.0, 1.0, 1.0, 2.0), _stress(run.form, True),
+                         _stress(s3.form, False)):
+        g2.Set(c2)
+        g3.Set(c3)
+        mid.vec[:] = 0.0
+        s3.copy.take(0, V3, g3.vec.FV().NumPy(), V2, mid.vec.FV().NumPy())
+        for part, chi in (("whole", 1.0), ("bite", bite)):
+            diff[part] += w * integrate(chi * (mid - g2) ** 2, mesh2, ng.VOL)
+            norm[part] += w * integrate(chi * g2 ** 2, mesh2, ng.VOL)
+    return {"midplane_stress_l2_deviation": float(np.sqrt(diff["whole"] / norm["whole"])),
+            "midplane_bite_stress_l2_deviation": float(np.sqrt(diff["bite"] / norm["bite"]))}

@@ -29,7 +29,9 @@ def record(**kw) -> SpreadResult:
                 flux_in=2.0e-4, flux_out=1.99e-4, flux_edge=0.5e-6, midplane={
                     "midplane_pressure_rms_deviation": 0.1,
                     "midplane_contact_pressure_rms_deviation": 0.02,
-                    "midplane_contact_pressure_l2_deviation": 0.015}, power_balance_error=1e-4,
+                    "midplane_contact_pressure_l2_deviation": 0.015,
+                    "midplane_stress_l2_deviation": 0.08,
+                    "midplane_bite_stress_l2_deviation": 0.01}, power_balance_error=1e-4,
                 settled=True, rounds=3, newton_iterations=17, dofs=18000, layers=2,
                 edge_layer=0.0025, wall_time=9.0)
     return SpreadResult(**{**base, **kw})

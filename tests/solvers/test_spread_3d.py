@@ -248,6 +248,33 @@ def test_the_mid_width_deviation_by_hand(solved):
                                                                rel=1e-9)
 
 
+def test_the_mid_width_stress_deviation_by_hand(solved):
+    """[hand] the stress tensor on the mid-width plane against the 2D pass's: the 2D velocity
+    in every layer, the pressure and the flow stress (the form's consistency) times 1 + c,
+    so sigma = mu eps - p I is (1 + c) times the 2D pass's: a deviation c over the whole
+    plane and over the bite. [identity] the held edge's own solution: within 1e-3 (the
+    pressure's one Newton step, as its pressure deviation)."""
+    run, held, _ = solved
+    g2, g3 = run.form.nonlinear.gf, held.form.nonlinear.gf
+    keep, consistency = g3.vec.FV().NumPy().copy(), held.form.consistency
+    own = held.midplane_deviation()
+    c = 0.03
+    try:
+        held.copy.vector(g2.components[0], g3.components[0])
+        P2, P3 = g2.components[1], g3.components[1]
+        held.copy.copy(P2.space, P2.vec.FV().NumPy(), P3.space, P3.vec.FV().NumPy())
+        P3.vec.FV().NumPy()[:] *= 1.0 + c
+        held.form.consistency = (1.0 + c) * consistency
+        dev = held.midplane_deviation()
+    finally:
+        g3.vec.FV().NumPy()[:] = keep
+        held.form.consistency = consistency
+    assert dev["midplane_stress_l2_deviation"] == pytest.approx(c, rel=1e-9)
+    assert dev["midplane_bite_stress_l2_deviation"] == pytest.approx(c, rel=1e-9)
+    assert 0.0 <= own["midplane_stress_l2_deviation"] <= 1e-3
+    assert 0.0 <= own["midplane_bite_stress_l2_deviation"] <= 1e-3
+
+
 def test_each_width_level_leaves_the_roll_where_its_pressure_falls_to_zero(solved):
     """[identity] unilateral contact per width level (solvers/spread_ends.py): at every level
     p_end >= 0, the end before the gap or at it, and p_end = 0 unless it is at the gap (to 1 %
