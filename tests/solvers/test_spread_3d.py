@@ -275,6 +275,15 @@ def test_the_mid_width_stress_deviation_by_hand(solved):
     assert 0.0 <= own["midplane_bite_stress_l2_deviation"] <= 1e-3
 
 
+def test_the_free_bars_mid_width_stress_snapshot(passes):
+    """[snapshot] the free bar's (b0/h0 = 1) mid-width stress off plane strain's, as measured
+    at f4c7221 (0.510 over the plane, 0.400 in the bite): a guard on which layer and region
+    are read, not a reference (a bar this narrow is far from plane strain)."""
+    _, _, free = passes
+    assert free["midplane_stress_l2_deviation"] == pytest.approx(0.510, rel=0.02)
+    assert free["midplane_bite_stress_l2_deviation"] == pytest.approx(0.400, rel=0.02)
+
+
 def test_each_width_level_leaves_the_roll_where_its_pressure_falls_to_zero(solved):
     """[identity] unilateral contact per width level (solvers/spread_ends.py): at every level
     p_end >= 0, the end before the gap or at it, and p_end = 0 unless it is at the gap (to 1 %
