@@ -108,8 +108,10 @@ def midplane_stress_deviation(s3) -> dict:
     over the plane (Frobenius, sigma_xy twice): each component interpolated into P2 (the
     same ``Set`` on both meshes), the 3D one read in layer 0 onto the 2D mesh; over the 2D
     stress's norm, the whole plane and the bite (x from the 2D contact's start to its end:
-    the deforming zone; ahead of it and after it the rigid zones hold the self-equilibrated
-    stresses of the width's unequal elongation)."""
+    the deforming zone; ahead of it and after it a 3D strip's rigid zones carry a width-wise
+    sigma_zz that balances the bite's across the mid-width plane, which plane strain cannot:
+    docs/validation/spread_3d.md, "The mid-width stresses"). In an edge zone layer 0 is the
+    cut."""
     import ngsolve as ng
 
     run, mesh2 = s3.run2d, s3.run2d.mesh
