@@ -110,8 +110,7 @@ def midplane_stress_deviation(s3) -> dict:
     stress's norm, the whole plane and the bite (x from the 2D contact's start to its end:
     the deforming zone; ahead of it and after it a 3D strip's rigid zones carry a width-wise
     sigma_zz that balances the bite's across the mid-width plane, which plane strain cannot:
-    docs/validation/spread_3d.md, "The mid-width stresses"). In an edge zone layer 0 is the
-    cut."""
+    docs/validation/spread_3d.md, "The mid-width stresses")."""
     import ngsolve as ng
 
     run, mesh2 = s3.run2d, s3.run2d.mesh
