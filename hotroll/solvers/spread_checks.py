@@ -103,33 +103,60 @@ def _stress(form, plane: bool) -> list:
     return [mu * e[0, 0] - p, mu * e[1, 1] - p, zz, mu * e[0, 1]]
 
 
-def midplane_stress_deviation(s3) -> dict:
-    """The stress tensor on the mid-width plane (z = 0) of ``s3`` against the 2D pass's, in L2
-    over the plane (Frobenius, sigma_xy twice): each component interpolated into P2 (the
-    same ``Set`` on both meshes), the 3D one read in layer 0 onto the 2D mesh; over the 2D
-    stress's norm, the whole plane and the bite (x from the 2D contact's start to its end:
-    the deforming zone; ahead of it and after it a 3D strip's rigid zones carry a width-wise
-    sigma_zz that balances the bite's across the mid-width plane, which plane strain cannot:
-    docs/validation/spread_3d.md, "The mid-width stresses")."""
+#: the stress components ``_stress`` returns, and their weights in the Frobenius norm
+STRESS_COMPONENTS = (("xx", 1.0), ("yy", 1.0), ("zz", 1.0), ("xy", 2.0))
+
+
+def bite_regions(s3) -> dict:
+    """Indicators (CoefficientFunctions of x on the 2D mesh) of the mid-width plane's parts:
+    ``ahead`` of the 2D contact's start, the ``bite`` from its start to its end, ``after``."""
     import ngsolve as ng
 
-    run, mesh2 = s3.run2d, s3.run2d.mesh
+    two = plane_contact(s3.run2d)
+    xs, xe = float(np.min(two["x"])), float(np.max(two["x"]))
+    return {"ahead": ng.IfPos(xs - ng.x, 1.0, 0.0),
+            "bite": ng.IfPos(ng.x - xs, 1.0, 0.0) * ng.IfPos(xe - ng.x, 1.0, 0.0),
+            "after": ng.IfPos(ng.x - xe, 1.0, 0.0)}
+
+
+def midplane_stress_parts(s3, regions: dict, fields: dict | None = None) -> tuple[dict, dict]:
+    """int chi w (sigma_3D - sigma_2D)^2 and int chi w sigma_2D^2 over the mid-width plane
+    (reduced stresses) per region ``chi`` of ``regions`` and component (keys (region, name)):
+    each component set into P2 on both meshes (the same ``Set``), the 3D one read in layer 0
+    onto the 2D mesh. ``fields``: filled with each component's P2 vectors, 2D and 3D."""
+    import ngsolve as ng
+
+    mesh2 = s3.run2d.mesh
     V2 = fe_space(ng.H1, mesh2, order=2)
     V3 = fe_space(ng.H1, s3.mesh, order=2)
     g2, g3, mid = ng.GridFunction(V2), ng.GridFunction(V3), ng.GridFunction(V2)
-    two = plane_contact(run)
-    bite = ng.IfPos(ng.x - float(np.min(two["x"])), 1.0, 0.0) * ng.IfPos(
-        float(np.max(two["x"])) - ng.x, 1.0, 0.0)
-    diff = {"whole": 0.0, "bite": 0.0}
-    norm = {"whole": 0.0, "bite": 0.0}
-    for w, c2, c3 in zip((1.0, 1.0, 1.0, 2.0), _stress(run.form, True),
-                         _stress(s3.form, False)):
+    diff, norm = {}, {}
+    for (name, w), c2, c3 in zip(STRESS_COMPONENTS, _stress(s3.run2d.form, True),
+                                 _stress(s3.form, False)):
         g2.Set(c2)
         g3.Set(c3)
         mid.vec[:] = 0.0
         s3.copy.take(0, V3, g3.vec.FV().NumPy(), V2, mid.vec.FV().NumPy())
-        for part, chi in (("whole", 1.0), ("bite", bite)):
-            diff[part] += w * integrate(chi * (mid - g2) ** 2, mesh2, ng.VOL)
-            norm[part] += w * integrate(chi * g2 ** 2, mesh2, ng.VOL)
-    return {"midplane_stress_l2_deviation": float(np.sqrt(diff["whole"] / norm["whole"])),
-            "midplane_bite_stress_l2_deviation": float(np.sqrt(diff["bite"] / norm["bite"]))}
+        for part, chi in regions.items():
+            diff[part, name] = w * integrate(chi * (mid - g2) ** 2, mesh2, ng.VOL)
+            norm[part, name] = w * integrate(chi * g2 ** 2, mesh2, ng.VOL)
+        if fields is not None:
+            fields[name] = (g2.vec.FV().NumPy().copy(), mid.vec.FV().NumPy().copy())
+    return diff, norm
+
+
+def midplane_stress_deviation(s3) -> dict:
+    """The stress tensor on the mid-width plane (z = 0) of ``s3`` against the 2D pass's, in L2
+    over the plane (Frobenius, sigma_xy twice; ``midplane_stress_parts``), over the 2D
+    stress's norm, the whole plane and the bite (x from the 2D contact's start to its end:
+    the deforming zone; ahead of it and after it a 3D strip's rigid zones carry a width-wise
+    sigma_zz that balances the bite's across the mid-width plane, which plane strain cannot:
+    docs/validation/spread_3d.md, "The mid-width stresses")."""
+    diff, norm = midplane_stress_parts(s3, {"whole": 1.0, "bite": bite_regions(s3)["bite"]})
+
+    def ratio(part):
+        return float(np.sqrt(sum(v for (p, _), v in diff.items() if p == part)
+                             / sum(v for (p, _), v in norm.items() if p == part)))
+
+    return {"midplane_stress_l2_deviation": ratio("whole"),
+            "midplane_bite_stress_l2_deviation": ratio("bite")}
